@@ -1,0 +1,111 @@
+//! Math types used by the engine core. Vectors and quaternions are glam's; a rigid
+//! transform is ours so that the core never depends on a C layout.
+
+pub use glam::{Mat3, Quat, Vec3};
+
+/// A rigid transform: rotate by `q`, then translate by `p`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Transform {
+    pub p: Vec3,
+    pub q: Quat,
+}
+
+impl Transform {
+    pub const IDENTITY: Transform = Transform {
+        p: Vec3::ZERO,
+        q: Quat::IDENTITY,
+    };
+
+    #[inline]
+    pub fn new(p: Vec3, q: Quat) -> Self {
+        Transform { p, q }
+    }
+
+    /// Maps a point from local to world space.
+    #[inline]
+    pub fn apply(&self, v: Vec3) -> Vec3 {
+        self.q * v + self.p
+    }
+
+    /// Maps a point from world to local space.
+    #[inline]
+    pub fn apply_inv(&self, v: Vec3) -> Vec3 {
+        self.q.conjugate() * (v - self.p)
+    }
+
+    /// `self * other`: first `other`, then `self`.
+    #[inline]
+    pub fn mul(&self, other: &Transform) -> Transform {
+        Transform {
+            p: self.q * other.p + self.p,
+            q: (self.q * other.q).normalize(),
+        }
+    }
+
+    /// `inverse(self) * other`: `other` expressed in the frame of `self`.
+    #[inline]
+    pub fn inv_mul(&self, other: &Transform) -> Transform {
+        let qi = self.q.conjugate();
+        Transform {
+            p: qi * (other.p - self.p),
+            q: (qi * other.q).normalize(),
+        }
+    }
+}
+
+impl Default for Transform {
+    fn default() -> Self {
+        Transform::IDENTITY
+    }
+}
+
+/// Builds two unit vectors orthogonal to `n` and to each other (`n` must be unit length).
+/// Branch-free construction by Duff et al., "Building an orthonormal basis, revisited".
+#[inline]
+pub fn orthonormal_basis(n: Vec3) -> (Vec3, Vec3) {
+    let sign = 1.0f32.copysign(n.z);
+    let a = -1.0 / (sign + n.z);
+    let b = n.x * n.y * a;
+    let t1 = Vec3::new(1.0 + sign * n.x * n.x * a, sign * b, -sign * n.x);
+    let t2 = Vec3::new(b, sign + n.y * n.y * a, -n.y);
+    (t1, t2)
+}
+
+/// Integrates an orientation by an angular velocity over `h` seconds and renormalises.
+#[inline]
+pub fn integrate_rotation(q: Quat, w: Vec3, h: f32) -> Quat {
+    let dq = Quat::from_xyzw(w.x, w.y, w.z, 0.0) * q;
+    let r = Quat::from_xyzw(
+        q.x + 0.5 * h * dq.x,
+        q.y + 0.5 * h * dq.y,
+        q.z + 0.5 * h * dq.z,
+        q.w + 0.5 * h * dq.w,
+    );
+    r.normalize()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn basis_is_orthonormal() {
+        for n in [Vec3::X, Vec3::Y, Vec3::Z, -Vec3::Z, Vec3::new(1.0, 2.0, -3.0).normalize()] {
+            let (t1, t2) = orthonormal_basis(n);
+            assert!(t1.dot(n).abs() < 1e-6 && t2.dot(n).abs() < 1e-6 && t1.dot(t2).abs() < 1e-6);
+            assert!((t1.length() - 1.0).abs() < 1e-6 && (t2.length() - 1.0).abs() < 1e-6);
+        }
+    }
+
+    #[test]
+    fn transform_roundtrip() {
+        let t = Transform::new(Vec3::new(1.0, 2.0, 3.0), Quat::from_rotation_y(0.7));
+        let p = Vec3::new(-0.3, 0.5, 2.0);
+        assert!((t.apply_inv(t.apply(p)) - p).length() < 1e-6);
+        let u = Transform::new(Vec3::new(0.5, 0.0, -1.0), Quat::from_rotation_x(0.3));
+        let tu = t.mul(&u);
+        assert!((tu.apply(p) - t.apply(u.apply(p))).length() < 1e-5);
+        let back = t.inv_mul(&tu);
+        assert!((back.p - u.p).length() < 1e-5);
+    }
+}

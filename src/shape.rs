@@ -1,0 +1,227 @@
+//! Shape geometry in the local frame of its body, its bounds and its mass.
+
+use crate::aabb::Aabb;
+use crate::math::{Mat3, Quat, Transform, Vec3};
+
+/// Collision geometry, placed in the local frame of the body that owns it.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Geometry {
+    Sphere { center: Vec3, radius: f32 },
+    /// An oriented box: `rotation` is relative to the body.
+    Box { center: Vec3, rotation: Quat, half_extents: Vec3 },
+    /// Segment `a`–`b` swept by `radius`.
+    Capsule { a: Vec3, b: Vec3, radius: f32 },
+    /// The half-space `dot(normal, p) <= offset` (static bodies only).
+    Plane { normal: Vec3, offset: f32 },
+}
+
+/// Shape kinds in dispatch order; narrowphase pairs are ordered so `kind(a) <= kind(b)`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord)]
+pub enum ShapeKind {
+    Sphere = 0,
+    Capsule = 1,
+    Box = 2,
+    Plane = 3,
+}
+
+impl Geometry {
+    pub fn kind(&self) -> ShapeKind {
+        match self {
+            Geometry::Sphere { .. } => ShapeKind::Sphere,
+            Geometry::Capsule { .. } => ShapeKind::Capsule,
+            Geometry::Box { .. } => ShapeKind::Box,
+            Geometry::Plane { .. } => ShapeKind::Plane,
+        }
+    }
+
+    /// True for geometry without finite extent (planes).
+    pub fn is_unbounded(&self) -> bool {
+        matches!(self, Geometry::Plane { .. })
+    }
+
+    /// World-space bounds under the body transform `xf`. Planes get an enormous box.
+    pub fn aabb(&self, xf: &Transform) -> Aabb {
+        match *self {
+            Geometry::Sphere { center, radius } => {
+                Aabb::from_center_extents(xf.apply(center), Vec3::splat(radius))
+            }
+            Geometry::Box { center, rotation, half_extents } => {
+                let m = Mat3::from_quat(xf.q * rotation);
+                let e = Vec3::new(
+                    m.row(0).abs().dot(half_extents),
+                    m.row(1).abs().dot(half_extents),
+                    m.row(2).abs().dot(half_extents),
+                );
+                Aabb::from_center_extents(xf.apply(center), e)
+            }
+            Geometry::Capsule { a, b, radius } => {
+                let wa = xf.apply(a);
+                let wb = xf.apply(b);
+                Aabb::new(wa.min(wb), wa.max(wb)).expanded(radius)
+            }
+            Geometry::Plane { .. } => Aabb::new(Vec3::splat(-1.0e18), Vec3::splat(1.0e18)),
+        }
+    }
+
+    /// Volume in m³ (0 for a plane).
+    pub fn volume(&self) -> f32 {
+        match *self {
+            Geometry::Sphere { radius, .. } => 4.0 / 3.0 * std::f32::consts::PI * radius.powi(3),
+            Geometry::Box { half_extents: h, .. } => 8.0 * h.x * h.y * h.z,
+            Geometry::Capsule { a, b, radius } => {
+                let l = (b - a).length();
+                std::f32::consts::PI * radius * radius * (l + 4.0 / 3.0 * radius)
+            }
+            Geometry::Plane { .. } => 0.0,
+        }
+    }
+
+    /// Mass properties at `density` (kg/m³), expressed in the body frame.
+    pub fn mass_properties(&self, density: f32) -> MassProperties {
+        use std::f32::consts::PI;
+        match *self {
+            Geometry::Sphere { center, radius } => {
+                let m = density * self.volume();
+                let i = 0.4 * m * radius * radius;
+                MassProperties { mass: m, center, inertia: Mat3::from_diagonal(Vec3::splat(i)) }
+            }
+            Geometry::Box { center, rotation, half_extents: h } => {
+                let m = density * self.volume();
+                let s = h * h;
+                let d = Vec3::new(s.y + s.z, s.x + s.z, s.x + s.y) * (m / 3.0);
+                let r = Mat3::from_quat(rotation);
+                let inertia = r * Mat3::from_diagonal(d) * r.transpose();
+                MassProperties { mass: m, center, inertia }
+            }
+            Geometry::Capsule { a, b, radius: r } => {
+                // Cylinder plus two hemispheres, about the capsule's own axis frame, then rotated.
+                let axis = b - a;
+                let l = axis.length();
+                let center = 0.5 * (a + b);
+                let mc = density * PI * r * r * l;
+                let ms = density * 4.0 / 3.0 * PI * r * r * r;
+                let r2 = r * r;
+                let i_axial = mc * r2 * 0.5 + ms * 0.4 * r2;
+                // Hemisphere centroid is 3r/8 from its flat face; parallel-axis about the capsule centre.
+                let d = 0.5 * l + 3.0 / 8.0 * r;
+                let i_hemi_own = (0.4 - (3.0f32 / 8.0).powi(2)) * r2 * 0.5 * ms; // per hemisphere about its centroid
+                let i_perp = mc * (r2 / 4.0 + l * l / 12.0) + 2.0 * (i_hemi_own + 0.5 * ms * d * d);
+                let local = Mat3::from_diagonal(Vec3::new(i_perp, i_axial, i_perp));
+                let rot = if l > 1e-6 {
+                    Mat3::from_quat(Quat::from_rotation_arc(Vec3::Y, axis / l))
+                } else {
+                    Mat3::IDENTITY
+                };
+                MassProperties { mass: mc + ms, center, inertia: rot * local * rot.transpose() }
+            }
+            Geometry::Plane { .. } => MassProperties::ZERO,
+        }
+    }
+}
+
+/// Mass, centre of mass and inertia about the centre of mass, in the body frame.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct MassProperties {
+    pub mass: f32,
+    pub center: Vec3,
+    pub inertia: Mat3,
+}
+
+impl MassProperties {
+    pub const ZERO: MassProperties =
+        MassProperties { mass: 0.0, center: Vec3::ZERO, inertia: Mat3::ZERO };
+
+    /// Combines parts by the parallel-axis theorem (compound bodies).
+    pub fn combine(parts: impl Iterator<Item = MassProperties> + Clone) -> MassProperties {
+        let mut mass = 0.0;
+        let mut moment = Vec3::ZERO;
+        for p in parts.clone() {
+            mass += p.mass;
+            moment += p.mass * p.center;
+        }
+        if mass <= 0.0 {
+            return MassProperties::ZERO;
+        }
+        let center = moment / mass;
+        let mut inertia = Mat3::ZERO;
+        for p in parts {
+            let d = p.center - center;
+            let shift = Mat3::from_diagonal(Vec3::splat(d.dot(d))) - outer(d, d);
+            inertia += p.inertia + shift * p.mass;
+        }
+        MassProperties { mass, center, inertia }
+    }
+}
+
+#[inline]
+fn outer(a: Vec3, b: Vec3) -> Mat3 {
+    Mat3::from_cols(a * b.x, a * b.y, a * b.z)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn close(a: f32, b: f32, tol: f32) -> bool {
+        (a - b).abs() <= tol * b.abs().max(1.0)
+    }
+
+    #[test]
+    fn box_inertia_matches_formula() {
+        let g = Geometry::Box { center: Vec3::ZERO, rotation: Quat::IDENTITY, half_extents: Vec3::new(1.0, 2.0, 3.0) };
+        let mp = g.mass_properties(2.0);
+        assert!(close(mp.mass, 96.0, 1e-6));
+        // I_x = m/12 (h² + d²) with full sizes 4 and 6
+        assert!(close(mp.inertia.x_axis.x, 96.0 / 12.0 * (16.0 + 36.0), 1e-5));
+        assert!(close(mp.inertia.y_axis.y, 96.0 / 12.0 * (4.0 + 36.0), 1e-5));
+        assert!(close(mp.inertia.z_axis.z, 96.0 / 12.0 * (4.0 + 16.0), 1e-5));
+    }
+
+    #[test]
+    fn compound_of_two_boxes_equals_one_long_box() {
+        let h = Vec3::new(0.5, 0.5, 0.5);
+        let a = Geometry::Box { center: Vec3::new(-0.5, 0.0, 0.0), rotation: Quat::IDENTITY, half_extents: h };
+        let b = Geometry::Box { center: Vec3::new(0.5, 0.0, 0.0), rotation: Quat::IDENTITY, half_extents: h };
+        let whole = Geometry::Box { center: Vec3::ZERO, rotation: Quat::IDENTITY, half_extents: Vec3::new(1.0, 0.5, 0.5) };
+        let c = MassProperties::combine([a.mass_properties(3.0), b.mass_properties(3.0)].into_iter());
+        let w = whole.mass_properties(3.0);
+        assert!(close(c.mass, w.mass, 1e-6));
+        assert!(c.center.length() < 1e-6);
+        for i in 0..3 {
+            assert!(close(c.inertia.col(i)[i], w.inertia.col(i)[i], 1e-5));
+        }
+    }
+
+    #[test]
+    fn rotated_box_inertia_is_rotated() {
+        let h = Vec3::new(1.0, 0.25, 0.5);
+        let q = Quat::from_rotation_z(std::f32::consts::FRAC_PI_2);
+        let g = Geometry::Box { center: Vec3::ZERO, rotation: q, half_extents: h };
+        let s = Geometry::Box { center: Vec3::ZERO, rotation: Quat::IDENTITY, half_extents: Vec3::new(0.25, 1.0, 0.5) };
+        let a = g.mass_properties(1.0).inertia;
+        let b = s.mass_properties(1.0).inertia;
+        for i in 0..3 {
+            assert!((a.col(i) - b.col(i)).length() < 1e-4);
+        }
+    }
+
+    #[test]
+    fn capsule_limits() {
+        // A zero-length capsule is a sphere.
+        let c = Geometry::Capsule { a: Vec3::ZERO, b: Vec3::ZERO, radius: 0.5 };
+        let s = Geometry::Sphere { center: Vec3::ZERO, radius: 0.5 };
+        let (mc, ms) = (c.mass_properties(1.0), s.mass_properties(1.0));
+        assert!(close(mc.mass, ms.mass, 1e-5));
+        assert!(close(mc.inertia.x_axis.x, ms.inertia.x_axis.x, 1e-4));
+        assert!(close(mc.inertia.y_axis.y, ms.inertia.y_axis.y, 1e-4));
+    }
+
+    #[test]
+    fn rotated_box_aabb() {
+        let g = Geometry::Box { center: Vec3::ZERO, rotation: Quat::IDENTITY, half_extents: Vec3::new(1.0, 1.0, 1.0) };
+        let xf = Transform::new(Vec3::new(0.0, 5.0, 0.0), Quat::from_rotation_y(std::f32::consts::FRAC_PI_4));
+        let bb = g.aabb(&xf);
+        let r = 2.0f32.sqrt();
+        assert!((bb.max.x - r).abs() < 1e-5 && (bb.max.y - 6.0).abs() < 1e-5);
+    }
+}
