@@ -5,5 +5,6 @@
 
 pub mod aabb;
 pub mod collision;
+pub mod dynamic_tree;
 pub mod math;
 pub mod shape;

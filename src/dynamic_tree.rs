@@ -1,0 +1,661 @@
+//! Broadphase dynamic AABB tree: a bounding volume hierarchy over fat boxes.
+//!
+//! The design follows Box2D v3's `b2DynamicTree` in 3D: nodes live in a `Vec` and refer to
+//! each other by index, freed nodes go on an intrusive free list (no allocation once the
+//! node count is stable), a proxy id is the index of its leaf node. Insertion picks the
+//! sibling by the surface-area heuristic with branch and bound, then walks back to the
+//! root refitting boxes and applying local tree rotations that reduce the summed area,
+//! which keeps the tree shallow under incremental insert / remove / move. `rebuild`
+//! rebuilds the whole hierarchy top-down with a binned SAH.
+//!
+//! Every operation is deterministic: the same sequence of calls gives the same tree.
+
+use crate::aabb::Aabb;
+use crate::math::Vec3;
+
+/// The null node / proxy index.
+pub const NULL_NODE: u32 = u32::MAX;
+
+/// Capacity of the on-stack traversal stack; deeper trees spill into a heap `Vec`.
+const STACK_CAPACITY: usize = 256;
+
+#[derive(Clone, Copy, Debug)]
+struct Node {
+    aabb: Aabb,
+    /// Parent index; the next free node while on the free list.
+    parent: u32,
+    child1: u32,
+    child2: u32,
+    user_data: u32,
+    /// 0 for a leaf, -1 for a free node.
+    height: i32,
+}
+
+impl Node {
+    const FREE: Node = Node {
+        aabb: Aabb::EMPTY,
+        parent: NULL_NODE,
+        child1: NULL_NODE,
+        child2: NULL_NODE,
+        user_data: 0,
+        height: -1,
+    };
+
+    #[inline]
+    fn is_leaf(&self) -> bool {
+        self.height == 0
+    }
+}
+
+/// A dynamic bounding volume hierarchy. Proxies are leaves; their boxes are stored as given
+/// (the caller fattens them).
+#[derive(Clone, Debug)]
+pub struct DynamicTree {
+    nodes: Vec<Node>,
+    root: u32,
+    free_list: u32,
+    /// Allocated nodes (leaves and internal).
+    node_count: u32,
+    proxy_count: u32,
+}
+
+impl Default for DynamicTree {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+/// Traversal stack: a fixed array that spills into a `Vec` only if it overflows.
+struct Stack {
+    items: [u32; STACK_CAPACITY],
+    len: usize,
+    spill: Vec<u32>,
+}
+
+impl Stack {
+    #[inline]
+    fn new() -> Self {
+        Stack {
+            items: [NULL_NODE; STACK_CAPACITY],
+            len: 0,
+            spill: Vec::new(),
+        }
+    }
+
+    #[inline]
+    fn push(&mut self, v: u32) {
+        if self.len < STACK_CAPACITY {
+            self.items[self.len] = v;
+            self.len += 1;
+        } else {
+            self.spill.push(v);
+        }
+    }
+
+    #[inline]
+    fn pop(&mut self) -> Option<u32> {
+        if let Some(v) = self.spill.pop() {
+            Some(v)
+        } else if self.len > 0 {
+            self.len -= 1;
+            Some(self.items[self.len])
+        } else {
+            None
+        }
+    }
+}
+
+/// Slab test of the segment `origin + t * dir`, `t` in `[0, max_t]`, against `b`. `inv_dir`
+/// is the component-wise reciprocal of `dir` (ignored where `dir` is zero). Returns the
+/// entry parameter (0 when the origin is inside). Monotone: a box containing `b` is always
+/// hit too, so the tree never culls a leaf this test would accept.
+#[inline]
+pub fn ray_aabb_entry(origin: Vec3, dir: Vec3, inv_dir: Vec3, max_t: f32, b: &Aabb) -> Option<f32> {
+    let mut t0 = 0.0f32;
+    let mut t1 = max_t;
+    for a in 0..3 {
+        let o = origin[a];
+        if dir[a] == 0.0 {
+            if o < b.min[a] || o > b.max[a] {
+                return None;
+            }
+        } else {
+            let inv = inv_dir[a];
+            let mut ta = (b.min[a] - o) * inv;
+            let mut tb = (b.max[a] - o) * inv;
+            if ta > tb {
+                std::mem::swap(&mut ta, &mut tb);
+            }
+            t0 = t0.max(ta);
+            t1 = t1.min(tb);
+            if t0 > t1 {
+                return None;
+            }
+        }
+    }
+    Some(t0)
+}
+
+#[inline]
+fn reciprocal(dir: Vec3) -> Vec3 {
+    let r = |x: f32| if x == 0.0 { 0.0 } else { 1.0 / x };
+    Vec3::new(r(dir.x), r(dir.y), r(dir.z))
+}
+
+impl DynamicTree {
+    pub fn new() -> Self {
+        DynamicTree {
+            nodes: Vec::new(),
+            root: NULL_NODE,
+            free_list: NULL_NODE,
+            node_count: 0,
+            proxy_count: 0,
+        }
+    }
+
+    /// Pre-allocates room for `proxies` leaves (and their internal nodes).
+    pub fn with_capacity(proxies: usize) -> Self {
+        let mut t = Self::new();
+        t.nodes.reserve(2 * proxies);
+        t
+    }
+
+    fn allocate_node(&mut self) -> u32 {
+        self.node_count += 1;
+        if self.free_list != NULL_NODE {
+            let i = self.free_list;
+            self.free_list = self.nodes[i as usize].parent;
+            self.nodes[i as usize] = Node {
+                height: 0,
+                ..Node::FREE
+            };
+            i
+        } else {
+            let i = self.nodes.len() as u32;
+            assert!(i != NULL_NODE, "dynamic tree node overflow");
+            self.nodes.push(Node {
+                height: 0,
+                ..Node::FREE
+            });
+            i
+        }
+    }
+
+    fn free_node(&mut self, i: u32) {
+        debug_assert!(self.nodes[i as usize].height >= 0);
+        self.nodes[i as usize] = Node {
+            parent: self.free_list,
+            ..Node::FREE
+        };
+        self.free_list = i;
+        self.node_count -= 1;
+    }
+
+    #[inline]
+    fn check_proxy(&self, proxy: u32) -> &Node {
+        let n = &self.nodes[proxy as usize];
+        assert!(n.is_leaf(), "invalid proxy id {proxy}");
+        n
+    }
+
+    /// Creates a leaf for `aabb` and returns its proxy id. Ids of destroyed proxies are
+    /// reused (most recently destroyed first).
+    pub fn create_proxy(&mut self, aabb: Aabb, user_data: u32) -> u32 {
+        let leaf = self.allocate_node();
+        let n = &mut self.nodes[leaf as usize];
+        n.aabb = aabb;
+        n.user_data = user_data;
+        n.height = 0;
+        self.insert_leaf(leaf);
+        self.proxy_count += 1;
+        leaf
+    }
+
+    pub fn destroy_proxy(&mut self, proxy: u32) {
+        self.check_proxy(proxy);
+        self.remove_leaf(proxy);
+        self.free_node(proxy);
+        self.proxy_count -= 1;
+    }
+
+    /// Replaces the box of a proxy: removes the leaf and reinserts it.
+    pub fn move_proxy(&mut self, proxy: u32, aabb: Aabb) {
+        self.check_proxy(proxy);
+        self.remove_leaf(proxy);
+        self.nodes[proxy as usize].aabb = aabb;
+        self.insert_leaf(proxy);
+    }
+
+    #[inline]
+    pub fn fat_aabb(&self, proxy: u32) -> Aabb {
+        self.check_proxy(proxy).aabb
+    }
+
+    #[inline]
+    pub fn user_data(&self, proxy: u32) -> u32 {
+        self.check_proxy(proxy).user_data
+    }
+
+    /// Height of the tree: 0 for a single leaf, 0 when empty.
+    pub fn height(&self) -> u32 {
+        if self.root == NULL_NODE {
+            0
+        } else {
+            self.nodes[self.root as usize].height as u32
+        }
+    }
+
+    pub fn proxy_count(&self) -> u32 {
+        self.proxy_count
+    }
+
+    /// Allocated nodes, leaves and internal.
+    pub fn node_count(&self) -> u32 {
+        self.node_count
+    }
+
+    pub fn root(&self) -> u32 {
+        self.root
+    }
+
+    /// The box of the whole tree, `Aabb::EMPTY` when empty.
+    pub fn root_aabb(&self) -> Aabb {
+        if self.root == NULL_NODE {
+            Aabb::EMPTY
+        } else {
+            self.nodes[self.root as usize].aabb
+        }
+    }
+
+    /// Calls `f(proxy, user_data)` for every proxy whose box overlaps `aabb`, until `f`
+    /// returns false.
+    pub fn query<F: FnMut(u32, u32) -> bool>(&self, aabb: &Aabb, mut f: F) {
+        if self.root == NULL_NODE {
+            return;
+        }
+        let mut stack = Stack::new();
+        stack.push(self.root);
+        while let Some(i) = stack.pop() {
+            let n = &self.nodes[i as usize];
+            if !n.aabb.overlaps(aabb) {
+                continue;
+            }
+            if n.is_leaf() {
+                if !f(i, n.user_data) {
+                    return;
+                }
+            } else {
+                stack.push(n.child1);
+                stack.push(n.child2);
+            }
+        }
+    }
+
+    /// Casts the segment `origin + t * dir`, `t` in `[0, max_t]`, Box2D style: `f(proxy,
+    /// user_data, max_t_so_far)` is called for every proxy whose box the (clipped) segment
+    /// hits, and returns 0 to terminate, a negative value to ignore the proxy, or a value
+    /// `t` in `(0, max_t_so_far]` to clip the segment to `[0, t]` (returning
+    /// `max_t_so_far` continues unclipped).
+    pub fn ray_cast<F: FnMut(u32, u32, f32) -> f32>(
+        &self,
+        origin: Vec3,
+        dir: Vec3,
+        max_t: f32,
+        mut f: F,
+    ) {
+        if self.root == NULL_NODE || max_t.is_nan() || max_t < 0.0 {
+            return;
+        }
+        let inv_dir = reciprocal(dir);
+        let mut max_t = max_t;
+        let mut stack = Stack::new();
+        stack.push(self.root);
+        while let Some(i) = stack.pop() {
+            let n = &self.nodes[i as usize];
+            if ray_aabb_entry(origin, dir, inv_dir, max_t, &n.aabb).is_none() {
+                continue;
+            }
+            if n.is_leaf() {
+                let value = f(i, n.user_data, max_t);
+                if value == 0.0 {
+                    return;
+                }
+                if value > 0.0 && value <= max_t {
+                    max_t = value;
+                }
+            } else {
+                stack.push(n.child1);
+                stack.push(n.child2);
+            }
+        }
+    }
+
+    /// Sum of the perimeters (half surface areas) of the internal nodes other than the
+    /// root, divided by the root's: Box2D's tree quality metric (lower is better).
+    pub fn area_ratio(&self) -> f32 {
+        if self.root == NULL_NODE {
+            return 0.0;
+        }
+        let root_area = self.nodes[self.root as usize].aabb.perimeter();
+        let total: f32 = self
+            .nodes
+            .iter()
+            .enumerate()
+            .filter(|(i, n)| n.height > 0 && *i as u32 != self.root)
+            .map(|(_, n)| n.aabb.perimeter())
+            .sum();
+        if root_area > 0.0 {
+            total / root_area
+        } else {
+            0.0
+        }
+    }
+
+    // ---------------------------------------------------------------------------------
+    // Insertion and removal
+
+    /// Cheapest sibling for a new leaf with box `d` (SAH with branch and bound, following a
+    /// single greedy path like Box2D v3's `b2FindBestSibling`).
+    fn find_best_sibling(&self, d: &Aabb) -> u32 {
+        let center_d = d.center();
+        let area_d = d.perimeter();
+        let nodes = &self.nodes;
+
+        let root_box = nodes[self.root as usize].aabb;
+        let mut area_base = root_box.perimeter();
+        let mut direct_cost = root_box.union(d).perimeter();
+        let mut inherited_cost = 0.0f32;
+
+        let mut best = self.root;
+        let mut best_cost = direct_cost;
+        let mut index = self.root;
+        while !nodes[index as usize].is_leaf() {
+            let n = &nodes[index as usize];
+            let (c1, c2) = (n.child1, n.child2);
+
+            // Cost of making `index` the sibling.
+            let cost = direct_cost + inherited_cost;
+            if cost < best_cost {
+                best = index;
+                best_cost = cost;
+            }
+            // Area growth of this node, inherited by everything below.
+            inherited_cost += direct_cost - area_base;
+
+            let n1 = &nodes[c1 as usize];
+            let n2 = &nodes[c2 as usize];
+            let (leaf1, leaf2) = (n1.is_leaf(), n2.is_leaf());
+
+            let direct1 = n1.aabb.union(d).perimeter();
+            let mut area1 = 0.0;
+            let mut lower1 = f32::MAX;
+            if leaf1 {
+                let cost1 = direct1 + inherited_cost;
+                if cost1 < best_cost {
+                    best = c1;
+                    best_cost = cost1;
+                }
+            } else {
+                area1 = n1.aabb.perimeter();
+                // Either child 1 itself is the sibling, or a descendant is, which costs at
+                // least a new node of area(d) plus child 1's growth.
+                lower1 = inherited_cost + direct1 + (area_d - area1).min(0.0);
+            }
+
+            let direct2 = n2.aabb.union(d).perimeter();
+            let mut area2 = 0.0;
+            let mut lower2 = f32::MAX;
+            if leaf2 {
+                let cost2 = direct2 + inherited_cost;
+                if cost2 < best_cost {
+                    best = c2;
+                    best_cost = cost2;
+                }
+            } else {
+                area2 = n2.aabb.perimeter();
+                lower2 = inherited_cost + direct2 + (area_d - area2).min(0.0);
+            }
+
+            if leaf1 && leaf2 {
+                break;
+            }
+            if best_cost <= lower1 && best_cost <= lower2 {
+                break;
+            }
+            if lower1 == lower2 && !leaf1 {
+                // No clear choice (e.g. both children contain d): use centroid distance.
+                lower1 = (n1.aabb.center() - center_d).length_squared();
+                lower2 = (n2.aabb.center() - center_d).length_squared();
+            }
+            if lower1 < lower2 && !leaf1 {
+                index = c1;
+                area_base = area1;
+                direct_cost = direct1;
+            } else {
+                index = c2;
+                area_base = area2;
+                direct_cost = direct2;
+            }
+        }
+        best
+    }
+
+    fn insert_leaf(&mut self, leaf: u32) {
+        if self.root == NULL_NODE {
+            self.root = leaf;
+            self.nodes[leaf as usize].parent = NULL_NODE;
+            return;
+        }
+        let leaf_box = self.nodes[leaf as usize].aabb;
+        let sibling = self.find_best_sibling(&leaf_box);
+
+        let old_parent = self.nodes[sibling as usize].parent;
+        let new_parent = self.allocate_node();
+        {
+            let s = self.nodes[sibling as usize];
+            let p = &mut self.nodes[new_parent as usize];
+            p.parent = old_parent;
+            p.aabb = leaf_box.union(&s.aabb);
+            p.height = s.height + 1;
+            p.child1 = sibling;
+            p.child2 = leaf;
+        }
+        if old_parent != NULL_NODE {
+            let op = &mut self.nodes[old_parent as usize];
+            if op.child1 == sibling {
+                op.child1 = new_parent;
+            } else {
+                op.child2 = new_parent;
+            }
+        } else {
+            self.root = new_parent;
+        }
+        self.nodes[sibling as usize].parent = new_parent;
+        self.nodes[leaf as usize].parent = new_parent;
+
+        // Refit and rotate on the way up.
+        let mut index = new_parent;
+        while index != NULL_NODE {
+            self.refit(index);
+            self.rotate(index);
+            index = self.nodes[index as usize].parent;
+        }
+    }
+
+    fn remove_leaf(&mut self, leaf: u32) {
+        if leaf == self.root {
+            self.root = NULL_NODE;
+            return;
+        }
+        let parent = self.nodes[leaf as usize].parent;
+        let (grand_parent, sibling) = {
+            let p = &self.nodes[parent as usize];
+            (p.parent, if p.child1 == leaf { p.child2 } else { p.child1 })
+        };
+        self.nodes[sibling as usize].parent = grand_parent;
+        self.free_node(parent);
+        if grand_parent == NULL_NODE {
+            self.root = sibling;
+            return;
+        }
+        let gp = &mut self.nodes[grand_parent as usize];
+        if gp.child1 == parent {
+            gp.child1 = sibling;
+        } else {
+            gp.child2 = sibling;
+        }
+        let mut index = grand_parent;
+        while index != NULL_NODE {
+            self.refit(index);
+            index = self.nodes[index as usize].parent;
+        }
+    }
+
+    /// Recomputes the box and height of internal node `i` from its children.
+    #[inline]
+    fn refit(&mut self, i: u32) {
+        let n = self.nodes[i as usize];
+        let a = &self.nodes[n.child1 as usize];
+        let b = &self.nodes[n.child2 as usize];
+        let aabb = a.aabb.union(&b.aabb);
+        let height = 1 + a.height.max(b.height);
+        let n = &mut self.nodes[i as usize];
+        n.aabb = aabb;
+        n.height = height;
+    }
+
+    /// Tree rotation at internal node `a` with children `b`, `c`: swaps a child with a
+    /// grandchild on the other side when that lowers the summed area of the internal nodes
+    /// (Box2D v3's `b2RotateNodes`). The box of `a` is unchanged; its height is refit.
+    fn rotate(&mut self, a: u32) {
+        let na = self.nodes[a as usize];
+        if na.height < 2 {
+            return;
+        }
+        let (b, c) = (na.child1, na.child2);
+        let nb = self.nodes[b as usize];
+        let nc = self.nodes[c as usize];
+
+        // Candidate: (child of `a` to move down, internal sibling receiving it, which
+        // grandchild slot it swaps with). Delta = area change of the receiving sibling.
+        let mut best: Option<(u32, u32, bool)> = None;
+        let mut best_delta = 0.0f32;
+        let mut best_height = na.height;
+        let mut consider = |down: &Node, down_i: u32, side: &Node, side_i: u32| {
+            if side.is_leaf() {
+                return;
+            }
+            let f = &self.nodes[side.child1 as usize];
+            let g = &self.nodes[side.child2 as usize];
+            let base = side.aabb.perimeter();
+            // Swap `down` with f: side becomes (down, g), `a` gets (f, side').
+            for (first, keep, up) in [(true, g, f), (false, f, g)] {
+                let delta = down.aabb.union(&keep.aabb).perimeter() - base;
+                let side_h = 1 + down.height.max(keep.height);
+                let height = 1 + side_h.max(up.height);
+                // Strictly lower area, or equal area and strictly lower height.
+                if delta < best_delta || (delta == best_delta && height < best_height) {
+                    best_delta = delta;
+                    best_height = height;
+                    best = Some((down_i, side_i, first));
+                }
+            }
+        };
+        consider(&nb, b, &nc, c);
+        consider(&nc, c, &nb, b);
+
+        let Some((down, side, first)) = best else {
+            return;
+        };
+        let ns = self.nodes[side as usize];
+        let up = if first { ns.child1 } else { ns.child2 };
+        // Child slot of `a` that held `down` now holds `up`.
+        {
+            let na = &mut self.nodes[a as usize];
+            if na.child1 == down {
+                na.child1 = up;
+            } else {
+                na.child2 = up;
+            }
+        }
+        {
+            let ns = &mut self.nodes[side as usize];
+            if first {
+                ns.child1 = down;
+            } else {
+                ns.child2 = down;
+            }
+        }
+        self.nodes[down as usize].parent = side;
+        self.nodes[up as usize].parent = a;
+        self.refit(side);
+        self.refit(a);
+    }
+
+    // ---------------------------------------------------------------------------------
+    // Validation
+
+    /// Checks the structure (panics on failure): parent links, heights, boxes containing
+    /// their children, leaf count, free list. O(n); meant for tests and debugging.
+    pub fn validate(&self) {
+        let mut reached = 0u32;
+        let mut leaves = 0u32;
+        if self.root != NULL_NODE {
+            assert_eq!(
+                self.nodes[self.root as usize].parent, NULL_NODE,
+                "root has a parent"
+            );
+            let mut stack = Stack::new();
+            stack.push(self.root);
+            while let Some(i) = stack.pop() {
+                let n = &self.nodes[i as usize];
+                reached += 1;
+                assert!(n.height >= 0, "node {i} is free but linked");
+                if n.is_leaf() {
+                    leaves += 1;
+                    assert!(
+                        n.child1 == NULL_NODE && n.child2 == NULL_NODE,
+                        "leaf {i} has children"
+                    );
+                    continue;
+                }
+                let (c1, c2) = (n.child1, n.child2);
+                assert!(
+                    c1 != NULL_NODE && c2 != NULL_NODE && c1 != c2,
+                    "node {i} children"
+                );
+                let a = &self.nodes[c1 as usize];
+                let b = &self.nodes[c2 as usize];
+                assert_eq!(a.parent, i, "child {c1} parent link");
+                assert_eq!(b.parent, i, "child {c2} parent link");
+                assert_eq!(n.height, 1 + a.height.max(b.height), "node {i} height");
+                assert!(
+                    n.aabb.contains(&a.aabb) && n.aabb.contains(&b.aabb),
+                    "node {i} box"
+                );
+                stack.push(c1);
+                stack.push(c2);
+            }
+        }
+        assert_eq!(leaves, self.proxy_count, "proxy count");
+        assert_eq!(reached, self.node_count, "node count");
+        let mut free = 0usize;
+        let mut i = self.free_list;
+        while i != NULL_NODE {
+            assert_eq!(self.nodes[i as usize].height, -1, "free node {i} in use");
+            free += 1;
+            assert!(free <= self.nodes.len(), "free list cycle");
+            i = self.nodes[i as usize].parent;
+        }
+        assert_eq!(
+            free + self.node_count as usize,
+            self.nodes.len(),
+            "leaked nodes"
+        );
+    }
+}
+
+mod rebuild;
+
+#[cfg(test)]
+mod tests;
