@@ -22,12 +22,18 @@ impl Aabb {
 
     #[inline]
     pub fn from_center_extents(c: Vec3, e: Vec3) -> Self {
-        Aabb { min: c - e, max: c + e }
+        Aabb {
+            min: c - e,
+            max: c + e,
+        }
     }
 
     #[inline]
     pub fn union(&self, o: &Aabb) -> Aabb {
-        Aabb { min: self.min.min(o.min), max: self.max.max(o.max) }
+        Aabb {
+            min: self.min.min(o.min),
+            max: self.max.max(o.max),
+        }
     }
 
     #[inline]
@@ -53,13 +59,19 @@ impl Aabb {
 
     #[inline]
     pub fn expanded(&self, margin: f32) -> Aabb {
-        Aabb { min: self.min - Vec3::splat(margin), max: self.max + Vec3::splat(margin) }
+        Aabb {
+            min: self.min - Vec3::splat(margin),
+            max: self.max + Vec3::splat(margin),
+        }
     }
 
     /// Grows the box along a displacement (a swept box).
     #[inline]
     pub fn swept(&self, d: Vec3) -> Aabb {
-        Aabb { min: self.min + d.min(Vec3::ZERO), max: self.max + d.max(Vec3::ZERO) }
+        Aabb {
+            min: self.min + d.min(Vec3::ZERO),
+            max: self.max + d.max(Vec3::ZERO),
+        }
     }
 
     /// Half the surface area: the cost metric of the tree.

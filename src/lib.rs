@@ -1,10 +1,29 @@
 //! Hearth: a real-time 3D physics engine for games, shipped as a C-ABI library.
 //!
 //! The engine core (everything outside `capi`) is safe Rust on glam types and knows
-//! nothing of C. `capi` converts, validates, guards and maps errors.
+//! nothing of C. `capi` converts, validates, guards and maps errors. `ARCHITECTURE.md`
+//! lists the stages of a step and the file that does each.
 
 pub mod aabb;
+pub mod body;
+pub mod broad_phase;
 pub mod collision;
+pub mod contact;
+pub mod contact_solver;
 pub mod dynamic_tree;
+pub mod error;
+pub(crate) mod hash;
+pub mod island;
 pub mod math;
+pub mod pool;
 pub mod shape;
+pub mod solver;
+pub mod step;
+pub mod world;
+
+pub use body::{BodyDef, BodyHandle, BodyType, ShapeHandle};
+pub use error::{Error, Result};
+pub use math::{Quat, Transform, Vec3};
+pub use shape::{Geometry, ShapeDef};
+pub use world::{Integrator, World, WorldSettings};
+pub mod capi;

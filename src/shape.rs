@@ -6,13 +6,27 @@ use crate::math::{Mat3, Quat, Transform, Vec3};
 /// Collision geometry, placed in the local frame of the body that owns it.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Geometry {
-    Sphere { center: Vec3, radius: f32 },
+    Sphere {
+        center: Vec3,
+        radius: f32,
+    },
     /// An oriented box: `rotation` is relative to the body.
-    Box { center: Vec3, rotation: Quat, half_extents: Vec3 },
+    Box {
+        center: Vec3,
+        rotation: Quat,
+        half_extents: Vec3,
+    },
     /// Segment `a`–`b` swept by `radius`.
-    Capsule { a: Vec3, b: Vec3, radius: f32 },
+    Capsule {
+        a: Vec3,
+        b: Vec3,
+        radius: f32,
+    },
     /// The half-space `dot(normal, p) <= offset` (static bodies only).
-    Plane { normal: Vec3, offset: f32 },
+    Plane {
+        normal: Vec3,
+        offset: f32,
+    },
 }
 
 /// Shape kinds in dispatch order; narrowphase pairs are ordered so `kind(a) <= kind(b)`.
@@ -45,7 +59,11 @@ impl Geometry {
             Geometry::Sphere { center, radius } => {
                 Aabb::from_center_extents(xf.apply(center), Vec3::splat(radius))
             }
-            Geometry::Box { center, rotation, half_extents } => {
+            Geometry::Box {
+                center,
+                rotation,
+                half_extents,
+            } => {
                 let m = Mat3::from_quat(xf.q * rotation);
                 let e = Vec3::new(
                     m.row(0).abs().dot(half_extents),
@@ -67,7 +85,9 @@ impl Geometry {
     pub fn volume(&self) -> f32 {
         match *self {
             Geometry::Sphere { radius, .. } => 4.0 / 3.0 * std::f32::consts::PI * radius.powi(3),
-            Geometry::Box { half_extents: h, .. } => 8.0 * h.x * h.y * h.z,
+            Geometry::Box {
+                half_extents: h, ..
+            } => 8.0 * h.x * h.y * h.z,
             Geometry::Capsule { a, b, radius } => {
                 let l = (b - a).length();
                 std::f32::consts::PI * radius * radius * (l + 4.0 / 3.0 * radius)
@@ -83,15 +103,27 @@ impl Geometry {
             Geometry::Sphere { center, radius } => {
                 let m = density * self.volume();
                 let i = 0.4 * m * radius * radius;
-                MassProperties { mass: m, center, inertia: Mat3::from_diagonal(Vec3::splat(i)) }
+                MassProperties {
+                    mass: m,
+                    center,
+                    inertia: Mat3::from_diagonal(Vec3::splat(i)),
+                }
             }
-            Geometry::Box { center, rotation, half_extents: h } => {
+            Geometry::Box {
+                center,
+                rotation,
+                half_extents: h,
+            } => {
                 let m = density * self.volume();
                 let s = h * h;
                 let d = Vec3::new(s.y + s.z, s.x + s.z, s.x + s.y) * (m / 3.0);
                 let r = Mat3::from_quat(rotation);
                 let inertia = r * Mat3::from_diagonal(d) * r.transpose();
-                MassProperties { mass: m, center, inertia }
+                MassProperties {
+                    mass: m,
+                    center,
+                    inertia,
+                }
             }
             Geometry::Capsule { a, b, radius: r } => {
                 // Cylinder plus two hemispheres, about the capsule's own axis frame, then rotated.
@@ -112,7 +144,11 @@ impl Geometry {
                 } else {
                     Mat3::IDENTITY
                 };
-                MassProperties { mass: mc + ms, center, inertia: rot * local * rot.transpose() }
+                MassProperties {
+                    mass: mc + ms,
+                    center,
+                    inertia: rot * local * rot.transpose(),
+                }
             }
             Geometry::Plane { .. } => MassProperties::ZERO,
         }
@@ -128,8 +164,11 @@ pub struct MassProperties {
 }
 
 impl MassProperties {
-    pub const ZERO: MassProperties =
-        MassProperties { mass: 0.0, center: Vec3::ZERO, inertia: Mat3::ZERO };
+    pub const ZERO: MassProperties = MassProperties {
+        mass: 0.0,
+        center: Vec3::ZERO,
+        inertia: Mat3::ZERO,
+    };
 
     /// Combines parts by the parallel-axis theorem (compound bodies).
     pub fn combine(parts: impl Iterator<Item = MassProperties> + Clone) -> MassProperties {
@@ -149,7 +188,11 @@ impl MassProperties {
             let shift = Mat3::from_diagonal(Vec3::splat(d.dot(d))) - outer(d, d);
             inertia += p.inertia + shift * p.mass;
         }
-        MassProperties { mass, center, inertia }
+        MassProperties {
+            mass,
+            center,
+            inertia,
+        }
     }
 }
 
@@ -168,11 +211,19 @@ mod tests {
 
     #[test]
     fn box_inertia_matches_formula() {
-        let g = Geometry::Box { center: Vec3::ZERO, rotation: Quat::IDENTITY, half_extents: Vec3::new(1.0, 2.0, 3.0) };
+        let g = Geometry::Box {
+            center: Vec3::ZERO,
+            rotation: Quat::IDENTITY,
+            half_extents: Vec3::new(1.0, 2.0, 3.0),
+        };
         let mp = g.mass_properties(2.0);
         assert!(close(mp.mass, 96.0, 1e-6));
         // I_x = m/12 (h² + d²) with full sizes 4 and 6
-        assert!(close(mp.inertia.x_axis.x, 96.0 / 12.0 * (16.0 + 36.0), 1e-5));
+        assert!(close(
+            mp.inertia.x_axis.x,
+            96.0 / 12.0 * (16.0 + 36.0),
+            1e-5
+        ));
         assert!(close(mp.inertia.y_axis.y, 96.0 / 12.0 * (4.0 + 36.0), 1e-5));
         assert!(close(mp.inertia.z_axis.z, 96.0 / 12.0 * (4.0 + 16.0), 1e-5));
     }
@@ -180,10 +231,23 @@ mod tests {
     #[test]
     fn compound_of_two_boxes_equals_one_long_box() {
         let h = Vec3::new(0.5, 0.5, 0.5);
-        let a = Geometry::Box { center: Vec3::new(-0.5, 0.0, 0.0), rotation: Quat::IDENTITY, half_extents: h };
-        let b = Geometry::Box { center: Vec3::new(0.5, 0.0, 0.0), rotation: Quat::IDENTITY, half_extents: h };
-        let whole = Geometry::Box { center: Vec3::ZERO, rotation: Quat::IDENTITY, half_extents: Vec3::new(1.0, 0.5, 0.5) };
-        let c = MassProperties::combine([a.mass_properties(3.0), b.mass_properties(3.0)].into_iter());
+        let a = Geometry::Box {
+            center: Vec3::new(-0.5, 0.0, 0.0),
+            rotation: Quat::IDENTITY,
+            half_extents: h,
+        };
+        let b = Geometry::Box {
+            center: Vec3::new(0.5, 0.0, 0.0),
+            rotation: Quat::IDENTITY,
+            half_extents: h,
+        };
+        let whole = Geometry::Box {
+            center: Vec3::ZERO,
+            rotation: Quat::IDENTITY,
+            half_extents: Vec3::new(1.0, 0.5, 0.5),
+        };
+        let c =
+            MassProperties::combine([a.mass_properties(3.0), b.mass_properties(3.0)].into_iter());
         let w = whole.mass_properties(3.0);
         assert!(close(c.mass, w.mass, 1e-6));
         assert!(c.center.length() < 1e-6);
@@ -196,8 +260,16 @@ mod tests {
     fn rotated_box_inertia_is_rotated() {
         let h = Vec3::new(1.0, 0.25, 0.5);
         let q = Quat::from_rotation_z(std::f32::consts::FRAC_PI_2);
-        let g = Geometry::Box { center: Vec3::ZERO, rotation: q, half_extents: h };
-        let s = Geometry::Box { center: Vec3::ZERO, rotation: Quat::IDENTITY, half_extents: Vec3::new(0.25, 1.0, 0.5) };
+        let g = Geometry::Box {
+            center: Vec3::ZERO,
+            rotation: q,
+            half_extents: h,
+        };
+        let s = Geometry::Box {
+            center: Vec3::ZERO,
+            rotation: Quat::IDENTITY,
+            half_extents: Vec3::new(0.25, 1.0, 0.5),
+        };
         let a = g.mass_properties(1.0).inertia;
         let b = s.mass_properties(1.0).inertia;
         for i in 0..3 {
@@ -208,8 +280,15 @@ mod tests {
     #[test]
     fn capsule_limits() {
         // A zero-length capsule is a sphere.
-        let c = Geometry::Capsule { a: Vec3::ZERO, b: Vec3::ZERO, radius: 0.5 };
-        let s = Geometry::Sphere { center: Vec3::ZERO, radius: 0.5 };
+        let c = Geometry::Capsule {
+            a: Vec3::ZERO,
+            b: Vec3::ZERO,
+            radius: 0.5,
+        };
+        let s = Geometry::Sphere {
+            center: Vec3::ZERO,
+            radius: 0.5,
+        };
         let (mc, ms) = (c.mass_properties(1.0), s.mass_properties(1.0));
         assert!(close(mc.mass, ms.mass, 1e-5));
         assert!(close(mc.inertia.x_axis.x, ms.inertia.x_axis.x, 1e-4));
@@ -218,10 +297,132 @@ mod tests {
 
     #[test]
     fn rotated_box_aabb() {
-        let g = Geometry::Box { center: Vec3::ZERO, rotation: Quat::IDENTITY, half_extents: Vec3::new(1.0, 1.0, 1.0) };
-        let xf = Transform::new(Vec3::new(0.0, 5.0, 0.0), Quat::from_rotation_y(std::f32::consts::FRAC_PI_4));
+        let g = Geometry::Box {
+            center: Vec3::ZERO,
+            rotation: Quat::IDENTITY,
+            half_extents: Vec3::new(1.0, 1.0, 1.0),
+        };
+        let xf = Transform::new(
+            Vec3::new(0.0, 5.0, 0.0),
+            Quat::from_rotation_y(std::f32::consts::FRAC_PI_4),
+        );
         let bb = g.aabb(&xf);
         let r = 2.0f32.sqrt();
         assert!((bb.max.x - r).abs() < 1e-5 && (bb.max.y - 6.0).abs() < 1e-5);
     }
+}
+
+/// Material and density of a shape.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ShapeDef {
+    /// kg/m³.
+    pub density: f32,
+    /// Coulomb coefficient while the surfaces stick.
+    pub static_friction: f32,
+    /// Coulomb coefficient while they slide.
+    pub dynamic_friction: f32,
+    pub restitution: f32,
+    pub user_data: u64,
+}
+
+impl Default for ShapeDef {
+    fn default() -> Self {
+        ShapeDef {
+            density: 1000.0,
+            static_friction: 0.6,
+            dynamic_friction: 0.6,
+            restitution: 0.0,
+            user_data: 0,
+        }
+    }
+}
+
+impl ShapeDef {
+    pub fn validate(&self) -> crate::error::Result<()> {
+        use crate::error::check_non_negative;
+        check_non_negative("density", self.density)?;
+        check_non_negative("static_friction", self.static_friction)?;
+        check_non_negative("dynamic_friction", self.dynamic_friction)?;
+        check_non_negative("restitution", self.restitution)?;
+        Ok(())
+    }
+}
+
+impl Geometry {
+    /// Range-checks the geometry and returns it normalised (unit plane normal and box rotation).
+    pub fn validated(&self) -> crate::error::Result<Geometry> {
+        use crate::error::{check_finite, check_positive, check_quat, check_vec, invalid};
+        Ok(match *self {
+            Geometry::Sphere { center, radius } => {
+                check_vec("sphere center", center)?;
+                check_positive("sphere radius", radius)?;
+                *self
+            }
+            Geometry::Box {
+                center,
+                rotation,
+                half_extents,
+            } => {
+                check_vec("box center", center)?;
+                let rotation = check_quat("box rotation", rotation)?;
+                check_vec("box half_extents", half_extents)?;
+                if half_extents.min_element() <= 0.0 {
+                    return Err(invalid(format!(
+                        "box half_extents must be > 0, got {half_extents}"
+                    )));
+                }
+                Geometry::Box {
+                    center,
+                    rotation,
+                    half_extents,
+                }
+            }
+            Geometry::Capsule { a, b, radius } => {
+                check_vec("capsule a", a)?;
+                check_vec("capsule b", b)?;
+                check_positive("capsule radius", radius)?;
+                *self
+            }
+            Geometry::Plane { normal, offset } => {
+                check_vec("plane normal", normal)?;
+                check_finite("plane offset", offset)?;
+                let l = normal.length();
+                if l < 1.0e-6 {
+                    return Err(invalid("plane normal must be non-zero"));
+                }
+                Geometry::Plane {
+                    normal: normal / l,
+                    offset: offset / l,
+                }
+            }
+        })
+    }
+
+    /// Radius of a sphere about the body's centre of mass that bounds the shape (planes: 0).
+    pub fn extent_from(&self, local_center: Vec3) -> f32 {
+        match *self {
+            Geometry::Sphere { center, radius } => (center - local_center).length() + radius,
+            Geometry::Box {
+                center,
+                half_extents,
+                ..
+            } => (center - local_center).length() + half_extents.length(),
+            Geometry::Capsule { a, b, radius } => {
+                (a - local_center).length().max((b - local_center).length()) + radius
+            }
+            Geometry::Plane { .. } => 0.0,
+        }
+    }
+}
+
+/// A shape attached to a body.
+pub struct Shape {
+    pub body: u32,
+    pub geometry: Geometry,
+    pub def: ShapeDef,
+    /// Tree proxy, or `crate::body::NONE` for planes.
+    pub proxy: u32,
+    pub fat_aabb: Aabb,
+    /// Set while the shape sits in the broad phase's move buffer.
+    pub in_move_buffer: bool,
 }

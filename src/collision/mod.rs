@@ -34,7 +34,11 @@ pub struct Manifold {
 impl Manifold {
     pub const EMPTY: Manifold = Manifold {
         normal: Vec3::ZERO,
-        points: [ManifoldPoint { point: Vec3::ZERO, separation: 0.0, id: 0 }; MAX_MANIFOLD_POINTS],
+        points: [ManifoldPoint {
+            point: Vec3::ZERO,
+            separation: 0.0,
+            id: 0,
+        }; MAX_MANIFOLD_POINTS],
         count: 0,
     };
 

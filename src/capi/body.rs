@@ -1,0 +1,522 @@
+//! Body exports: defaults, create, destroy, state get/set, forces and impulses.
+
+use super::error::*;
+use super::types::*;
+use super::validate::{self, DEF_COOKIE};
+use super::world::{world_mut, world_ref, HearthWorld};
+use crate::body::{BodyDef, BodyType};
+use crate::math::Transform;
+
+/// Never moves; infinite mass. Planes go on static bodies.
+pub const HEARTH_BODY_STATIC: u32 = 0;
+/// Moves by its velocity (or a target transform); infinite mass; pushes dynamic bodies.
+pub const HEARTH_BODY_KINEMATIC: u32 = 1;
+/// Moves under gravity, forces and contacts; mass from its shapes' densities.
+pub const HEARTH_BODY_DYNAMIC: u32 = 2;
+
+/// How to create a body. Get one from `hearth_body_def_default()`, then edit it.
+#[repr(C)]
+#[derive(Clone, Copy, Debug)]
+pub struct HearthBodyDef {
+    /// `HEARTH_BODY_STATIC` (default), `HEARTH_BODY_KINEMATIC` or `HEARTH_BODY_DYNAMIC`.
+    pub r#type: u32,
+    /// Pose of the body origin (m); the rotation is normalised, must not be zero.
+    pub transform: HearthTransform,
+    /// Initial velocity of the centre of mass (m/s).
+    pub linear_velocity: HearthVec3,
+    /// Initial angular velocity (rad/s, world frame).
+    pub angular_velocity: HearthVec3,
+    /// Linear damping (1/s, >= 0). Default 0.
+    pub linear_damping: f32,
+    /// Angular damping (1/s, >= 0). Default 0.
+    pub angular_damping: f32,
+    /// 1 (default) lets the body sleep when still; 0 keeps it awake.
+    pub allow_sleep: u8,
+    /// Host data, returned by `hearth_body_get_user_data`.
+    pub user_data: u64,
+    /// Multiplier of world gravity for this body. Default 1.
+    pub gravity_scale: f32,
+    /// 1 (default) creates the body awake; 0 creates it asleep.
+    pub is_awake: u8,
+    /// Set by `hearth_body_def_default()`; do not change.
+    pub internal_value: u32,
+}
+
+/// Defaults: static, at the origin, identity rotation, at rest, no damping, may sleep.
+#[no_mangle]
+pub extern "C" fn hearth_body_def_default() -> HearthBodyDef {
+    let d = BodyDef::default();
+    HearthBodyDef {
+        r#type: HEARTH_BODY_STATIC,
+        transform: d.transform.into(),
+        linear_velocity: d.linear_velocity.into(),
+        angular_velocity: d.angular_velocity.into(),
+        linear_damping: d.linear_damping,
+        angular_damping: d.angular_damping,
+        allow_sleep: 1,
+        user_data: 0,
+        gravity_scale: d.gravity_scale,
+        is_awake: 1,
+        internal_value: DEF_COOKIE,
+    }
+}
+
+fn body_def(d: &HearthBodyDef) -> Result<BodyDef, Failure> {
+    validate::cookie(d.internal_value, "hearth_body_def")?;
+    let body_type = match d.r#type {
+        HEARTH_BODY_STATIC => BodyType::Static,
+        HEARTH_BODY_KINEMATIC => BodyType::Kinematic,
+        HEARTH_BODY_DYNAMIC => BodyType::Dynamic,
+        v => {
+            return Err(Failure::invalid(format!(
+                "type must be a HEARTH_BODY_* code, got {v}"
+            )))
+        }
+    };
+    Ok(BodyDef {
+        body_type,
+        transform: d.transform.into(),
+        linear_velocity: d.linear_velocity.into(),
+        angular_velocity: d.angular_velocity.into(),
+        linear_damping: d.linear_damping,
+        angular_damping: d.angular_damping,
+        gravity_scale: d.gravity_scale,
+        allow_sleep: validate::flag(d.allow_sleep, "allow_sleep")?,
+        awake: validate::flag(d.is_awake, "is_awake")?,
+        user_data: d.user_data,
+    })
+}
+
+/// Creates a body. It has no mass until shapes are added (a dynamic body without shapes
+/// moves as 1 kg with unit inertia).
+///
+/// Errors: `HEARTH_ERROR_NULL_POINTER`, `HEARTH_ERROR_INVALID_ARGUMENT` (def not from
+/// `hearth_body_def_default()`, unknown type, bad flag, NaN/infinite numbers, zero
+/// rotation, negative damping), `HEARTH_ERROR_WORLD_LOCKED`.
+///
+/// # Safety
+/// Pointers must be NULL or valid.
+#[no_mangle]
+pub unsafe extern "C" fn hearth_body_create(
+    world: *mut HearthWorld,
+    def: *const HearthBodyDef,
+    out_body: *mut HearthBodyId,
+) -> HearthResult {
+    guard(|| {
+        let w = world_mut(world)?;
+        let def = body_def(validate::input(def, "def")?)?;
+        let out = validate::output(out_body, "out_body")?;
+        *out = w.create_body(&def)?.into();
+        Ok(())
+    })
+}
+
+/// Destroys a body, its shapes and its contacts (bodies it touched are woken). The id
+/// becomes stale; a later body never reuses it.
+///
+/// Errors: `HEARTH_ERROR_NULL_POINTER`, `HEARTH_ERROR_INVALID_ID`, `HEARTH_ERROR_WORLD_LOCKED`.
+///
+/// # Safety
+/// `world` must be NULL or a live world.
+#[no_mangle]
+pub unsafe extern "C" fn hearth_body_destroy(
+    world: *mut HearthWorld,
+    body: HearthBodyId,
+) -> HearthResult {
+    guard(|| Ok(world_mut(world)?.destroy_body(body.into())?))
+}
+
+/// Shared body of the getters: checks world, output pointer and id; writes on success.
+///
+/// # Safety
+/// `world` must be NULL or a live world; `out` NULL or writable.
+unsafe fn get<T>(
+    world: *const HearthWorld,
+    body: HearthBodyId,
+    out: *mut T,
+    read: impl FnOnce(&crate::world::World, crate::pool::Handle) -> Result<T, crate::error::Error>,
+) -> HearthResult {
+    guard(|| {
+        let w = world_ref(world)?;
+        let out = validate::output(out, "out")?;
+        *out = read(w, body.into())?;
+        Ok(())
+    })
+}
+
+fn type_code(t: BodyType) -> u32 {
+    match t {
+        BodyType::Static => HEARTH_BODY_STATIC,
+        BodyType::Kinematic => HEARTH_BODY_KINEMATIC,
+        BodyType::Dynamic => HEARTH_BODY_DYNAMIC,
+    }
+}
+
+/// Reads the pose of the body origin.
+///
+/// Errors: `HEARTH_ERROR_NULL_POINTER`, `HEARTH_ERROR_INVALID_ID`.
+///
+/// # Safety
+/// `world` must be NULL or a live world; `out` NULL or writable.
+#[no_mangle]
+pub unsafe extern "C" fn hearth_body_get_transform(
+    world: *const HearthWorld,
+    body: HearthBodyId,
+    out: *mut HearthTransform,
+) -> HearthResult {
+    get(world, body, out, |w, h| Ok(w.transform(h)?.into()))
+}
+
+/// Reads the velocity of the centre of mass (m/s).
+///
+/// Errors: `HEARTH_ERROR_NULL_POINTER`, `HEARTH_ERROR_INVALID_ID`.
+///
+/// # Safety
+/// `world` must be NULL or a live world; `out` NULL or writable.
+#[no_mangle]
+pub unsafe extern "C" fn hearth_body_get_linear_velocity(
+    world: *const HearthWorld,
+    body: HearthBodyId,
+    out: *mut HearthVec3,
+) -> HearthResult {
+    get(world, body, out, |w, h| Ok(w.linear_velocity(h)?.into()))
+}
+
+/// Reads the angular velocity (rad/s, world frame).
+///
+/// Errors: `HEARTH_ERROR_NULL_POINTER`, `HEARTH_ERROR_INVALID_ID`.
+///
+/// # Safety
+/// `world` must be NULL or a live world; `out` NULL or writable.
+#[no_mangle]
+pub unsafe extern "C" fn hearth_body_get_angular_velocity(
+    world: *const HearthWorld,
+    body: HearthBodyId,
+    out: *mut HearthVec3,
+) -> HearthResult {
+    get(world, body, out, |w, h| Ok(w.angular_velocity(h)?.into()))
+}
+
+/// Reads whether the body is awake (static bodies are never awake).
+///
+/// Errors: `HEARTH_ERROR_NULL_POINTER`, `HEARTH_ERROR_INVALID_ID`.
+///
+/// # Safety
+/// `world` must be NULL or a live world; `out` NULL or writable.
+#[no_mangle]
+pub unsafe extern "C" fn hearth_body_is_awake(
+    world: *const HearthWorld,
+    body: HearthBodyId,
+    out: *mut bool,
+) -> HearthResult {
+    get(world, body, out, |w, h| Ok(w.is_awake(h)?))
+}
+
+/// Reads the centre of mass in world space (m).
+///
+/// Errors: `HEARTH_ERROR_NULL_POINTER`, `HEARTH_ERROR_INVALID_ID`.
+///
+/// # Safety
+/// `world` must be NULL or a live world; `out` NULL or writable.
+#[no_mangle]
+pub unsafe extern "C" fn hearth_body_get_center_of_mass(
+    world: *const HearthWorld,
+    body: HearthBodyId,
+    out: *mut HearthVec3,
+) -> HearthResult {
+    get(world, body, out, |w, h| Ok(w.body(h)?.center.into()))
+}
+
+/// Reads the mass (kg); 0 for static and kinematic bodies.
+///
+/// Errors: `HEARTH_ERROR_NULL_POINTER`, `HEARTH_ERROR_INVALID_ID`.
+///
+/// # Safety
+/// `world` must be NULL or a live world; `out` NULL or writable.
+#[no_mangle]
+pub unsafe extern "C" fn hearth_body_get_mass(
+    world: *const HearthWorld,
+    body: HearthBodyId,
+    out: *mut f32,
+) -> HearthResult {
+    get(world, body, out, |w, h| Ok(w.body(h)?.mass))
+}
+
+/// Reads the `user_data` given at creation.
+///
+/// Errors: `HEARTH_ERROR_NULL_POINTER`, `HEARTH_ERROR_INVALID_ID`.
+///
+/// # Safety
+/// `world` must be NULL or a live world; `out` NULL or writable.
+#[no_mangle]
+pub unsafe extern "C" fn hearth_body_get_user_data(
+    world: *const HearthWorld,
+    body: HearthBodyId,
+    out: *mut u64,
+) -> HearthResult {
+    get(world, body, out, |w, h| Ok(w.body(h)?.user_data))
+}
+
+/// Reads the body type code (`HEARTH_BODY_*`).
+///
+/// Errors: `HEARTH_ERROR_NULL_POINTER`, `HEARTH_ERROR_INVALID_ID`.
+///
+/// # Safety
+/// `world` must be NULL or a live world; `out` NULL or writable.
+#[no_mangle]
+pub unsafe extern "C" fn hearth_body_get_type(
+    world: *const HearthWorld,
+    body: HearthBodyId,
+    out: *mut u32,
+) -> HearthResult {
+    get(world, body, out, |w, h| Ok(type_code(w.body(h)?.body_type)))
+}
+
+/// Teleports the body origin (m). Wakes it. Contacts are refreshed on the next step.
+///
+/// Errors: `HEARTH_ERROR_NULL_POINTER`, `HEARTH_ERROR_INVALID_ID`,
+/// `HEARTH_ERROR_INVALID_ARGUMENT` (NaN/infinite, zero rotation), `HEARTH_ERROR_WORLD_LOCKED`.
+///
+/// # Safety
+/// Pointers must be NULL or valid.
+#[no_mangle]
+pub unsafe extern "C" fn hearth_body_set_transform(
+    world: *mut HearthWorld,
+    body: HearthBodyId,
+    transform: *const HearthTransform,
+) -> HearthResult {
+    guard(|| {
+        let w = world_mut(world)?;
+        let t: Transform = (*validate::input(transform, "transform")?).into();
+        Ok(w.set_transform(body.into(), t)?)
+    })
+}
+
+/// Kinematic bodies: move to `target` by the end of the next step (velocities are set to
+/// get there, so touching bodies are carried along).
+///
+/// Errors: as `hearth_body_set_transform`, and `HEARTH_ERROR_INVALID_ARGUMENT` for a body that
+/// is not kinematic.
+///
+/// # Safety
+/// Pointers must be NULL or valid.
+#[no_mangle]
+pub unsafe extern "C" fn hearth_body_set_target_transform(
+    world: *mut HearthWorld,
+    body: HearthBodyId,
+    target: *const HearthTransform,
+) -> HearthResult {
+    guard(|| {
+        let w = world_mut(world)?;
+        let t: Transform = (*validate::input(target, "target")?).into();
+        Ok(w.set_kinematic_target(body.into(), t)?)
+    })
+}
+
+/// Shared body of the vector setters.
+///
+/// # Safety
+/// `world` must be NULL or a live world.
+unsafe fn set_vec(
+    world: *mut HearthWorld,
+    body: HearthBodyId,
+    value: HearthVec3,
+    write: impl FnOnce(
+        &mut crate::world::World,
+        crate::pool::Handle,
+        crate::math::Vec3,
+    ) -> Result<(), crate::error::Error>,
+) -> HearthResult {
+    guard(|| Ok(write(world_mut(world)?, body.into(), value.into())?))
+}
+
+/// Sets the velocity of the centre of mass (m/s); a non-zero value wakes the body.
+/// Ignored for static bodies.
+///
+/// Errors: `HEARTH_ERROR_NULL_POINTER`, `HEARTH_ERROR_INVALID_ID`,
+/// `HEARTH_ERROR_INVALID_ARGUMENT` (NaN or infinite), `HEARTH_ERROR_WORLD_LOCKED`.
+///
+/// # Safety
+/// `world` must be NULL or a live world.
+#[no_mangle]
+pub unsafe extern "C" fn hearth_body_set_linear_velocity(
+    world: *mut HearthWorld,
+    body: HearthBodyId,
+    value: HearthVec3,
+) -> HearthResult {
+    set_vec(world, body, value, |w, h, v| w.set_linear_velocity(h, v))
+}
+
+/// Sets the angular velocity (rad/s, world frame); a non-zero value wakes the body.
+/// Ignored for static bodies.
+///
+/// Errors: `HEARTH_ERROR_NULL_POINTER`, `HEARTH_ERROR_INVALID_ID`,
+/// `HEARTH_ERROR_INVALID_ARGUMENT` (NaN or infinite), `HEARTH_ERROR_WORLD_LOCKED`.
+///
+/// # Safety
+/// `world` must be NULL or a live world.
+#[no_mangle]
+pub unsafe extern "C" fn hearth_body_set_angular_velocity(
+    world: *mut HearthWorld,
+    body: HearthBodyId,
+    value: HearthVec3,
+) -> HearthResult {
+    set_vec(world, body, value, |w, h, v| w.set_angular_velocity(h, v))
+}
+
+/// Adds a force (N) at the centre of mass for the next step. Wakes the body. No effect
+/// on static and kinematic bodies.
+///
+/// Errors: `HEARTH_ERROR_NULL_POINTER`, `HEARTH_ERROR_INVALID_ID`,
+/// `HEARTH_ERROR_INVALID_ARGUMENT` (NaN or infinite), `HEARTH_ERROR_WORLD_LOCKED`.
+///
+/// # Safety
+/// `world` must be NULL or a live world.
+#[no_mangle]
+pub unsafe extern "C" fn hearth_body_apply_force(
+    world: *mut HearthWorld,
+    body: HearthBodyId,
+    value: HearthVec3,
+) -> HearthResult {
+    set_vec(world, body, value, |w, h, v| w.apply_force(h, v, true))
+}
+
+/// Adds a torque (N·m, world frame) for the next step. Wakes the body.
+///
+/// Errors: `HEARTH_ERROR_NULL_POINTER`, `HEARTH_ERROR_INVALID_ID`,
+/// `HEARTH_ERROR_INVALID_ARGUMENT` (NaN or infinite), `HEARTH_ERROR_WORLD_LOCKED`.
+///
+/// # Safety
+/// `world` must be NULL or a live world.
+#[no_mangle]
+pub unsafe extern "C" fn hearth_body_apply_torque(
+    world: *mut HearthWorld,
+    body: HearthBodyId,
+    value: HearthVec3,
+) -> HearthResult {
+    set_vec(world, body, value, |w, h, v| w.apply_torque(h, v, true))
+}
+
+/// Applies an impulse (N·s) at the centre of mass: changes the velocity at once. Wakes
+/// the body.
+///
+/// Errors: `HEARTH_ERROR_NULL_POINTER`, `HEARTH_ERROR_INVALID_ID`,
+/// `HEARTH_ERROR_INVALID_ARGUMENT` (NaN or infinite), `HEARTH_ERROR_WORLD_LOCKED`.
+///
+/// # Safety
+/// `world` must be NULL or a live world.
+#[no_mangle]
+pub unsafe extern "C" fn hearth_body_apply_linear_impulse(
+    world: *mut HearthWorld,
+    body: HearthBodyId,
+    value: HearthVec3,
+) -> HearthResult {
+    set_vec(world, body, value, |w, h, v| {
+        let c = w.body(h)?.center;
+        w.apply_impulse_at_point(h, v, c, true)
+    })
+}
+
+/// Applies an angular impulse (N·m·s, world frame). Wakes the body.
+///
+/// Errors: `HEARTH_ERROR_NULL_POINTER`, `HEARTH_ERROR_INVALID_ID`,
+/// `HEARTH_ERROR_INVALID_ARGUMENT` (NaN or infinite), `HEARTH_ERROR_WORLD_LOCKED`.
+///
+/// # Safety
+/// `world` must be NULL or a live world.
+#[no_mangle]
+pub unsafe extern "C" fn hearth_body_apply_angular_impulse(
+    world: *mut HearthWorld,
+    body: HearthBodyId,
+    value: HearthVec3,
+) -> HearthResult {
+    set_vec(world, body, value, |w, h, v| {
+        w.apply_angular_impulse(h, v, true)
+    })
+}
+
+/// Adds a force (N) at a world point (m) for the next step: a force plus the torque of its
+/// lever arm about the centre of mass. Wakes the body.
+///
+/// Errors: as `hearth_body_apply_force`.
+///
+/// # Safety
+/// `world` must be NULL or a live world.
+#[no_mangle]
+pub unsafe extern "C" fn hearth_body_apply_force_at_point(
+    world: *mut HearthWorld,
+    body: HearthBodyId,
+    force: HearthVec3,
+    point: HearthVec3,
+) -> HearthResult {
+    guard(|| {
+        Ok(
+            world_mut(world)?.apply_force_at_point(
+                body.into(),
+                force.into(),
+                point.into(),
+                true,
+            )?,
+        )
+    })
+}
+
+/// Applies an impulse (N·s) at a world point (m). Wakes the body.
+///
+/// Errors: as `hearth_body_apply_force`.
+///
+/// # Safety
+/// `world` must be NULL or a live world.
+#[no_mangle]
+pub unsafe extern "C" fn hearth_body_apply_impulse_at_point(
+    world: *mut HearthWorld,
+    body: HearthBodyId,
+    impulse: HearthVec3,
+    point: HearthVec3,
+) -> HearthResult {
+    guard(|| {
+        Ok(world_mut(world)?.apply_impulse_at_point(
+            body.into(),
+            impulse.into(),
+            point.into(),
+            true,
+        )?)
+    })
+}
+
+/// Wakes the body's island (`awake` = 1) or puts it to sleep (0).
+///
+/// Errors: `HEARTH_ERROR_NULL_POINTER`, `HEARTH_ERROR_INVALID_ID`,
+/// `HEARTH_ERROR_INVALID_ARGUMENT` (flag not 0/1), `HEARTH_ERROR_WORLD_LOCKED`.
+///
+/// # Safety
+/// `world` must be NULL or a live world.
+#[no_mangle]
+pub unsafe extern "C" fn hearth_body_set_awake(
+    world: *mut HearthWorld,
+    body: HearthBodyId,
+    awake: u8,
+) -> HearthResult {
+    guard(|| {
+        let w = world_mut(world)?;
+        let awake = validate::flag(awake, "awake")?;
+        Ok(w.set_awake(body.into(), awake)?)
+    })
+}
+
+/// Sets linear and angular damping (1/s, >= 0).
+///
+/// Errors: `HEARTH_ERROR_NULL_POINTER`, `HEARTH_ERROR_INVALID_ID`,
+/// `HEARTH_ERROR_INVALID_ARGUMENT`, `HEARTH_ERROR_WORLD_LOCKED`.
+///
+/// # Safety
+/// `world` must be NULL or a live world.
+#[no_mangle]
+pub unsafe extern "C" fn hearth_body_set_damping(
+    world: *mut HearthWorld,
+    body: HearthBodyId,
+    linear_damping: f32,
+    angular_damping: f32,
+) -> HearthResult {
+    guard(|| Ok(world_mut(world)?.set_damping(body.into(), linear_damping, angular_damping)?))
+}

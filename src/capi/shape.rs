@@ -1,0 +1,196 @@
+//! Shape exports: material defaults and one create function per geometry.
+
+use super::error::*;
+use super::types::*;
+use super::validate::{self, DEF_COOKIE};
+use super::world::{world_mut, world_ref, HearthWorld};
+use crate::shape::{Geometry, ShapeDef};
+
+/// Material of a shape. Get one from `hearth_shape_def_default()`, then edit it. Where two
+/// shapes touch, friction combines as the geometric mean and restitution as the maximum.
+#[repr(C)]
+#[derive(Clone, Copy, Debug)]
+pub struct HearthShapeDef {
+    /// kg/m³ (>= 0). Default 1000 (water).
+    pub density: f32,
+    /// Coulomb friction coefficient while the surfaces stick (>= 0). Default 0.6.
+    pub static_friction: f32,
+    /// Coulomb friction coefficient while they slide (>= 0; the pair uses at most the
+    /// static value). Default 0.6.
+    pub dynamic_friction: f32,
+    /// Bounciness: 0 none, 1 elastic (>= 0). Default 0.
+    pub restitution: f32,
+    /// Host data.
+    pub user_data: u64,
+    /// Set by `hearth_shape_def_default()`; do not change.
+    pub internal_value: u32,
+}
+
+/// Defaults: density 1000 kg/m³, friction 0.6 (static and dynamic), no bounce.
+#[no_mangle]
+pub extern "C" fn hearth_shape_def_default() -> HearthShapeDef {
+    let d = ShapeDef::default();
+    HearthShapeDef {
+        density: d.density,
+        static_friction: d.static_friction,
+        dynamic_friction: d.dynamic_friction,
+        restitution: d.restitution,
+        user_data: d.user_data,
+        internal_value: DEF_COOKIE,
+    }
+}
+
+fn shape_def(d: &HearthShapeDef) -> Result<ShapeDef, Failure> {
+    validate::cookie(d.internal_value, "hearth_shape_def")?;
+    Ok(ShapeDef {
+        density: d.density,
+        static_friction: d.static_friction,
+        dynamic_friction: d.dynamic_friction,
+        restitution: d.restitution,
+        user_data: d.user_data,
+    })
+}
+
+/// Shared body of the create functions.
+///
+/// # Safety
+/// Pointers must be NULL or valid.
+unsafe fn create<G>(
+    world: *mut HearthWorld,
+    body: HearthBodyId,
+    def: *const HearthShapeDef,
+    geometry: *const G,
+    out_shape: *mut HearthShapeId,
+    to_geometry: impl FnOnce(&G) -> Geometry,
+) -> HearthResult {
+    guard(|| {
+        let w = world_mut(world)?;
+        let def = shape_def(validate::input(def, "def")?)?;
+        let g = to_geometry(validate::input(geometry, "geometry")?);
+        let out = validate::output(out_shape, "out_shape")?;
+        *out = w.create_shape(body.into(), &def, &g)?.into();
+        Ok(())
+    })
+}
+
+/// Adds a sphere to a body; the body's mass, centre of mass and inertia are recomputed.
+///
+/// Errors: `HEARTH_ERROR_NULL_POINTER`, `HEARTH_ERROR_INVALID_ID` (body),
+/// `HEARTH_ERROR_INVALID_ARGUMENT` (def not from `hearth_shape_def_default()`, radius <= 0,
+/// NaN/infinite numbers, negative density/friction/restitution), `HEARTH_ERROR_WORLD_LOCKED`.
+///
+/// # Safety
+/// Pointers must be NULL or valid.
+#[no_mangle]
+pub unsafe extern "C" fn hearth_shape_create_sphere(
+    world: *mut HearthWorld,
+    body: HearthBodyId,
+    def: *const HearthShapeDef,
+    sphere: *const HearthSphere,
+    out_shape: *mut HearthShapeId,
+) -> HearthResult {
+    create(world, body, def, sphere, out_shape, |s| Geometry::Sphere {
+        center: s.center.into(),
+        radius: s.radius,
+    })
+}
+
+/// Adds a box to a body. Errors as `hearth_shape_create_sphere`, plus half extents <= 0 and
+/// a zero rotation.
+///
+/// # Safety
+/// Pointers must be NULL or valid.
+#[no_mangle]
+pub unsafe extern "C" fn hearth_shape_create_box(
+    world: *mut HearthWorld,
+    body: HearthBodyId,
+    def: *const HearthShapeDef,
+    box_: *const HearthBox,
+    out_shape: *mut HearthShapeId,
+) -> HearthResult {
+    create(world, body, def, box_, out_shape, |b| Geometry::Box {
+        center: b.center.into(),
+        rotation: b.rotation.into(),
+        half_extents: b.half_extents.into(),
+    })
+}
+
+/// Adds a capsule to a body. Errors as `hearth_shape_create_sphere`.
+///
+/// # Safety
+/// Pointers must be NULL or valid.
+#[no_mangle]
+pub unsafe extern "C" fn hearth_shape_create_capsule(
+    world: *mut HearthWorld,
+    body: HearthBodyId,
+    def: *const HearthShapeDef,
+    capsule: *const HearthCapsule,
+    out_shape: *mut HearthShapeId,
+) -> HearthResult {
+    create(world, body, def, capsule, out_shape, |c| {
+        Geometry::Capsule {
+            a: c.a.into(),
+            b: c.b.into(),
+            radius: c.radius,
+        }
+    })
+}
+
+/// Adds a plane (a static half-space) to a static body. Errors as
+/// `hearth_shape_create_sphere`, plus a zero normal and `HEARTH_ERROR_INVALID_ARGUMENT` for a
+/// body that is not static.
+///
+/// # Safety
+/// Pointers must be NULL or valid.
+#[no_mangle]
+pub unsafe extern "C" fn hearth_shape_create_plane(
+    world: *mut HearthWorld,
+    body: HearthBodyId,
+    def: *const HearthShapeDef,
+    plane: *const HearthPlane,
+    out_shape: *mut HearthShapeId,
+) -> HearthResult {
+    create(world, body, def, plane, out_shape, |p| Geometry::Plane {
+        normal: p.normal.into(),
+        offset: p.offset,
+    })
+}
+
+/// Removes a shape from its body; the body's mass is recomputed and touching bodies woken.
+///
+/// Errors: `HEARTH_ERROR_NULL_POINTER`, `HEARTH_ERROR_INVALID_ID`, `HEARTH_ERROR_WORLD_LOCKED`.
+///
+/// # Safety
+/// `world` must be NULL or a live world.
+#[no_mangle]
+pub unsafe extern "C" fn hearth_shape_destroy(
+    world: *mut HearthWorld,
+    shape: HearthShapeId,
+) -> HearthResult {
+    guard(|| Ok(world_mut(world)?.destroy_shape(shape.into())?))
+}
+
+/// Reads the body a shape belongs to.
+///
+/// Errors: `HEARTH_ERROR_NULL_POINTER`, `HEARTH_ERROR_INVALID_ID`.
+///
+/// # Safety
+/// `world` must be NULL or a live world; `out_body` NULL or writable.
+#[no_mangle]
+pub unsafe extern "C" fn hearth_shape_get_body(
+    world: *const HearthWorld,
+    shape: HearthShapeId,
+    out_body: *mut HearthBodyId,
+) -> HearthResult {
+    guard(|| {
+        let w = world_ref(world)?;
+        let s = w.shape(shape.into())?;
+        let out = validate::output(out_body, "out_body")?;
+        *out = w
+            .bodies
+            .handle_at(s.body)
+            .expect("shape's body is live")
+            .into();
+        Ok(())
+    })
+}

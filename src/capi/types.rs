@@ -1,0 +1,143 @@
+//! Plain C value types and their conversion to and from the core's glam types.
+
+use crate::math::{Quat, Transform, Vec3};
+use crate::pool::Handle;
+
+/// A 3D vector of `float` (metres, m/s, N, ... by context).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct HearthVec3 {
+    pub x: f32,
+    pub y: f32,
+    pub z: f32,
+}
+
+/// A rotation quaternion `{x, y, z, w}`; need not be normalised, must not be zero.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct HearthQuat {
+    pub x: f32,
+    pub y: f32,
+    pub z: f32,
+    pub w: f32,
+}
+
+/// A rigid transform: rotation, then translation.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct HearthTransform {
+    pub position: HearthVec3,
+    pub rotation: HearthQuat,
+}
+
+impl From<HearthVec3> for Vec3 {
+    fn from(v: HearthVec3) -> Vec3 {
+        Vec3::new(v.x, v.y, v.z)
+    }
+}
+impl From<Vec3> for HearthVec3 {
+    fn from(v: Vec3) -> HearthVec3 {
+        HearthVec3 {
+            x: v.x,
+            y: v.y,
+            z: v.z,
+        }
+    }
+}
+impl From<HearthQuat> for Quat {
+    fn from(q: HearthQuat) -> Quat {
+        Quat::from_xyzw(q.x, q.y, q.z, q.w)
+    }
+}
+impl From<Quat> for HearthQuat {
+    fn from(q: Quat) -> HearthQuat {
+        HearthQuat {
+            x: q.x,
+            y: q.y,
+            z: q.z,
+            w: q.w,
+        }
+    }
+}
+impl From<HearthTransform> for Transform {
+    fn from(t: HearthTransform) -> Transform {
+        Transform::new(t.position.into(), t.rotation.into())
+    }
+}
+impl From<Transform> for HearthTransform {
+    fn from(t: Transform) -> HearthTransform {
+        HearthTransform {
+            position: t.p.into(),
+            rotation: t.q.into(),
+        }
+    }
+}
+
+/// Id of a body inside its world. All-zero is the null id. Ids of destroyed bodies and of
+/// other worlds are rejected with `HEARTH_ERROR_INVALID_ID`.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct HearthBodyId {
+    pub index: u32,
+    pub generation: u32,
+}
+
+/// Id of a shape inside its world. All-zero is the null id.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct HearthShapeId {
+    pub index: u32,
+    pub generation: u32,
+}
+
+macro_rules! id_conversions {
+    ($($name:ident),*) => {$(
+        impl From<$name> for Handle {
+            fn from(id: $name) -> Handle {
+                Handle { index: id.index, generation: id.generation }
+            }
+        }
+        impl From<Handle> for $name {
+            fn from(h: Handle) -> $name {
+                $name { index: h.index, generation: h.generation }
+            }
+        }
+    )*};
+}
+id_conversions!(HearthBodyId, HearthShapeId);
+
+/// Sphere: centre in the body frame and radius (m, > 0).
+#[repr(C)]
+#[derive(Clone, Copy, Debug)]
+pub struct HearthSphere {
+    pub center: HearthVec3,
+    pub radius: f32,
+}
+
+/// Box: centre and rotation in the body frame, half extents (m, each > 0).
+#[repr(C)]
+#[derive(Clone, Copy, Debug)]
+pub struct HearthBox {
+    pub center: HearthVec3,
+    pub rotation: HearthQuat,
+    pub half_extents: HearthVec3,
+}
+
+/// Capsule: segment end points `a`, `b` in the body frame and radius (m, > 0).
+#[repr(C)]
+#[derive(Clone, Copy, Debug)]
+pub struct HearthCapsule {
+    pub a: HearthVec3,
+    pub b: HearthVec3,
+    pub radius: f32,
+}
+
+/// Plane (static bodies only), in the body frame: points `p` with
+/// `dot(normal, p) <= offset` are inside. The normal need not be unit length (it is
+/// normalised together with the offset) but must not be zero.
+#[repr(C)]
+#[derive(Clone, Copy, Debug)]
+pub struct HearthPlane {
+    pub normal: HearthVec3,
+    pub offset: f32,
+}

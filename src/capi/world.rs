@@ -1,0 +1,317 @@
+//! World exports: defaults, create, destroy, step, settings, bulk read-back.
+
+use std::cell::{Cell, UnsafeCell};
+use std::panic::{catch_unwind, AssertUnwindSafe};
+
+use super::error::*;
+use super::types::*;
+use super::validate::{self, DEF_COOKIE};
+use crate::world::{Integrator, World, WorldSettings};
+
+/// Semi-implicit (symplectic) Euler integration (default).
+pub const HEARTH_INTEGRATOR_SEMI_IMPLICIT_EULER: u32 = 0;
+/// Fourth-order Runge–Kutta for bodies that no contact touches during the step.
+pub const HEARTH_INTEGRATOR_RK4: u32 = 1;
+
+/// Settings of a world. Get one from `hearth_world_def_default()`, then edit it.
+#[repr(C)]
+#[derive(Clone, Copy, Debug)]
+pub struct HearthWorldDef {
+    /// Gravity (m/s²). Default (0, -9.81, 0).
+    pub gravity: HearthVec3,
+    /// Solver sub-steps per step, 1..=64. Default 4.
+    pub substeps: u32,
+    /// `HEARTH_INTEGRATOR_*`. Default semi-implicit Euler.
+    pub integrator: u32,
+    /// 1 to let still islands sleep (default), 0 to keep everything awake.
+    pub enable_sleep: u8,
+    /// Speed (m/s and rad/s) below which a body counts as still. Default 0.05.
+    pub sleep_threshold: f32,
+    /// Seconds an island must stay still before it sleeps. Default 0.5.
+    pub time_to_sleep: f32,
+    /// Contact stiffness (Hz). Default 30.
+    pub contact_hertz: f32,
+    /// Contact damping ratio. Default 10.
+    pub contact_damping_ratio: f32,
+    /// Fastest speed at which overlapping bodies are pushed apart (m/s). Default 3.
+    pub contact_push_max_velocity: f32,
+    /// Approach speed below which contacts do not bounce (m/s). Default 1.
+    pub restitution_threshold: f32,
+    /// Largest speed a body may reach (m/s). Default 400.
+    pub max_linear_speed: f32,
+    /// Set by `hearth_world_def_default()`; do not change.
+    pub internal_value: u32,
+}
+
+/// The world handle: opaque to C. Owns everything in the world. One thread at a time.
+pub struct HearthWorld {
+    /// Set while a step runs; mutations from callbacks see it and fail with
+    /// `HEARTH_ERROR_WORLD_LOCKED` before any `&mut` to the world is formed.
+    pub(crate) locked: Cell<bool>,
+    /// Set when a step panicked: the state may be broken, so no more steps.
+    pub(crate) poisoned: Cell<bool>,
+    pub(crate) world: UnsafeCell<World>,
+}
+
+/// Shared access for reads.
+///
+/// # Safety
+/// `ptr` must be NULL or a live world from `hearth_world_create`.
+pub(crate) unsafe fn world_ref<'a>(ptr: *const HearthWorld) -> Result<&'a World, Failure> {
+    let w = ptr.as_ref().ok_or_else(|| Failure::null("world"))?;
+    Ok(&*w.world.get())
+}
+
+/// Exclusive access for mutations; refused while the world is stepping.
+///
+/// # Safety
+/// `ptr` must be NULL or a live world from `hearth_world_create`.
+pub(crate) unsafe fn world_mut<'a>(ptr: *mut HearthWorld) -> Result<&'a mut World, Failure> {
+    let w = ptr.as_ref().ok_or_else(|| Failure::null("world"))?;
+    if w.locked.get() {
+        return Err(Failure::new(
+            HEARTH_ERROR_WORLD_LOCKED,
+            "the world is locked: it is stepping (called from a callback)",
+        ));
+    }
+    Ok(&mut *w.world.get())
+}
+
+pub(crate) fn settings_from_def(def: &HearthWorldDef) -> Result<WorldSettings, Failure> {
+    validate::cookie(def.internal_value, "hearth_world_def")?;
+    let integrator = match def.integrator {
+        HEARTH_INTEGRATOR_SEMI_IMPLICIT_EULER => Integrator::SemiImplicitEuler,
+        HEARTH_INTEGRATOR_RK4 => Integrator::Rk4,
+        v => {
+            return Err(Failure::invalid(format!(
+                "integrator must be a HEARTH_INTEGRATOR_* code, got {v}"
+            )))
+        }
+    };
+    let s = WorldSettings {
+        gravity: def.gravity.into(),
+        substeps: def.substeps,
+        integrator,
+        enable_sleep: validate::flag(def.enable_sleep, "enable_sleep")?,
+        sleep_threshold: def.sleep_threshold,
+        time_to_sleep: def.time_to_sleep,
+        contact_hertz: def.contact_hertz,
+        contact_damping_ratio: def.contact_damping_ratio,
+        contact_push_max_velocity: def.contact_push_max_velocity,
+        restitution_threshold: def.restitution_threshold,
+        max_linear_speed: def.max_linear_speed,
+        ..WorldSettings::default()
+    };
+    s.validate()?;
+    Ok(s)
+}
+
+/// The default world settings: gravity (0, -9.81, 0), 4 sub-steps, sleep on.
+#[no_mangle]
+pub extern "C" fn hearth_world_def_default() -> HearthWorldDef {
+    let s = WorldSettings::default();
+    HearthWorldDef {
+        gravity: s.gravity.into(),
+        substeps: s.substeps,
+        integrator: HEARTH_INTEGRATOR_SEMI_IMPLICIT_EULER,
+        enable_sleep: 1,
+        sleep_threshold: s.sleep_threshold,
+        time_to_sleep: s.time_to_sleep,
+        contact_hertz: s.contact_hertz,
+        contact_damping_ratio: s.contact_damping_ratio,
+        contact_push_max_velocity: s.contact_push_max_velocity,
+        restitution_threshold: s.restitution_threshold,
+        max_linear_speed: s.max_linear_speed,
+        internal_value: DEF_COOKIE,
+    }
+}
+
+/// Creates a world. On success `*out_world` owns it until `hearth_world_destroy`.
+///
+/// Errors: `HEARTH_ERROR_NULL_POINTER` (def or out_world NULL),
+/// `HEARTH_ERROR_INVALID_ARGUMENT` (def not from `hearth_world_def_default()`, or a field out
+/// of range). `*out_world` is written only on success.
+///
+/// # Safety
+/// `def` must be NULL or point to a `HearthWorldDef`; `out_world` must be NULL or writable.
+#[no_mangle]
+pub unsafe extern "C" fn hearth_world_create(
+    def: *const HearthWorldDef,
+    out_world: *mut *mut HearthWorld,
+) -> HearthResult {
+    guard(|| {
+        let def = validate::input(def, "def")?;
+        let out = validate::output(out_world, "out_world")?;
+        let settings = settings_from_def(def)?;
+        let world = World::new(settings)?;
+        let boxed = Box::new(HearthWorld {
+            locked: Cell::new(false),
+            poisoned: Cell::new(false),
+            world: UnsafeCell::new(world),
+        });
+        *out = Box::into_raw(boxed);
+        Ok(())
+    })
+}
+
+/// Destroys a world and everything in it. NULL is a no-op. Must not be called from a
+/// callback of the same world (it is then ignored).
+///
+/// # Safety
+/// `world` must be NULL or a live world from `hearth_world_create`, not used afterwards.
+#[no_mangle]
+pub unsafe extern "C" fn hearth_world_destroy(world: *mut HearthWorld) {
+    guard_value((), || {
+        if world.is_null() || (*world).locked.get() {
+            return;
+        }
+        drop(Box::from_raw(world));
+    })
+}
+
+/// Advances the world by `dt` seconds (finite, >= 0; 0 does nothing).
+///
+/// Errors: `HEARTH_ERROR_NULL_POINTER`, `HEARTH_ERROR_INVALID_ARGUMENT` (bad dt),
+/// `HEARTH_ERROR_WORLD_LOCKED` (called from a callback), `HEARTH_ERROR_PANIC` (an internal
+/// error; the world then refuses further steps).
+///
+/// # Safety
+/// `world` must be NULL or a live world.
+#[no_mangle]
+pub unsafe extern "C" fn hearth_world_step(world: *mut HearthWorld, dt: f32) -> HearthResult {
+    guard(|| {
+        let handle = world.as_ref().ok_or_else(|| Failure::null("world"))?;
+        if handle.poisoned.get() {
+            return Err(Failure::new(
+                HEARTH_ERROR_PANIC,
+                "the world panicked in an earlier step and cannot step again",
+            ));
+        }
+        let w = world_mut(world)?;
+        if !dt.is_finite() || dt < 0.0 {
+            return Err(Failure::invalid(format!(
+                "dt must be finite and >= 0, got {dt}"
+            )));
+        }
+        handle.locked.set(true);
+        let r = catch_unwind(AssertUnwindSafe(|| w.step(dt)));
+        handle.locked.set(false);
+        match r {
+            Ok(r) => r.map_err(Failure::from),
+            Err(p) => {
+                handle.poisoned.set(true);
+                std::panic::resume_unwind(p)
+            }
+        }
+    })
+}
+
+/// Sets gravity (m/s², finite) and wakes every dynamic body.
+///
+/// # Safety
+/// `world` must be NULL or a live world.
+#[no_mangle]
+pub unsafe extern "C" fn hearth_world_set_gravity(
+    world: *mut HearthWorld,
+    gravity: HearthVec3,
+) -> HearthResult {
+    guard(|| Ok(world_mut(world)?.set_gravity(gravity.into())?))
+}
+
+/// Reads gravity.
+///
+/// # Safety
+/// `world` must be NULL or a live world; `out` NULL or writable.
+#[no_mangle]
+pub unsafe extern "C" fn hearth_world_get_gravity(
+    world: *const HearthWorld,
+    out: *mut HearthVec3,
+) -> HearthResult {
+    guard(|| {
+        let w = world_ref(world)?;
+        let out = validate::output(out, "out")?;
+        *out = w.settings.gravity.into();
+        Ok(())
+    })
+}
+
+/// Counters of a world, for tools and tests.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default)]
+pub struct HearthWorldCounters {
+    /// Live bodies of every type.
+    pub body_count: u32,
+    /// Awake kinematic and dynamic bodies.
+    pub awake_body_count: u32,
+    /// Live contacts (shape pairs whose bounds overlap).
+    pub contact_count: u32,
+    /// Contacts with manifold points in the last step.
+    pub touching_contact_count: u32,
+    /// Height of the broad-phase tree.
+    pub tree_height: u32,
+}
+
+/// Reads the world's counters.
+///
+/// # Safety
+/// `world` must be NULL or a live world; `out` NULL or writable.
+#[no_mangle]
+pub unsafe extern "C" fn hearth_world_get_counters(
+    world: *const HearthWorld,
+    out: *mut HearthWorldCounters,
+) -> HearthResult {
+    guard(|| {
+        let w = world_ref(world)?;
+        let out = validate::output(out, "out")?;
+        *out = HearthWorldCounters {
+            body_count: w.body_count() as u32,
+            awake_body_count: w.awake_body_count() as u32,
+            contact_count: w.contact_count() as u32,
+            touching_contact_count: w.counters.touching_contacts as u32,
+            tree_height: w.tree_height(),
+        };
+        Ok(())
+    })
+}
+
+/// Reads the transforms of `count` bodies into the caller-owned `out_transforms` (one call
+/// per frame instead of one per body). Every id is checked first; on any error nothing is
+/// written. `count == 0` succeeds and may pass NULL arrays.
+///
+/// Errors: `HEARTH_ERROR_NULL_POINTER`, `HEARTH_ERROR_INVALID_ID` (the message names the
+/// first bad index).
+///
+/// # Safety
+/// `bodies` must hold `count` ids and `out_transforms` room for `count` transforms.
+#[no_mangle]
+pub unsafe extern "C" fn hearth_world_get_transforms(
+    world: *const HearthWorld,
+    bodies: *const HearthBodyId,
+    count: usize,
+    out_transforms: *mut HearthTransform,
+) -> HearthResult {
+    guard(|| {
+        let w = world_ref(world)?;
+        if count == 0 {
+            return Ok(());
+        }
+        if bodies.is_null() {
+            return Err(Failure::null("bodies"));
+        }
+        validate::output(out_transforms, "out_transforms")?;
+        let ids = std::slice::from_raw_parts(bodies, count);
+        for (i, id) in ids.iter().enumerate() {
+            if !w.bodies.contains((*id).into()) {
+                return Err(Failure::new(
+                    HEARTH_ERROR_INVALID_ID,
+                    format!("bodies[{i}] is not a live body of this world"),
+                ));
+            }
+        }
+        let out = std::slice::from_raw_parts_mut(out_transforms, count);
+        for (o, id) in out.iter_mut().zip(ids) {
+            *o = w.bodies.get((*id).into()).expect("checked").xf.into();
+        }
+        Ok(())
+    })
+}

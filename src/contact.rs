@@ -1,0 +1,91 @@
+//! Persistent contacts: one per overlapping shape pair, kept while their fat boxes overlap.
+//! Each keeps its manifold and the impulses of its points between steps (warm starting),
+//! matched by feature id.
+
+use crate::collision::{collide, Manifold, MAX_MANIFOLD_POINTS};
+use crate::math::{Transform, Vec3};
+use crate::shape::{Shape, ShapeDef};
+
+/// Impulses a manifold point carried at the end of the last step.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct PointImpulse {
+    pub normal: f32,
+    /// Friction impulse as a world vector (the tangent basis may turn between steps).
+    pub tangent: Vec3,
+    /// The point was sliding (dynamic friction applies) at the end of the last step.
+    pub sliding: bool,
+    /// Largest normal impulse of the last step (> 0 means the point really pushed).
+    pub max_normal: f32,
+}
+
+pub struct Contact {
+    pub shape_a: u32,
+    pub shape_b: u32,
+    pub body_a: u32,
+    pub body_b: u32,
+    pub manifold: Manifold,
+    pub impulses: [PointImpulse; MAX_MANIFOLD_POINTS],
+    pub static_friction: f32,
+    pub dynamic_friction: f32,
+    pub restitution: f32,
+    /// The manifold has points (touching or speculative).
+    pub touching: bool,
+    /// Position in the world's awake-contact list, or `NONE`.
+    pub awake_index: u32,
+    pub key: u64,
+}
+
+/// Friction combines as the geometric mean, restitution as the maximum (Box2D, Jolt).
+pub fn mix_materials(a: &ShapeDef, b: &ShapeDef) -> (f32, f32, f32) {
+    let fs = (a.static_friction * b.static_friction).sqrt();
+    let fd = (a.dynamic_friction * b.dynamic_friction).sqrt();
+    (fs, fd.min(fs), a.restitution.max(b.restitution))
+}
+
+impl Contact {
+    pub fn new(shape_a: u32, shape_b: u32, a: &Shape, b: &Shape, key: u64) -> Contact {
+        let (fs, fd, e) = mix_materials(&a.def, &b.def);
+        Contact {
+            shape_a,
+            shape_b,
+            body_a: a.body,
+            body_b: b.body,
+            manifold: Manifold::EMPTY,
+            impulses: [PointImpulse::default(); MAX_MANIFOLD_POINTS],
+            static_friction: fs,
+            dynamic_friction: fd,
+            restitution: e,
+            touching: false,
+            awake_index: crate::body::NONE,
+            key,
+        }
+    }
+
+    /// Recomputes the manifold and carries impulses over to points with the same feature id.
+    /// Returns true when the contact started touching in this update.
+    pub fn update(
+        &mut self,
+        a: &Shape,
+        xf_a: &Transform,
+        b: &Shape,
+        xf_b: &Transform,
+        speculative: f32,
+    ) -> bool {
+        let old = self.manifold;
+        let old_impulses = self.impulses;
+        let was_touching = self.touching;
+        self.manifold = collide(&a.geometry, xf_a, &b.geometry, xf_b, speculative);
+        self.touching = self.manifold.count > 0;
+        for i in 0..self.manifold.count {
+            let id = self.manifold.points[i].id;
+            self.impulses[i] = PointImpulse::default();
+            for j in 0..old.count {
+                if old.points[j].id == id {
+                    self.impulses[i] = old_impulses[j];
+                    break;
+                }
+            }
+        }
+        self.touching && !was_touching
+    }
+}

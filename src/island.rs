@@ -1,0 +1,94 @@
+//! Islands and sleep. Each step the awake bodies are joined through touching contacts
+//! (union–find); an island whose every body has stayed still for `time_to_sleep` goes to
+//! sleep together. A body's stillness is the seed's recency-weighted motion.
+
+use crate::world::World;
+
+#[derive(Default)]
+pub struct IslandScratch {
+    parent: Vec<u32>,
+    min_sleep: Vec<f32>,
+    sleepers: Vec<(u32, u32)>,
+    group: Vec<u32>,
+}
+
+fn find(parent: &mut [u32], mut x: u32) -> u32 {
+    while parent[x as usize] != x {
+        let p = parent[x as usize];
+        parent[x as usize] = parent[p as usize];
+        x = p;
+    }
+    x
+}
+
+/// Updates each awake body's recency-weighted motion and sleep timer.
+pub fn update_motion(world: &mut World, dt: f32) {
+    let t = world.settings.sleep_threshold;
+    let eps = t * t;
+    let bias = 0.5f32.powf(dt);
+    for &bi in &world.awake_bodies {
+        let b = world.bodies.at_mut(bi);
+        let current = b.v.length_squared() + b.w.length_squared();
+        b.motion = (bias * b.motion + (1.0 - bias) * current).min(10.0 * eps);
+        if !b.allow_sleep || b.motion > eps || current > 4.0 * eps {
+            b.sleep_time = 0.0;
+        } else {
+            b.sleep_time += dt;
+        }
+    }
+}
+
+/// Puts to sleep every island that has been still long enough.
+pub fn sleep_islands(world: &mut World) {
+    if !world.settings.enable_sleep {
+        return;
+    }
+    let n = world.awake_bodies.len();
+    let mut scratch = std::mem::take(&mut world.island_scratch);
+    scratch.parent.clear();
+    scratch.parent.extend(0..n as u32);
+    for &ci in &world.awake_contacts {
+        let c = world.contacts.at(ci);
+        if !c.touching {
+            continue;
+        }
+        let (a, b) = (world.bodies.at(c.body_a), world.bodies.at(c.body_b));
+        if a.is_static() || b.is_static() || !a.awake || !b.awake {
+            continue;
+        }
+        let ra = find(&mut scratch.parent, a.awake_index);
+        let rb = find(&mut scratch.parent, b.awake_index);
+        if ra != rb {
+            scratch.parent[ra.max(rb) as usize] = ra.min(rb);
+        }
+    }
+    scratch.min_sleep.clear();
+    scratch.min_sleep.resize(n, f32::MAX);
+    for k in 0..n {
+        let r = find(&mut scratch.parent, k as u32) as usize;
+        let st = world.bodies.at(world.awake_bodies[k]).sleep_time;
+        scratch.min_sleep[r] = scratch.min_sleep[r].min(st);
+    }
+    let time_to_sleep = world.settings.time_to_sleep;
+    scratch.sleepers.clear();
+    for k in 0..n {
+        let r = find(&mut scratch.parent, k as u32);
+        if scratch.min_sleep[r as usize] >= time_to_sleep {
+            scratch.sleepers.push((r, world.awake_bodies[k]));
+        }
+    }
+    if !scratch.sleepers.is_empty() {
+        scratch.sleepers.sort_unstable();
+        let mut i = 0;
+        while i < scratch.sleepers.len() {
+            let root = scratch.sleepers[i].0;
+            scratch.group.clear();
+            while i < scratch.sleepers.len() && scratch.sleepers[i].0 == root {
+                scratch.group.push(scratch.sleepers[i].1);
+                i += 1;
+            }
+            world.put_to_sleep(&scratch.group);
+        }
+    }
+    world.island_scratch = scratch;
+}

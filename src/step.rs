@@ -1,0 +1,181 @@
+//! The step, stage by stage. Read this file top to bottom to follow a frame.
+
+use crate::aabb::Aabb;
+use crate::body::NONE;
+use crate::broad_phase::{aabb_touches_plane, world_plane};
+use crate::world::World;
+
+/// Extra distance (m) within which contact points are kept before touching.
+pub const SPECULATIVE_DISTANCE: f32 = 0.02;
+
+impl World {
+    /// Advances the world by `dt` seconds (`dt >= 0`; 0 does nothing).
+    pub fn step(&mut self, dt: f32) -> crate::error::Result<()> {
+        if !dt.is_finite() || dt < 0.0 {
+            return Err(crate::error::invalid(format!(
+                "dt must be finite and >= 0, got {dt}"
+            )));
+        }
+        if dt == 0.0 {
+            return Ok(());
+        }
+        self.step_index += 1;
+        self.counters = Default::default();
+        // 1–2. Start of frame and forces: derived data is refreshed while the solver's body
+        //      arrays are built; applied forces already sit in each body's accumulators.
+        // 3. Broad phase: new pairs from proxies whose fat boxes moved.
+        self.update_pairs();
+        // 4. Narrow phase: manifolds for every awake contact; wake sleepers that are touched.
+        self.collide(dt);
+        // 5–6. Integration and contact resolution, sub-stepped (solver.rs).
+        crate::solver::solve(self, dt);
+        // 7. Bounds: refit moved proxies, sweeping them along the coming motion.
+        self.update_bounds(dt);
+        // 8. Sleep.
+        crate::island::update_motion(self, dt);
+        crate::island::sleep_islands(self);
+        self.counters.awake_bodies = self.awake_bodies.len();
+        self.counters.contacts = self.contacts.len();
+        Ok(())
+    }
+
+    fn update_pairs(&mut self) {
+        let World {
+            broad,
+            shapes,
+            bodies,
+            counters,
+            ..
+        } = self;
+        broad.candidates.clear();
+        counters.proxies_moved = broad.move_buffer.len();
+        for &s in &broad.move_buffer {
+            let shape = shapes.at(s);
+            let body = bodies.at(shape.body);
+            let fat = shape.fat_aabb;
+            let candidates = &mut broad.candidates;
+            let tested = &mut counters.pairs_tested;
+            broad.tree.query(&fat, |_, t| {
+                *tested += 1;
+                if t == s {
+                    return true;
+                }
+                let other = shapes.at(t);
+                if other.body == shape.body || (other.in_move_buffer && t < s) {
+                    return true;
+                }
+                if body.is_dynamic() || bodies.at(other.body).is_dynamic() {
+                    candidates.push((s, t));
+                }
+                true
+            });
+            if body.is_dynamic() {
+                for &p in &broad.planes {
+                    let plane = shapes.at(p);
+                    let (n, d) = world_plane(&plane.geometry, &bodies.at(plane.body).xf);
+                    if aabb_touches_plane(&fat, n, d) {
+                        candidates.push((s, p));
+                    }
+                }
+            }
+        }
+        for &s in &broad.move_buffer {
+            shapes.at_mut(s).in_move_buffer = false;
+        }
+        broad.move_buffer.clear();
+        let mut candidates = std::mem::take(&mut self.broad.candidates);
+        for &(a, b) in &candidates {
+            self.create_contact(a, b);
+        }
+        candidates.clear();
+        self.broad.candidates = candidates;
+    }
+
+    fn collide(&mut self, dt: f32) {
+        self.scratch_wake.clear();
+        let mut i = self.awake_contacts.len();
+        while i > 0 {
+            i -= 1;
+            let ci = self.awake_contacts[i];
+            let World {
+                contacts,
+                shapes,
+                bodies,
+                ..
+            } = self;
+            let c = contacts.at_mut(ci);
+            let (sa, sb) = (shapes.at(c.shape_a), shapes.at(c.shape_b));
+            let (ba, bb) = (bodies.at(c.body_a), bodies.at(c.body_b));
+            if !fat_overlap(
+                &sa.fat_aabb,
+                sa.proxy,
+                &sb.fat_aabb,
+                sb.proxy,
+                &sb.geometry,
+                &bb.xf,
+                &sa.geometry,
+                &ba.xf,
+            ) {
+                self.destroy_contact(ci);
+                continue;
+            }
+            let motion = (bb.v - ba.v).length()
+                + ba.w.length() * sa.geometry.extent_from(ba.local_center)
+                + bb.w.length() * sb.geometry.extent_from(bb.local_center);
+            let speculative = SPECULATIVE_DISTANCE + motion * dt;
+            c.update(sa, &ba.xf, sb, &bb.xf, speculative);
+            if c.touching && (!ba.awake || !bb.awake) {
+                let sleeper = if ba.awake { c.body_b } else { c.body_a };
+                if !bodies.at(sleeper).is_static() {
+                    self.scratch_wake.push(sleeper);
+                }
+            }
+        }
+        let mut wake = std::mem::take(&mut self.scratch_wake);
+        for &b in &wake {
+            self.wake_body(b);
+        }
+        wake.clear();
+        self.scratch_wake = wake;
+        self.counters.touching_contacts = self
+            .awake_contacts
+            .iter()
+            .filter(|&&c| self.contacts.at(c).touching)
+            .count();
+    }
+
+    fn update_bounds(&mut self, dt: f32) {
+        for k in 0..self.awake_bodies.len() {
+            let bi = self.awake_bodies[k];
+            let body = self.bodies.at(bi);
+            let d = body.v * dt;
+            for j in 0..body.shapes.len() {
+                let s = self.bodies.at(bi).shapes[j].index;
+                self.refresh_proxy(s, d, false);
+            }
+        }
+    }
+}
+
+/// Do two shapes' fat boxes still overlap (a plane counts as a half-space)?
+#[allow(clippy::too_many_arguments)]
+fn fat_overlap(
+    a: &Aabb,
+    proxy_a: u32,
+    b: &Aabb,
+    proxy_b: u32,
+    geom_b: &crate::shape::Geometry,
+    xf_b: &crate::math::Transform,
+    geom_a: &crate::shape::Geometry,
+    xf_a: &crate::math::Transform,
+) -> bool {
+    if proxy_b == NONE {
+        let (n, d) = world_plane(geom_b, xf_b);
+        return aabb_touches_plane(a, n, d);
+    }
+    if proxy_a == NONE {
+        let (n, d) = world_plane(geom_a, xf_a);
+        return aabb_touches_plane(b, n, d);
+    }
+    a.overlaps(b)
+}

@@ -1,0 +1,690 @@
+//! The world: owns bodies, shapes and contacts, and the operations a host performs on them.
+//! The step itself is in `step.rs`.
+
+use crate::body::{Body, BodyDef, BodyHandle, BodyType, ShapeHandle, NONE};
+use crate::broad_phase::BroadPhase;
+use crate::contact::Contact;
+use crate::error::{check_non_negative, check_positive, check_vec, invalid, Error, Result};
+use crate::math::{Transform, Vec3};
+use crate::pool::{next_world_tag, Handle, Pool};
+use crate::shape::{Geometry, MassProperties, Shape, ShapeDef};
+use crate::solver::SolverScratch;
+
+/// How unconstrained bodies are integrated.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Integrator {
+    /// Semi-implicit (symplectic) Euler, the default.
+    SemiImplicitEuler,
+    /// Classical fourth-order Runge–Kutta for bodies with no contacts in the step.
+    Rk4,
+}
+
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct WorldSettings {
+    pub gravity: Vec3,
+    /// Solver sub-steps per step.
+    pub substeps: u32,
+    pub integrator: Integrator,
+    pub enable_sleep: bool,
+    /// Speed (m/s, and rad/s) below which a body counts as still.
+    pub sleep_threshold: f32,
+    /// Seconds an island must stay still before it sleeps.
+    pub time_to_sleep: f32,
+    /// Stiffness of contacts (Hz) and their damping ratio.
+    pub contact_hertz: f32,
+    pub contact_damping_ratio: f32,
+    /// Fastest speed at which overlap is pushed apart (m/s).
+    pub contact_push_max_velocity: f32,
+    /// Approach speed below which contacts do not bounce (m/s).
+    pub restitution_threshold: f32,
+    /// Overlap allowed without correction (m); keeps resting contacts steady.
+    pub linear_slop: f32,
+    /// Fastest speed a body may reach (m/s).
+    pub max_linear_speed: f32,
+}
+
+impl Default for WorldSettings {
+    fn default() -> Self {
+        WorldSettings {
+            gravity: Vec3::new(0.0, -9.81, 0.0),
+            substeps: 4,
+            integrator: Integrator::SemiImplicitEuler,
+            enable_sleep: true,
+            sleep_threshold: 0.05,
+            time_to_sleep: 0.5,
+            contact_hertz: 30.0,
+            contact_damping_ratio: 10.0,
+            contact_push_max_velocity: 3.0,
+            restitution_threshold: 1.0,
+            linear_slop: 0.001,
+            max_linear_speed: 400.0,
+        }
+    }
+}
+
+impl WorldSettings {
+    pub fn validate(&self) -> Result<()> {
+        check_vec("gravity", self.gravity)?;
+        if self.substeps == 0 || self.substeps > 64 {
+            return Err(invalid(format!(
+                "substeps must be in 1..=64, got {}",
+                self.substeps
+            )));
+        }
+        check_non_negative("sleep_threshold", self.sleep_threshold)?;
+        check_non_negative("time_to_sleep", self.time_to_sleep)?;
+        check_positive("contact_hertz", self.contact_hertz)?;
+        check_non_negative("contact_damping_ratio", self.contact_damping_ratio)?;
+        check_positive("contact_push_max_velocity", self.contact_push_max_velocity)?;
+        check_non_negative("restitution_threshold", self.restitution_threshold)?;
+        check_non_negative("linear_slop", self.linear_slop)?;
+        check_positive("max_linear_speed", self.max_linear_speed)?;
+        Ok(())
+    }
+}
+
+/// Margin added around shape boxes in the tree so small motions do not touch it (m).
+pub const AABB_MARGIN: f32 = 0.1;
+
+/// Counters of the last step: work done, for tests and profiling.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct StepCounters {
+    pub awake_bodies: usize,
+    pub contacts: usize,
+    pub touching_contacts: usize,
+    pub pairs_tested: usize,
+    pub proxies_moved: usize,
+}
+
+pub struct World {
+    pub settings: WorldSettings,
+    pub bodies: Pool<Body>,
+    pub shapes: Pool<Shape>,
+    pub contacts: Pool<Contact>,
+    pub(crate) broad: BroadPhase,
+    /// Slot indices of awake bodies (kinematic and dynamic).
+    pub(crate) awake_bodies: Vec<u32>,
+    /// Slot indices of contacts with at least one awake body.
+    pub(crate) awake_contacts: Vec<u32>,
+    /// Bodies of each sleeping island.
+    pub(crate) islands: Pool<Vec<u32>>,
+    pub(crate) solver: SolverScratch,
+    pub(crate) scratch_wake: Vec<u32>,
+    pub(crate) island_scratch: crate::island::IslandScratch,
+    pub counters: StepCounters,
+    pub(crate) step_index: u64,
+}
+
+impl World {
+    pub fn new(settings: WorldSettings) -> Result<World> {
+        settings.validate()?;
+        let tag = next_world_tag();
+        Ok(World {
+            settings,
+            bodies: Pool::new(tag),
+            shapes: Pool::new(tag),
+            contacts: Pool::new(tag),
+            broad: BroadPhase::default(),
+            awake_bodies: Vec::new(),
+            awake_contacts: Vec::new(),
+            islands: Pool::new(tag),
+            solver: SolverScratch::default(),
+            scratch_wake: Vec::new(),
+            island_scratch: Default::default(),
+            counters: StepCounters::default(),
+            step_index: 0,
+        })
+    }
+
+    // ---------------------------------------------------------------- bodies
+
+    pub fn create_body(&mut self, def: &BodyDef) -> Result<BodyHandle> {
+        let def = def.validated()?;
+        let h = self.bodies.insert(Body::new(&def));
+        if def.body_type != BodyType::Static {
+            if def.awake {
+                self.add_awake_body(h.index);
+            } else {
+                self.put_to_sleep(&[h.index]);
+            }
+        }
+        Ok(h)
+    }
+
+    pub fn body(&self, h: BodyHandle) -> Result<&Body> {
+        self.bodies.get(h).ok_or(Error::InvalidId("body"))
+    }
+
+    fn body_index(&self, h: BodyHandle) -> Result<u32> {
+        self.body(h).map(|_| h.index)
+    }
+
+    pub fn destroy_body(&mut self, h: BodyHandle) -> Result<()> {
+        let index = self.body_index(h)?;
+        self.wake_body(index);
+        // Contacts: wake whoever was touching, then drop.
+        while let Some(&c) = self.bodies.at(index).contacts.last() {
+            let other = {
+                let ct = self.contacts.at(c);
+                if ct.body_a == index {
+                    ct.body_b
+                } else {
+                    ct.body_a
+                }
+            };
+            self.wake_body(other);
+            self.destroy_contact(c);
+        }
+        let shapes = std::mem::take(&mut self.bodies.at_mut(index).shapes);
+        for s in shapes {
+            self.remove_shape_proxy(s.index);
+            self.shapes.remove(s);
+        }
+        self.remove_awake_body(index);
+        self.bodies.remove(h);
+        Ok(())
+    }
+
+    pub fn body_count(&self) -> usize {
+        self.bodies.len()
+    }
+
+    pub fn transform(&self, h: BodyHandle) -> Result<Transform> {
+        Ok(self.body(h)?.xf)
+    }
+
+    pub fn set_transform(&mut self, h: BodyHandle, xf: Transform) -> Result<()> {
+        let index = self.body_index(h)?;
+        check_vec("position", xf.p)?;
+        let q = crate::error::check_quat("rotation", xf.q)?;
+        let xf = Transform::new(xf.p, q);
+        let body = self.bodies.at_mut(index);
+        body.set_transform(xf);
+        body.kinematic_target = None;
+        let shapes: Vec<u32> = body.shapes.iter().map(|s| s.index).collect();
+        for s in shapes {
+            self.refresh_proxy(s, Vec3::ZERO, true);
+        }
+        self.wake_body(index);
+        Ok(())
+    }
+
+    /// Kinematic bodies: move to `target` by the end of the next step, by velocity.
+    pub fn set_kinematic_target(&mut self, h: BodyHandle, target: Transform) -> Result<()> {
+        let index = self.body_index(h)?;
+        if self.bodies.at(index).body_type != BodyType::Kinematic {
+            return Err(invalid("a target transform needs a kinematic body"));
+        }
+        check_vec("target position", target.p)?;
+        let q = crate::error::check_quat("target rotation", target.q)?;
+        self.bodies.at_mut(index).kinematic_target = Some(Transform::new(target.p, q));
+        self.wake_body(index);
+        Ok(())
+    }
+
+    pub fn linear_velocity(&self, h: BodyHandle) -> Result<Vec3> {
+        Ok(self.body(h)?.v)
+    }
+
+    pub fn angular_velocity(&self, h: BodyHandle) -> Result<Vec3> {
+        Ok(self.body(h)?.w)
+    }
+
+    pub fn set_linear_velocity(&mut self, h: BodyHandle, v: Vec3) -> Result<()> {
+        let index = self.body_index(h)?;
+        check_vec("linear velocity", v)?;
+        let body = self.bodies.at_mut(index);
+        if body.is_static() {
+            return Ok(());
+        }
+        body.v = v;
+        if v != Vec3::ZERO {
+            self.wake_body(index);
+        }
+        Ok(())
+    }
+
+    pub fn set_angular_velocity(&mut self, h: BodyHandle, w: Vec3) -> Result<()> {
+        let index = self.body_index(h)?;
+        check_vec("angular velocity", w)?;
+        let body = self.bodies.at_mut(index);
+        if body.is_static() {
+            return Ok(());
+        }
+        body.w = w;
+        if w != Vec3::ZERO {
+            self.wake_body(index);
+        }
+        Ok(())
+    }
+
+    fn dynamic_index(&self, h: BodyHandle) -> Result<Option<u32>> {
+        let index = self.body_index(h)?;
+        Ok(self.bodies.at(index).is_dynamic().then_some(index))
+    }
+
+    /// Adds a force (N) at the centre of mass until the end of the next step. Wakes the body.
+    pub fn apply_force(&mut self, h: BodyHandle, f: Vec3, wake: bool) -> Result<()> {
+        check_vec("force", f)?;
+        if let Some(i) = self.dynamic_index(h)? {
+            if wake {
+                self.wake_body(i);
+            }
+            let b = self.bodies.at_mut(i);
+            if b.awake {
+                b.force += f;
+            }
+        }
+        Ok(())
+    }
+
+    /// Adds a force (N) at a world point: a force plus the torque of its lever arm.
+    pub fn apply_force_at_point(
+        &mut self,
+        h: BodyHandle,
+        f: Vec3,
+        point: Vec3,
+        wake: bool,
+    ) -> Result<()> {
+        check_vec("force", f)?;
+        check_vec("point", point)?;
+        if let Some(i) = self.dynamic_index(h)? {
+            if wake {
+                self.wake_body(i);
+            }
+            let b = self.bodies.at_mut(i);
+            if b.awake {
+                b.force += f;
+                b.torque += (point - b.center).cross(f);
+            }
+        }
+        Ok(())
+    }
+
+    pub fn apply_torque(&mut self, h: BodyHandle, t: Vec3, wake: bool) -> Result<()> {
+        check_vec("torque", t)?;
+        if let Some(i) = self.dynamic_index(h)? {
+            if wake {
+                self.wake_body(i);
+            }
+            let b = self.bodies.at_mut(i);
+            if b.awake {
+                b.torque += t;
+            }
+        }
+        Ok(())
+    }
+
+    /// Applies an impulse (N·s) at a world point: changes velocity at once.
+    pub fn apply_impulse_at_point(
+        &mut self,
+        h: BodyHandle,
+        j: Vec3,
+        point: Vec3,
+        wake: bool,
+    ) -> Result<()> {
+        check_vec("impulse", j)?;
+        check_vec("point", point)?;
+        if let Some(i) = self.dynamic_index(h)? {
+            if wake {
+                self.wake_body(i);
+            }
+            let b = self.bodies.at_mut(i);
+            if b.awake {
+                b.v += b.inv_mass * j;
+                b.w += b.inv_inertia_world * (point - b.center).cross(j);
+            }
+        }
+        Ok(())
+    }
+
+    pub fn apply_angular_impulse(&mut self, h: BodyHandle, j: Vec3, wake: bool) -> Result<()> {
+        check_vec("angular impulse", j)?;
+        if let Some(i) = self.dynamic_index(h)? {
+            if wake {
+                self.wake_body(i);
+            }
+            let b = self.bodies.at_mut(i);
+            if b.awake {
+                b.w += b.inv_inertia_world * j;
+            }
+        }
+        Ok(())
+    }
+
+    pub fn set_damping(&mut self, h: BodyHandle, linear: f32, angular: f32) -> Result<()> {
+        let i = self.body_index(h)?;
+        check_non_negative("linear damping", linear)?;
+        check_non_negative("angular damping", angular)?;
+        let b = self.bodies.at_mut(i);
+        b.linear_damping = linear;
+        b.angular_damping = angular;
+        Ok(())
+    }
+
+    pub fn set_gravity(&mut self, g: Vec3) -> Result<()> {
+        check_vec("gravity", g)?;
+        self.settings.gravity = g;
+        let all: Vec<u32> = self
+            .bodies
+            .iter()
+            .filter(|(_, b)| b.is_dynamic())
+            .map(|(h, _)| h.index)
+            .collect();
+        for i in all {
+            self.wake_body(i);
+        }
+        Ok(())
+    }
+
+    pub fn is_awake(&self, h: BodyHandle) -> Result<bool> {
+        Ok(self.body(h)?.awake)
+    }
+
+    /// Wakes (true) or puts to sleep (false) the body's whole island.
+    pub fn set_awake(&mut self, h: BodyHandle, awake: bool) -> Result<()> {
+        let i = self.body_index(h)?;
+        if awake {
+            self.wake_body(i);
+        } else if self.bodies.at(i).awake {
+            let island = self.island_of(i);
+            self.put_to_sleep(&island);
+        }
+        Ok(())
+    }
+
+    // ---------------------------------------------------------------- shapes
+
+    pub fn create_shape(
+        &mut self,
+        body: BodyHandle,
+        def: &ShapeDef,
+        geometry: &Geometry,
+    ) -> Result<ShapeHandle> {
+        let bi = self.body_index(body)?;
+        def.validate()?;
+        let geometry = geometry.validated()?;
+        if geometry.is_unbounded() && !self.bodies.at(bi).is_static() {
+            return Err(invalid("a plane can only be attached to a static body"));
+        }
+        let shape = Shape {
+            body: bi,
+            geometry,
+            def: *def,
+            proxy: NONE,
+            fat_aabb: crate::aabb::Aabb::EMPTY,
+            in_move_buffer: false,
+        };
+        let h = self.shapes.insert(shape);
+        self.bodies.at_mut(bi).shapes.push(h);
+        if geometry.is_unbounded() {
+            self.broad.planes.push(h.index);
+        } else {
+            let xf = self.bodies.at(bi).xf;
+            let fat = geometry.aabb(&xf).expanded(AABB_MARGIN);
+            let proxy = self.broad.tree.create_proxy(fat, h.index);
+            let s = self.shapes.at_mut(h.index);
+            s.proxy = proxy;
+            s.fat_aabb = fat;
+            self.push_moved(h.index);
+        }
+        self.update_mass(bi);
+        self.wake_body(bi);
+        Ok(h)
+    }
+
+    pub fn destroy_shape(&mut self, h: ShapeHandle) -> Result<()> {
+        let s = self.shapes.get(h).ok_or(Error::InvalidId("shape"))?;
+        let bi = s.body;
+        let doomed: Vec<u32> = self
+            .bodies
+            .at(bi)
+            .contacts
+            .iter()
+            .copied()
+            .filter(|&c| {
+                let ct = self.contacts.at(c);
+                ct.shape_a == h.index || ct.shape_b == h.index
+            })
+            .collect();
+        for c in doomed {
+            let ct = self.contacts.at(c);
+            let (a, b) = (ct.body_a, ct.body_b);
+            self.wake_body(a);
+            self.wake_body(b);
+            self.destroy_contact(c);
+        }
+        self.remove_shape_proxy(h.index);
+        self.shapes.remove(h);
+        self.bodies.at_mut(bi).shapes.retain(|&x| x != h);
+        self.update_mass(bi);
+        self.wake_body(bi);
+        Ok(())
+    }
+
+    pub fn shape(&self, h: ShapeHandle) -> Result<&Shape> {
+        self.shapes.get(h).ok_or(Error::InvalidId("shape"))
+    }
+
+    fn remove_shape_proxy(&mut self, s: u32) {
+        let shape = self.shapes.at_mut(s);
+        if shape.proxy != NONE {
+            self.broad.tree.destroy_proxy(shape.proxy);
+            shape.proxy = NONE;
+        } else {
+            self.broad.planes.retain(|&p| p != s);
+        }
+        if shape.in_move_buffer {
+            shape.in_move_buffer = false;
+            self.broad.move_buffer.retain(|&m| m != s);
+        }
+    }
+
+    fn update_mass(&mut self, bi: u32) {
+        let body = self.bodies.at(bi);
+        let mp = MassProperties::combine(
+            body.shapes
+                .iter()
+                .map(|s| self.shapes.get(*s).unwrap())
+                .map(|s| s.geometry.mass_properties(s.def.density)),
+        );
+        self.bodies.at_mut(bi).set_mass_properties(mp);
+    }
+
+    /// Recomputes a shape's box; if it left its fat box, refit the proxy and queue it for new
+    /// pairs. `displacement` sweeps the box along the body's predicted motion.
+    pub(crate) fn refresh_proxy(&mut self, s: u32, displacement: Vec3, force: bool) {
+        let shape = self.shapes.at(s);
+        if shape.proxy == NONE {
+            return;
+        }
+        let xf = self.bodies.at(shape.body).xf;
+        let bb = shape.geometry.aabb(&xf).swept(displacement);
+        if force || !shape.fat_aabb.contains(&bb) {
+            let fat = bb.expanded(AABB_MARGIN);
+            let proxy = shape.proxy;
+            self.broad.tree.move_proxy(proxy, fat);
+            self.shapes.at_mut(s).fat_aabb = fat;
+            self.push_moved(s);
+        }
+    }
+
+    pub(crate) fn push_moved(&mut self, s: u32) {
+        let shape = self.shapes.at_mut(s);
+        if !shape.in_move_buffer {
+            shape.in_move_buffer = true;
+            self.broad.move_buffer.push(s);
+        }
+    }
+
+    // ---------------------------------------------------------------- contacts
+
+    pub(crate) fn create_contact(&mut self, sa: u32, sb: u32) {
+        // Order so the narrowphase sees the lower shape kind first (it handles either order).
+        let key = crate::broad_phase::pair_key(sa, sb);
+        if self.broad.pairs.contains_key(&key) {
+            return;
+        }
+        let (a, b) = (self.shapes.at(sa), self.shapes.at(sb));
+        let contact = Contact::new(sa, sb, a, b, key);
+        let (ba, bb) = (contact.body_a, contact.body_b);
+        let h = self.contacts.insert(contact);
+        self.broad.pairs.insert(key, h.index);
+        self.bodies.at_mut(ba).contacts.push(h.index);
+        self.bodies.at_mut(bb).contacts.push(h.index);
+        if self.bodies.at(ba).awake || self.bodies.at(bb).awake {
+            self.add_awake_contact(h.index);
+        }
+    }
+
+    pub(crate) fn destroy_contact(&mut self, c: u32) {
+        let ct = self.contacts.at(c);
+        let (ba, bb, key) = (ct.body_a, ct.body_b, ct.key);
+        self.remove_awake_contact(c);
+        self.broad.pairs.remove(&key);
+        for b in [ba, bb] {
+            let list = &mut self.bodies.at_mut(b).contacts;
+            if let Some(pos) = list.iter().position(|&x| x == c) {
+                list.swap_remove(pos);
+            }
+        }
+        let h = self.contacts.handle_at(c).expect("live contact");
+        self.contacts.remove(h);
+    }
+
+    pub(crate) fn add_awake_contact(&mut self, c: u32) {
+        let ct = self.contacts.at_mut(c);
+        if ct.awake_index == NONE {
+            ct.awake_index = self.awake_contacts.len() as u32;
+            self.awake_contacts.push(c);
+        }
+    }
+
+    pub(crate) fn remove_awake_contact(&mut self, c: u32) {
+        let i = self.contacts.at(c).awake_index;
+        if i == NONE {
+            return;
+        }
+        self.awake_contacts.swap_remove(i as usize);
+        if let Some(&moved) = self.awake_contacts.get(i as usize) {
+            self.contacts.at_mut(moved).awake_index = i;
+        }
+        self.contacts.at_mut(c).awake_index = NONE;
+    }
+
+    // ---------------------------------------------------------------- sleep
+
+    pub(crate) fn add_awake_body(&mut self, b: u32) {
+        let body = self.bodies.at_mut(b);
+        if body.awake_index == NONE {
+            body.awake = true;
+            body.awake_index = self.awake_bodies.len() as u32;
+            self.awake_bodies.push(b);
+        }
+    }
+
+    fn remove_awake_body(&mut self, b: u32) {
+        let body = self.bodies.at_mut(b);
+        let i = body.awake_index;
+        body.awake = false;
+        if i == NONE {
+            return;
+        }
+        body.awake_index = NONE;
+        self.awake_bodies.swap_remove(i as usize);
+        if let Some(&moved) = self.awake_bodies.get(i as usize) {
+            self.bodies.at_mut(moved).awake_index = i;
+        }
+    }
+
+    /// Wakes a body and everything in its sleeping island; resets the sleep timer if awake.
+    pub(crate) fn wake_body(&mut self, b: u32) {
+        let body = self.bodies.at_mut(b);
+        if body.is_static() {
+            return;
+        }
+        let threshold = self.settings.sleep_threshold;
+        if body.awake {
+            body.sleep_time = 0.0;
+            body.motion = body.motion.max(2.0 * threshold * threshold);
+            return;
+        }
+        let island = body.sleep_island;
+        let members = if island.is_null() {
+            vec![b]
+        } else {
+            self.islands.remove(island).unwrap_or_else(|| vec![b])
+        };
+        for &m in &members {
+            let body = self.bodies.at_mut(m);
+            body.sleep_island = Handle::NULL;
+            body.sleep_time = 0.0;
+            body.motion = 2.0 * threshold * threshold;
+            self.add_awake_body(m);
+            let n = self.bodies.at(m).contacts.len();
+            for k in 0..n {
+                let c = self.bodies.at(m).contacts[k];
+                self.add_awake_contact(c);
+            }
+        }
+    }
+
+    /// Puts a set of (kinematic or dynamic) bodies to sleep as one island.
+    pub(crate) fn put_to_sleep(&mut self, members: &[u32]) {
+        let island = self.islands.insert(members.to_vec());
+        for &m in members {
+            self.remove_awake_body(m);
+            let body = self.bodies.at_mut(m);
+            body.sleep_island = island;
+            body.v = Vec3::ZERO;
+            body.w = Vec3::ZERO;
+            body.force = Vec3::ZERO;
+            body.torque = Vec3::ZERO;
+            body.sleep_time = 0.0;
+        }
+        for &m in members {
+            let n = self.bodies.at(m).contacts.len();
+            for k in 0..n {
+                let c = self.bodies.at(m).contacts[k];
+                let ct = self.contacts.at(c);
+                if !self.bodies.at(ct.body_a).awake && !self.bodies.at(ct.body_b).awake {
+                    self.remove_awake_contact(c);
+                }
+            }
+        }
+    }
+
+    /// The bodies connected to `b` through touching contacts (dynamic bodies only).
+    fn island_of(&self, b: u32) -> Vec<u32> {
+        let mut out = vec![b];
+        let mut k = 0;
+        while k < out.len() {
+            let x = out[k];
+            k += 1;
+            for &c in &self.bodies.at(x).contacts {
+                let ct = self.contacts.at(c);
+                if !ct.touching {
+                    continue;
+                }
+                let o = if ct.body_a == x { ct.body_b } else { ct.body_a };
+                if self.bodies.at(o).is_dynamic() && !out.contains(&o) {
+                    out.push(o);
+                }
+            }
+        }
+        out
+    }
+
+    /// Number of awake bodies (kinematic and dynamic).
+    pub fn awake_body_count(&self) -> usize {
+        self.awake_bodies.len()
+    }
+
+    pub fn contact_count(&self) -> usize {
+        self.contacts.len()
+    }
+
+    pub fn tree_height(&self) -> u32 {
+        self.broad.tree.height() as u32
+    }
+}
