@@ -16,6 +16,7 @@ pub(crate) mod hash;
 pub mod island;
 pub mod math;
 pub mod pool;
+pub mod scenes;
 pub mod shape;
 pub mod solver;
 pub mod step;

@@ -1,0 +1,118 @@
+//! Standard scenes, defined once and shared by tests, benches and examples.
+
+use crate::body::{BodyDef, BodyHandle, BodyType};
+use crate::math::{Quat, Transform, Vec3};
+use crate::shape::{Geometry, ShapeDef};
+use crate::world::{World, WorldSettings};
+
+/// Half extent of the standard box.
+pub const H: f32 = 0.5;
+
+fn material() -> ShapeDef {
+    ShapeDef { static_friction: 0.6, dynamic_friction: 0.6, ..ShapeDef::default() }
+}
+
+/// A static ground plane `y <= 0`.
+pub fn ground_plane(world: &mut World) -> BodyHandle {
+    let g = world.create_body(&BodyDef::default()).unwrap();
+    world.create_shape(g, &material(), &Geometry::Plane { normal: Vec3::Y, offset: 0.0 }).unwrap();
+    g
+}
+
+/// A static box ground, top face at `y = 0`.
+pub fn ground_box(world: &mut World, half_width: f32) -> BodyHandle {
+    let g = world
+        .create_body(&BodyDef { transform: Transform::new(Vec3::new(0.0, -1.0, 0.0), Quat::IDENTITY), ..Default::default() })
+        .unwrap();
+    let geom = Geometry::Box { center: Vec3::ZERO, rotation: Quat::IDENTITY, half_extents: Vec3::new(half_width, 1.0, half_width) };
+    world.create_shape(g, &material(), &geom).unwrap();
+    g
+}
+
+pub fn dynamic_box(world: &mut World, p: Vec3, h: Vec3, def: &ShapeDef) -> BodyHandle {
+    let b = world
+        .create_body(&BodyDef { body_type: BodyType::Dynamic, transform: Transform::new(p, Quat::IDENTITY), ..Default::default() })
+        .unwrap();
+    world.create_shape(b, def, &Geometry::Box { center: Vec3::ZERO, rotation: Quat::IDENTITY, half_extents: h }).unwrap();
+    b
+}
+
+pub fn dynamic_sphere(world: &mut World, p: Vec3, r: f32, def: &ShapeDef) -> BodyHandle {
+    let b = world
+        .create_body(&BodyDef { body_type: BodyType::Dynamic, transform: Transform::new(p, Quat::IDENTITY), ..Default::default() })
+        .unwrap();
+    world.create_shape(b, def, &Geometry::Sphere { center: Vec3::ZERO, radius: r }).unwrap();
+    b
+}
+
+/// A tower of `n` unit boxes standing on the ground. Returns the boxes bottom to top.
+pub fn tower(world: &mut World, n: usize) -> Vec<BodyHandle> {
+    ground_box(world, 20.0);
+    (0..n).map(|i| dynamic_box(world, Vec3::new(0.0, H + 2.0 * H * i as f32, 0.0), Vec3::splat(H), &material())).collect()
+}
+
+/// A square pyramid with `base` boxes per side at the bottom: base² + (base−1)² + … boxes.
+pub fn pyramid(world: &mut World, base: usize) -> Vec<BodyHandle> {
+    ground_box(world, 40.0);
+    let mut out = Vec::new();
+    for layer in 0..base {
+        let n = base - layer;
+        let offset = -(n as f32 - 1.0) * H;
+        for i in 0..n {
+            for k in 0..n {
+                let p = Vec3::new(offset + 2.0 * H * i as f32, H + 2.0 * H * layer as f32, offset + 2.0 * H * k as f32);
+                out.push(dynamic_box(world, p, Vec3::splat(H), &material()));
+            }
+        }
+    }
+    out
+}
+
+/// `count` bodies, alternating spheres (r = 0.5) and unit boxes, dropped from a grid of
+/// spacing 1.5 into a 30 × 30 m container with walls.
+pub fn pile(world: &mut World, count: usize) -> Vec<BodyHandle> {
+    ground_box(world, 15.0);
+    let wall = |world: &mut World, p: Vec3, h: Vec3| {
+        let b = world.create_body(&BodyDef { transform: Transform::new(p, Quat::IDENTITY), ..Default::default() }).unwrap();
+        world.create_shape(b, &material(), &Geometry::Box { center: Vec3::ZERO, rotation: Quat::IDENTITY, half_extents: h }).unwrap();
+    };
+    let height = 30.0;
+    wall(world, Vec3::new(15.5, height, 0.0), Vec3::new(0.5, height, 16.0));
+    wall(world, Vec3::new(-15.5, height, 0.0), Vec3::new(0.5, height, 16.0));
+    wall(world, Vec3::new(0.0, height, 15.5), Vec3::new(16.0, height, 0.5));
+    wall(world, Vec3::new(0.0, height, -15.5), Vec3::new(16.0, height, 0.5));
+    let per_row = 19; // 19 × 1.5 = 28.5 m fits inside the 30 m container
+    let mut out = Vec::with_capacity(count);
+    for i in 0..count {
+        let layer = i / (per_row * per_row);
+        let r = i % (per_row * per_row);
+        let (x, z) = ((r % per_row) as f32, (r / per_row) as f32);
+        let p = Vec3::new(-13.5 + 1.5 * x, 1.0 + 1.5 * layer as f32, -13.5 + 1.5 * z);
+        out.push(if i % 2 == 0 {
+            dynamic_sphere(world, p, 0.5, &material())
+        } else {
+            dynamic_box(world, p, Vec3::splat(H), &material())
+        });
+    }
+    out
+}
+
+/// `n × n` spheres (r = 0.5) resting on the ground plane, 1.5 m apart, not touching each
+/// other.
+pub fn spheres_grid(world: &mut World, n: usize) -> Vec<BodyHandle> {
+    ground_plane(world);
+    let mut out = Vec::with_capacity(n * n);
+    let offset = -(n as f32 - 1.0) * 0.75;
+    for i in 0..n {
+        for k in 0..n {
+            let p = Vec3::new(offset + 1.5 * i as f32, 0.5, offset + 1.5 * k as f32);
+            out.push(dynamic_sphere(world, p, 0.5, &material()));
+        }
+    }
+    out
+}
+
+/// A world with default settings, optionally without sleep.
+pub fn world(sleep: bool) -> World {
+    World::new(WorldSettings { enable_sleep: sleep, ..WorldSettings::default() }).unwrap()
+}
