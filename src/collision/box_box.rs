@@ -9,11 +9,12 @@
 //!   (Sutherland–Hodgman) and the result reduced to at most four points;
 //! * edge axis: one point midway between the closest points of the two edges.
 //!
-//! Feature ids. Face contacts: bit 12 = reference face on B, bits 9..11 = reference face
-//! (`2 * axis + negative`), bits 6..8 = incident face, bits 0..5 = the clipped vertex as the
-//! pair of lines crossing there (`8 * incoming + outgoing`, lines 0..3 the incident face's
-//! edges, 4..7 the reference face's side planes). Edge contacts: bit 31, then the edge of A
-//! (bits 8..11) and of B (bits 0..3), each `4 * axis + side`.
+//! Feature ids. Face contacts: bit 13 = reference face on B, bits 10..12 = reference face
+//! (`2 * axis + negative`), bits 7..9 = incident face, bits 0..6 = the point: 64 + i near
+//! incident vertex i, 68 + j near reference corner j, else the pair of lines crossing
+//! there (`8 * incoming + outgoing`, lines 0..3 the incident face's edges, 4..7 the
+//! reference face's side planes). Edge contacts: bit 31, then the edge of A (bits 8..11)
+//! and of B (bits 0..3), each `4 * axis + side`.
 
 use super::geom::{closest_segment_segment, push_point, WorldBox};
 use super::Manifold;
@@ -30,7 +31,13 @@ const PARALLEL_EDGE_SQ: f32 = 1.0e-6;
 /// Polygon capacity while clipping (a quad against four planes has at most 8 vertices).
 const CLIP_CAP: usize = 16;
 const EDGE_FLAG: u32 = 1 << 31;
-const REF_ON_B_FLAG: u32 = 1 << 12;
+const REF_ON_B_FLAG: u32 = 1 << 13;
+/// Clipped points within this fraction of the smallest face half extent (and at most
+/// `ANCHOR_MAX_TOL` metres) of an incident vertex or reference corner are named after it.
+const ANCHOR_REL_TOL: f32 = 0.1;
+const ANCHOR_MAX_TOL: f32 = 0.05;
+/// Depth difference (metres) under which reduction treats points as equally deep.
+const REDUCE_DEPTH_TOL: f32 = 0.001;
 
 #[derive(Clone, Copy, Default)]
 struct ClipVertex {
@@ -44,6 +51,8 @@ struct Candidate {
     p: Vec3,
     sep: f32,
     id: u32,
+    /// Squared distance to the feature named by `id` when that is an anchor (else 0).
+    anchor_dist: f32,
 }
 
 #[inline]
@@ -58,9 +67,13 @@ fn sign(x: f32) -> f32 {
 /// Box A against box B.
 pub(crate) fn box_box(a: &WorldBox, b: &WorldBox, speculative: f32) -> Manifold {
     // B's axes and centre in A's frame: rc[j][i] = R_ij = dot(a_i, b_j).
-    let rc = [a.dir_to_local(b.rot.x_axis), a.dir_to_local(b.rot.y_axis), a.dir_to_local(b.rot.z_axis)];
+    let rc = [
+        a.dir_to_local(b.rot.x_axis),
+        a.dir_to_local(b.rot.y_axis),
+        a.dir_to_local(b.rot.z_axis),
+    ];
     let ac = rc.map(|c| c.abs() + Vec3::splat(1.0e-6));
-    let t = a.to_local(b.center);
+    let t = a.apply_inv(b.center);
     let (ha, hb) = (a.half, b.half);
 
     let (mut sep_a, mut face_a) = (f32::MIN, 0usize);
@@ -121,7 +134,15 @@ pub(crate) fn box_box(a: &WorldBox, b: &WorldBox, speculative: f32) -> Manifold 
             Vec3::new(rc[0].y, rc[1].y, rc[2].y),
             Vec3::new(rc[0].z, rc[1].z, rc[2].z),
         ];
-        face_contact(b, face_b, b.to_local(a.center), &axes, ha, speculative, true)
+        face_contact(
+            b,
+            face_b,
+            b.apply_inv(a.center),
+            &axes,
+            ha,
+            speculative,
+            true,
+        )
     } else {
         face_contact(a, face_a, t, &rc, hb, speculative, false)
     }
@@ -159,7 +180,12 @@ fn edge_contact(
     let (u1, u2) = (-sign(n.dot(rc[j1])), -sign(n.dot(rc[j2])));
     let base_b = t + (u1 * hb[j1]) * rc[j1] + (u2 * hb[j2]) * rc[j2];
     let ext_b = hb[j] * rc[j];
-    let (pa, qa, pb, qb) = (base_a - ext_a, base_a + ext_a, base_b - ext_b, base_b + ext_b);
+    let (pa, qa, pb, qb) = (
+        base_a - ext_a,
+        base_a + ext_a,
+        base_b - ext_b,
+        base_b + ext_b,
+    );
     let (sa, sb) = closest_segment_segment(pa, qa, pb, qb);
     let ca = pa + sa * (qa - pa);
     let cb = pb + sb * (qb - pb);
@@ -170,13 +196,28 @@ fn edge_contact(
     let side = |x: f32, y: f32| (x > 0.0) as u32 + 2 * (y > 0.0) as u32;
     let id_a = 4 * i as u32 + side(s1, s2);
     let id_b = 4 * j as u32 + side(u1, u2);
-    let mut m = Manifold { normal: a.rot * n, ..Manifold::EMPTY };
-    push_point(&mut m, a.to_world(0.5 * (ca + cb)), sep, EDGE_FLAG | id_a << 8 | id_b);
+    let mut m = Manifold {
+        normal: a.rot * n,
+        ..Manifold::EMPTY
+    };
+    push_point(
+        &mut m,
+        a.apply(0.5 * (ca + cb)),
+        sep,
+        EDGE_FLAG | id_a << 8 | id_b,
+    );
     m
 }
 
 /// Clips `input` to the half-space `side * p[axis] <= limit`; the new edge lies on `line`.
-fn clip(input: &[ClipVertex], out: &mut [ClipVertex; CLIP_CAP], axis: usize, side: f32, limit: f32, line: u8) -> usize {
+fn clip(
+    input: &[ClipVertex],
+    out: &mut [ClipVertex; CLIP_CAP],
+    axis: usize,
+    side: f32,
+    limit: f32,
+    line: u8,
+) -> usize {
     let mut n = 0;
     let count = input.len();
     for idx in 0..count {
@@ -188,14 +229,16 @@ fn clip(input: &[ClipVertex], out: &mut [ClipVertex; CLIP_CAP], axis: usize, sid
             out[n] = cur;
             n += 1;
         }
-        if (dc < 0.0 && dn > 0.0) || (dc > 0.0 && dn < 0.0) {
-            if n < CLIP_CAP {
-                let f = dc / (dc - dn);
-                // Leaving: continue along the clip line; entering: along the current edge.
-                let l = if dc < 0.0 { line } else { cur.line };
-                out[n] = ClipVertex { p: cur.p + f * (next.p - cur.p), line: l };
-                n += 1;
-            }
+        let crossing = (dc < 0.0 && dn > 0.0) || (dc > 0.0 && dn < 0.0);
+        if crossing && n < CLIP_CAP {
+            let f = dc / (dc - dn);
+            // Leaving: continue along the clip line; entering: along the current edge.
+            let l = if dc < 0.0 { line } else { cur.line };
+            out[n] = ClipVertex {
+                p: cur.p + f * (next.p - cur.p),
+                line: l,
+            };
+            n += 1;
         }
     }
     n
@@ -233,11 +276,24 @@ fn face_contact(
 
     let mut buf_a = [ClipVertex::default(); CLIP_CAP];
     let mut buf_b = [ClipVertex::default(); CLIP_CAP];
-    buf_a[0] = ClipVertex { p: fc + eu + ev, line: 0 };
-    buf_a[1] = ClipVertex { p: fc - eu + ev, line: 1 };
-    buf_a[2] = ClipVertex { p: fc - eu - ev, line: 2 };
-    buf_a[3] = ClipVertex { p: fc + eu - ev, line: 3 };
+    buf_a[0] = ClipVertex {
+        p: fc + eu + ev,
+        line: 0,
+    };
+    buf_a[1] = ClipVertex {
+        p: fc - eu + ev,
+        line: 1,
+    };
+    buf_a[2] = ClipVertex {
+        p: fc - eu - ev,
+        line: 2,
+    };
+    buf_a[3] = ClipVertex {
+        p: fc + eu - ev,
+        line: 3,
+    };
     let mut n = 4;
+    let quad = [buf_a[0].p, buf_a[1].p, buf_a[2].p, buf_a[3].p];
     n = clip(&buf_a[..n], &mut buf_b, k1, 1.0, h[k1], 4);
     n = clip(&buf_b[..n], &mut buf_a, k1, -1.0, h[k1], 5);
     n = clip(&buf_a[..n], &mut buf_b, k2, 1.0, h[k2], 6);
@@ -245,17 +301,56 @@ fn face_contact(
     let poly = &buf_a[..n];
 
     let base = if on_b { REF_ON_B_FLAG } else { 0 }
-        | ((2 * k as u32 + (s < 0.0) as u32) << 9)
-        | ((2 * j as u32 + (sj < 0.0) as u32) << 6);
+        | ((2 * k as u32 + (s < 0.0) as u32) << 10)
+        | ((2 * j as u32 + (sj < 0.0) as u32) << 7);
+    // Points this close (in the reference plane) to an incident vertex or a reference
+    // corner take that feature's id and merge, so that coincident corners (equal boxes
+    // stacked) do not flip between "vertex", "vertex clipped by a side" and "corner".
+    let tol = (ANCHOR_REL_TOL * h[k1].min(h[k2]).min(h_inc[u]).min(h_inc[v])).min(ANCHOR_MAX_TOL);
+    let tol_sq = tol * tol;
+    let dist2 = |p: Vec3, x: f32, y: f32| (p[k1] - x) * (p[k1] - x) + (p[k2] - y) * (p[k2] - y);
     let mut cand = [Candidate::default(); CLIP_CAP];
     let mut m_count = 0;
     for idx in 0..n {
         let vtx = poly[idx];
         let sep = s * vtx.p[k] - h[k];
-        if sep <= speculative {
-            let prev = poly[(idx + n - 1) % n].line as u32;
-            cand[m_count] = Candidate { p: vtx.p, sep, id: base | (prev * 8 + vtx.line as u32) };
-            m_count += 1;
+        if sep > speculative {
+            continue;
+        }
+        let prev = poly[(idx + n - 1) % n].line as u32;
+        let mut code = prev * 8 + vtx.line as u32;
+        let mut d_anchor = 0.0;
+        if let Some((i, d)) = (0..4)
+            .map(|i| (i, dist2(vtx.p, quad[i][k1], quad[i][k2])))
+            .find(|e| e.1 < tol_sq)
+        {
+            (code, d_anchor) = (64 + i as u32, d);
+        } else if let Some((i, d)) = (0..4)
+            .map(|i| {
+                let (x, y) = (
+                    if i & 1 == 0 { h[k1] } else { -h[k1] },
+                    if i & 2 == 0 { h[k2] } else { -h[k2] },
+                );
+                (i, dist2(vtx.p, x, y))
+            })
+            .find(|e| e.1 < tol_sq)
+        {
+            (code, d_anchor) = (68 + i as u32, d);
+        }
+        let c = Candidate {
+            p: vtx.p,
+            sep,
+            id: base | code,
+            anchor_dist: d_anchor,
+        };
+        // One point per feature: the one nearest the anchor.
+        match cand[..m_count].iter_mut().find(|e| e.id == c.id) {
+            Some(e) if c.anchor_dist < e.anchor_dist => *e = c,
+            Some(_) => {}
+            None => {
+                cand[m_count] = c;
+                m_count += 1;
+            }
         }
     }
     if m_count == 0 {
@@ -265,11 +360,19 @@ fn face_contact(
     let mut normal_local = Vec3::ZERO;
     normal_local[k] = s;
     let normal = rf.rot * normal_local;
-    let mut m = Manifold { normal: if on_b { -normal } else { normal }, ..Manifold::EMPTY };
+    let mut m = Manifold {
+        normal: if on_b { -normal } else { normal },
+        ..Manifold::EMPTY
+    };
     let (keep, kept) = reduce(&cand[..m_count], k1, k2);
     for &ci in &keep[..kept] {
         let cp = cand[ci];
-        push_point(&mut m, rf.to_world(cp.p - (0.5 * cp.sep) * normal_local), cp.sep, cp.id);
+        push_point(
+            &mut m,
+            rf.apply(cp.p - (0.5 * cp.sep) * normal_local),
+            cp.sep,
+            cp.id,
+        );
     }
     m
 }
@@ -280,17 +383,32 @@ fn cross2(o: Vec3, a: Vec3, b: Vec3, k1: usize, k2: usize) -> f32 {
 }
 
 /// Picks at most four of the candidates (points on the reference plane, coordinates `k1`,
-/// `k2`): the deepest, the farthest from it, the one making the largest triangle, then the
+/// `k2`): the deepest (to within `REDUCE_DEPTH_TOL`), the farthest from it, the one making the largest triangle, then the
 /// one adding the most area outside that triangle.
 fn reduce(c: &[Candidate], k1: usize, k2: usize) -> ([usize; 4], usize) {
     let n = c.len();
     if n <= 4 {
         return ([0, 1, 2, 3], n);
     }
-    let mut i0 = 0;
-    for i in 1..n {
-        if c[i].sep < c[i0].sep {
-            i0 = i;
+    // Deepest, where points within REDUCE_DEPTH_TOL of the deepest count as equally deep
+    // and the one farthest from the centroid wins: a flat contact then starts from a
+    // corner of the patch rather than from whichever point noise made deepest.
+    let mut min_sep = c[0].sep;
+    let (mut cx, mut cy) = (0.0f32, 0.0f32);
+    for ci in c {
+        min_sep = min_sep.min(ci.sep);
+        cx += ci.p[k1];
+        cy += ci.p[k2];
+    }
+    let (cx, cy) = (cx / n as f32, cy / n as f32);
+    let (mut i0, mut best) = (0usize, -1.0f32);
+    for (i, ci) in c.iter().enumerate() {
+        if ci.sep <= min_sep + REDUCE_DEPTH_TOL {
+            let (dx, dy) = (ci.p[k1] - cx, ci.p[k2] - cy);
+            let d = dx * dx + dy * dy;
+            if d > best {
+                (i0, best) = (i, d);
+            }
         }
     }
     let p0 = c[i0].p;

@@ -15,8 +15,6 @@ const PARALLEL_SIN: f32 = 0.05;
 /// Capsule axis against a box face: largest |cos| of the axis to the face normal that
 /// still counts as lying flat on the face.
 const FLAT_AXIS_COS: f32 = 0.2;
-/// Closest-point normal against a face normal: least cosine to use the face.
-const FLAT_NORMAL_COS: f32 = 0.99;
 /// Two clipped points closer than this (metres) collapse into one.
 const MIN_POINT_SPACING: f32 = 0.005;
 /// Face axes beat edge axes unless the edge is better by this relative and absolute slack.
@@ -61,7 +59,11 @@ pub(crate) fn capsule_capsule(
                 // Coaxial: any perpendicular, turned toward B's midpoint when possible.
                 let w = 0.5 * (pb + qb) - pa;
                 let w = w - w.dot(ua) * ua;
-                if w.length_squared() > DEGENERATE_DIST_SQ { w.normalize() } else { any_perpendicular(ua) }
+                if w.length_squared() > DEGENERATE_DIST_SQ {
+                    w.normalize()
+                } else {
+                    any_perpendicular(ua)
+                }
             };
             // B's end points as parameters along A's axis.
             let t1 = (pb - pa).dot(ua);
@@ -73,7 +75,10 @@ pub(crate) fn capsule_capsule(
                 let u0 = ua0.min(ua1).max(0.0);
                 let u1 = ua0.max(ua1).min(1.0);
                 if (u1 - u0) * lb_sq.sqrt() > MIN_POINT_SPACING {
-                    let mut m = Manifold { normal: n, ..Manifold::EMPTY };
+                    let mut m = Manifold {
+                        normal: n,
+                        ..Manifold::EMPTY
+                    };
                     for (u, id) in [(u0, 0u32), (u1, 1u32)] {
                         let on_b = pb + u * db;
                         let on_a = pa + (t1 + u * dt).clamp(0.0, la) * ua;
@@ -122,7 +127,10 @@ pub(crate) fn capsule_plane(
     speculative: f32,
 ) -> Manifold {
     let n = plane.n;
-    let mut m = Manifold { normal: -n, ..Manifold::EMPTY };
+    let mut m = Manifold {
+        normal: -n,
+        ..Manifold::EMPTY
+    };
     let degenerate = (qa - pa).length_squared() <= MIN_POINT_SPACING * MIN_POINT_SPACING;
     for (p, id) in [(pa, 0u32), (qa, 1u32)] {
         let sep = plane.distance(p) - r;
@@ -184,7 +192,11 @@ fn segment_box_closest(p: Vec3, d: Vec3, h: Vec3) -> (f32, f32) {
             num -= d[k] * (p[k] - b);
             den += d[k] * d[k];
         }
-        let t = if den > 1.0e-12 { (num / den).clamp(t0, t1) } else { t0 };
+        let t = if den > 1.0e-12 {
+            (num / den).clamp(t0, t1)
+        } else {
+            t0
+        };
         let x = p + t * d;
         let dd = (x - x.clamp(-h, h)).length_squared();
         if dd < best.1 {
@@ -231,32 +243,33 @@ fn capsule_face(
     let s1 = p + t1 * d;
     let sep0 = sign * s0[k] - h[k] - r;
     let sep1 = sign * s1[k] - h[k] - r;
-    let mut m = Manifold { normal, ..Manifold::EMPTY };
+    let mut m = Manifold {
+        normal,
+        ..Manifold::EMPTY
+    };
     if (t1 - t0) * (t1 - t0) * d.length_squared() < MIN_POINT_SPACING * MIN_POINT_SPACING {
-        let (s, sep, id) = if sep0 <= sep1 { (s0, sep0, 0) } else { (s1, sep1, 1) };
+        let (s, sep, id) = if sep0 <= sep1 {
+            (s0, sep0, 0)
+        } else {
+            (s1, sep1, 1)
+        };
         if sep <= speculative {
-            push_point(&mut m, bx.to_world(s - (r + 0.5 * sep) * f), sep, id);
+            push_point(&mut m, bx.apply(s - (r + 0.5 * sep) * f), sep, id);
         }
         return Some(m);
     }
     for (s, sep, id) in [(s0, sep0, 0u32), (s1, sep1, 1u32)] {
         if sep <= speculative {
-            push_point(&mut m, bx.to_world(s - (r + 0.5 * sep) * f), sep, id);
+            push_point(&mut m, bx.apply(s - (r + 0.5 * sep) * f), sep, id);
         }
     }
     Some(m)
 }
 
 /// Capsule A (world segment `pa`–`qa`) against box B.
-pub(crate) fn capsule_box(
-    pa: Vec3,
-    qa: Vec3,
-    r: f32,
-    bx: &WorldBox,
-    speculative: f32,
-) -> Manifold {
-    let p = bx.to_local(pa);
-    let q = bx.to_local(qa);
+pub(crate) fn capsule_box(pa: Vec3, qa: Vec3, r: f32, bx: &WorldBox, speculative: f32) -> Manifold {
+    let p = bx.apply_inv(pa);
+    let q = bx.apply_inv(qa);
     let d = q - p;
     let h = bx.half;
     let dd = d.length_squared();
@@ -280,7 +293,11 @@ pub(crate) fn capsule_box(
         } else {
             2
         };
-        let flat = a[k] >= FLAT_NORMAL_COS
+        // Lying on a face: the closest point is over the face interior (so the normal is
+        // the face normal) and the axis is nearly parallel to the face.
+        let (k1, k2) = ((k + 1) % 3, (k + 2) % 3);
+        let flat = s[k1].abs() <= h[k1]
+            && s[k2].abs() <= h[k2]
             && dd > DEGENERATE_DIST_SQ
             && d[k] * d[k] <= FLAT_AXIS_COS * FLAT_AXIS_COS * dd;
         if flat {
@@ -293,7 +310,7 @@ pub(crate) fn capsule_box(
         }
         let sep = dist - r;
         let point = c + (0.5 * sep) * n_bc;
-        return single_point(-(bx.rot * n_bc), bx.to_world(point), sep, 0, speculative);
+        return single_point(-(bx.rot * n_bc), bx.apply(point), sep, 0, speculative);
     }
 
     // The segment enters the box: separating-axis search over the 6 faces and the
@@ -349,7 +366,7 @@ pub(crate) fn capsule_box(
         let c = e0 + se * (e1 - e0);
         let sep = (s - c).dot(edge_axis) - r;
         let point = s - (r + 0.5 * sep) * edge_axis;
-        return single_point(-(bx.rot * edge_axis), bx.to_world(point), sep, 0, speculative);
+        return single_point(-(bx.rot * edge_axis), bx.apply(point), sep, 0, speculative);
     }
 
     if let Some(m) = capsule_face(bx, p, q, r, face_k, face_sign, speculative) {
@@ -363,7 +380,7 @@ pub(crate) fn capsule_box(
     let (s, id) = if f.dot(p) <= f.dot(q) { (p, 0) } else { (q, 1) };
     let sep = f.dot(s) - h[face_k] - r;
     let point = s - (r + 0.5 * sep) * f;
-    single_point(-(bx.rot * f), bx.to_world(point), sep, id, speculative)
+    single_point(-(bx.rot * f), bx.apply(point), sep, id, speculative)
 }
 
 #[cfg(test)]

@@ -22,22 +22,30 @@ pub(crate) struct WorldBox {
 impl WorldBox {
     #[inline]
     pub fn new(center: Vec3, rotation: Quat, half: Vec3, xf: &Transform) -> Self {
-        WorldBox { center: xf.apply(center), rot: Mat3::from_quat(xf.q * rotation), half }
+        WorldBox {
+            center: xf.apply(center),
+            rot: Mat3::from_quat(xf.q * rotation),
+            half,
+        }
     }
 
     /// World direction into the box frame.
     #[inline]
     pub fn dir_to_local(&self, d: Vec3) -> Vec3 {
-        Vec3::new(self.rot.x_axis.dot(d), self.rot.y_axis.dot(d), self.rot.z_axis.dot(d))
+        Vec3::new(
+            self.rot.x_axis.dot(d),
+            self.rot.y_axis.dot(d),
+            self.rot.z_axis.dot(d),
+        )
     }
 
     #[inline]
-    pub fn to_local(&self, p: Vec3) -> Vec3 {
+    pub fn apply_inv(&self, p: Vec3) -> Vec3 {
         self.dir_to_local(p - self.center)
     }
 
     #[inline]
-    pub fn to_world(&self, p: Vec3) -> Vec3 {
+    pub fn apply(&self, p: Vec3) -> Vec3 {
         self.rot * p + self.center
     }
 }
@@ -55,10 +63,16 @@ impl WorldPlane {
     #[inline]
     pub fn new(normal: Vec3, offset: f32, xf: &Transform) -> Self {
         let len = normal.length();
-        let (n_local, off) =
-            if len > 1.0e-12 { (normal / len, offset / len) } else { (FALLBACK_NORMAL, offset) };
+        let (n_local, off) = if len > 1.0e-12 {
+            (normal / len, offset / len)
+        } else {
+            (FALLBACK_NORMAL, offset)
+        };
         let n = xf.q * n_local;
-        WorldPlane { n, d: off + n.dot(xf.p) }
+        WorldPlane {
+            n,
+            d: off + n.dot(xf.p),
+        }
     }
 
     /// Signed distance of `p` above the plane surface.
@@ -102,7 +116,11 @@ pub(crate) fn closest_segment_segment(p1: Vec3, q1: Vec3, p2: Vec3, q2: Vec3) ->
     }
     let b = d1.dot(d2);
     let denom = a * e - b * b;
-    let mut s = if denom > 1.0e-7 * a * e { ((b * f - c * e) / denom).clamp(0.0, 1.0) } else { 0.0 };
+    let mut s = if denom > 1.0e-7 * a * e {
+        ((b * f - c * e) / denom).clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
     let mut t = (b * s + f) / e;
     if t < 0.0 {
         t = 0.0;
@@ -124,7 +142,11 @@ pub(crate) fn any_perpendicular(u: Vec3) -> Vec3 {
 #[inline]
 pub(crate) fn push_point(m: &mut Manifold, point: Vec3, separation: f32, id: u32) {
     if m.count < MAX_MANIFOLD_POINTS {
-        m.points[m.count] = ManifoldPoint { point, separation, id };
+        m.points[m.count] = ManifoldPoint {
+            point,
+            separation,
+            id,
+        };
         m.count += 1;
     }
 }
@@ -141,7 +163,10 @@ pub(crate) fn single_point(
     if separation > speculative {
         return Manifold::EMPTY;
     }
-    let mut m = Manifold { normal, ..Manifold::EMPTY };
+    let mut m = Manifold {
+        normal,
+        ..Manifold::EMPTY
+    };
     push_point(&mut m, point, separation, id);
     m
 }
@@ -173,7 +198,10 @@ mod tests {
 
     #[test]
     fn plane_in_world() {
-        let xf = Transform::new(Vec3::new(0.0, 2.0, 0.0), Quat::from_rotation_z(std::f32::consts::FRAC_PI_2));
+        let xf = Transform::new(
+            Vec3::new(0.0, 2.0, 0.0),
+            Quat::from_rotation_z(std::f32::consts::FRAC_PI_2),
+        );
         let pl = WorldPlane::new(Vec3::Y * 2.0, 2.0, &xf);
         // Local +Y becomes world -X; local offset 1 after normalisation; origin at y=2.
         assert!((pl.n - Vec3::NEG_X).length() < 1e-6);

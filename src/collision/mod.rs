@@ -2,9 +2,26 @@
 //!
 //! Every function here is pure geometry: shapes in their body's local frame plus the body
 //! transforms in, a [`Manifold`] out. The world's contact stage calls [`collide`].
+//!
+//! Conventions for every pair: the normal is a world-space unit vector from A to B; a
+//! point lies midway between the two surfaces along the normal; separation is signed
+//! (negative = penetration) and points are kept while it is at most `speculative`. When
+//! the geometry gives no direction (coincident centres, zero-length capsules) the normal
+//! is +Y. Nothing here allocates.
+//!
+//! One file per family: `sphere` (sphere against everything), `capsule` (capsule against
+//! capsule, box, plane), `box_box`, `plane` (box against plane); `geom` holds the shared
+//! helpers.
+
+mod box_box;
+mod capsule;
+mod geom;
+mod plane;
+mod sphere;
 
 use crate::math::{Transform, Vec3};
 use crate::shape::Geometry;
+use geom::{WorldBox, WorldPlane};
 
 /// Most points a manifold carries (a face–face box contact is reduced to four).
 pub const MAX_MANIFOLD_POINTS: usize = 4;
@@ -50,12 +67,152 @@ impl Manifold {
 /// Computes the contact manifold of `a` (on a body at `xf_a`) against `b` (at `xf_b`).
 /// Points are reported while their separation is at most `speculative` metres, so the
 /// solver can stop fast bodies before they pass through. Plane–plane gives no contact.
+///
+/// Pairs are handled with `kind(a) <= kind(b)`; the other order swaps the arguments and
+/// flips the normal (points, separations and ids are unchanged).
 pub fn collide(
-    _a: &Geometry,
-    _xf_a: &Transform,
-    _b: &Geometry,
-    _xf_b: &Transform,
-    _speculative: f32,
+    a: &Geometry,
+    xf_a: &Transform,
+    b: &Geometry,
+    xf_b: &Transform,
+    speculative: f32,
 ) -> Manifold {
-    Manifold::EMPTY
+    if a.kind() > b.kind() {
+        let mut m = collide_ordered(b, xf_b, a, xf_a, speculative);
+        m.normal = -m.normal;
+        return m;
+    }
+    collide_ordered(a, xf_a, b, xf_b, speculative)
 }
+
+/// `collide` for `kind(a) <= kind(b)`.
+fn collide_ordered(
+    a: &Geometry,
+    xf_a: &Transform,
+    b: &Geometry,
+    xf_b: &Transform,
+    speculative: f32,
+) -> Manifold {
+    use Geometry as G;
+    match (*a, *b) {
+        (
+            G::Sphere {
+                center: ca,
+                radius: ra,
+            },
+            G::Sphere {
+                center: cb,
+                radius: rb,
+            },
+        ) => sphere::sphere_sphere(xf_a.apply(ca), ra, xf_b.apply(cb), rb, speculative),
+        (
+            G::Sphere { center, radius },
+            G::Capsule {
+                a: pb,
+                b: qb,
+                radius: rb,
+            },
+        ) => sphere::sphere_capsule(
+            xf_a.apply(center),
+            radius,
+            xf_b.apply(pb),
+            xf_b.apply(qb),
+            rb,
+            speculative,
+        ),
+        (
+            G::Sphere { center, radius },
+            G::Box {
+                center: cb,
+                rotation,
+                half_extents,
+            },
+        ) => {
+            let bx = WorldBox::new(cb, rotation, half_extents, xf_b);
+            sphere::sphere_box(xf_a.apply(center), radius, &bx, speculative)
+        }
+        (G::Sphere { center, radius }, G::Plane { normal, offset }) => {
+            let plane = WorldPlane::new(normal, offset, xf_b);
+            sphere::sphere_plane(xf_a.apply(center), radius, &plane, speculative)
+        }
+        (
+            G::Capsule {
+                a: pa,
+                b: qa,
+                radius: ra,
+            },
+            G::Capsule {
+                a: pb,
+                b: qb,
+                radius: rb,
+            },
+        ) => capsule::capsule_capsule(
+            xf_a.apply(pa),
+            xf_a.apply(qa),
+            ra,
+            xf_b.apply(pb),
+            xf_b.apply(qb),
+            rb,
+            speculative,
+        ),
+        (
+            G::Capsule {
+                a: pa,
+                b: qa,
+                radius,
+            },
+            G::Box {
+                center,
+                rotation,
+                half_extents,
+            },
+        ) => {
+            let bx = WorldBox::new(center, rotation, half_extents, xf_b);
+            capsule::capsule_box(xf_a.apply(pa), xf_a.apply(qa), radius, &bx, speculative)
+        }
+        (
+            G::Capsule {
+                a: pa,
+                b: qa,
+                radius,
+            },
+            G::Plane { normal, offset },
+        ) => {
+            let plane = WorldPlane::new(normal, offset, xf_b);
+            capsule::capsule_plane(xf_a.apply(pa), xf_a.apply(qa), radius, &plane, speculative)
+        }
+        (
+            G::Box {
+                center: ca,
+                rotation: qa,
+                half_extents: ha,
+            },
+            G::Box {
+                center: cb,
+                rotation: qb,
+                half_extents: hb,
+            },
+        ) => {
+            let ba = WorldBox::new(ca, qa, ha, xf_a);
+            let bb = WorldBox::new(cb, qb, hb, xf_b);
+            box_box::box_box(&ba, &bb, speculative)
+        }
+        (
+            G::Box {
+                center,
+                rotation,
+                half_extents,
+            },
+            G::Plane { normal, offset },
+        ) => {
+            let bx = WorldBox::new(center, rotation, half_extents, xf_a);
+            let plane = WorldPlane::new(normal, offset, xf_b);
+            plane::box_plane(&bx, &plane, speculative)
+        }
+        // Plane–plane, and (unreachable) out-of-order pairs.
+        _ => Manifold::EMPTY,
+    }
+}
+
+#[cfg(test)]
+mod fuzz_tests;

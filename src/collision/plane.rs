@@ -40,8 +40,15 @@ pub(crate) fn box_plane(a: &WorldBox, plane: &WorldPlane, speculative: f32) -> M
         best[j] = (sep, i);
         count = (count + 1).min(MAX_MANIFOLD_POINTS);
     }
-    let mut m = Manifold { normal: -n, ..Manifold::EMPTY };
-    let (hx, hy, hz) = (a.rot.x_axis * a.half.x, a.rot.y_axis * a.half.y, a.rot.z_axis * a.half.z);
+    let mut m = Manifold {
+        normal: -n,
+        ..Manifold::EMPTY
+    };
+    let (hx, hy, hz) = (
+        a.rot.x_axis * a.half.x,
+        a.rot.y_axis * a.half.y,
+        a.rot.z_axis * a.half.z,
+    );
     for &(sep, i) in &best[..count] {
         let sx = if i & 1 != 0 { hx } else { -hx };
         let sy = if i & 2 != 0 { hy } else { -hy };
@@ -60,10 +67,17 @@ mod tests {
     use std::f32::consts::FRAC_PI_4;
 
     fn unit_box() -> Geometry {
-        Geometry::Box { center: Vec3::ZERO, rotation: Quat::IDENTITY, half_extents: Vec3::splat(0.5) }
+        Geometry::Box {
+            center: Vec3::ZERO,
+            rotation: Quat::IDENTITY,
+            half_extents: Vec3::splat(0.5),
+        }
     }
     fn ground() -> Geometry {
-        Geometry::Plane { normal: Vec3::Y, offset: 0.0 }
+        Geometry::Plane {
+            normal: Vec3::Y,
+            offset: 0.0,
+        }
     }
 
     #[test]
@@ -82,7 +96,7 @@ mod tests {
         }
         ids.sort();
         assert_eq!(ids, [0, 1, 4, 5]); // the -y vertices
-        // Swapped: plane first flips the normal, keeps the points.
+                                       // Swapped: plane first flips the normal, keeps the points.
         let s = collide(&ground(), &Transform::IDENTITY, &unit_box(), &xf, 0.02);
         assert_eq!(s.count, 4);
         assert!((s.normal - Vec3::Y).length() < 1e-6);
@@ -91,7 +105,10 @@ mod tests {
     #[test]
     fn box_on_edge_on_plane_two_points() {
         let h = 0.5 * 2f32.sqrt();
-        let xf = Transform::new(Vec3::new(0.0, h - 0.01, 0.0), Quat::from_rotation_z(FRAC_PI_4));
+        let xf = Transform::new(
+            Vec3::new(0.0, h - 0.01, 0.0),
+            Quat::from_rotation_z(FRAC_PI_4),
+        );
         let m = collide(&unit_box(), &xf, &ground(), &Transform::IDENTITY, 0.05);
         assert_eq!(m.count, 2);
         for p in m.points() {
@@ -108,9 +125,15 @@ mod tests {
         // Bottom four at 1.5, top four at 2.5 (beyond speculative).
         assert_eq!(m.count, 4);
         assert!(m.points().iter().all(|p| (p.separation - 1.5).abs() < 1e-5));
-        assert_eq!(collide(&unit_box(), &xf, &ground(), &Transform::IDENTITY, 1.0).count, 0);
+        assert_eq!(
+            collide(&unit_box(), &xf, &ground(), &Transform::IDENTITY, 1.0).count,
+            0
+        );
         // Plane body rotated so the local +Y normal points to world +X (wall x <= -3).
-        let wall_xf = Transform::new(Vec3::new(-3.0, 0.0, 0.0), Quat::from_rotation_z(-std::f32::consts::FRAC_PI_2));
+        let wall_xf = Transform::new(
+            Vec3::new(-3.0, 0.0, 0.0),
+            Quat::from_rotation_z(-std::f32::consts::FRAC_PI_2),
+        );
         let b = Transform::new(Vec3::new(-2.6, 0.0, 0.0), Quat::IDENTITY);
         let w = collide(&unit_box(), &b, &ground(), &wall_xf, 0.0);
         assert_eq!(w.count, 4);
@@ -130,6 +153,9 @@ mod tests {
         assert_eq!(m.points[0].id, 7);
         assert!((m.points[0].separation + 0.02).abs() < 1e-5);
         let xf2 = Transform::new(Vec3::new(0.01, d - 0.021, 0.0), q);
-        assert_eq!(collide(&unit_box(), &xf2, &ground(), &Transform::IDENTITY, 0.01).points[0].id, 7);
+        assert_eq!(
+            collide(&unit_box(), &xf2, &ground(), &Transform::IDENTITY, 0.01).points[0].id,
+            7
+        );
     }
 }

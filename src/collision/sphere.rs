@@ -16,7 +16,11 @@ fn point_point(ca: Vec3, ra: f32, cb: Vec3, rb: f32, speculative: f32) -> Manifo
         return Manifold::EMPTY;
     }
     let dist = dist_sq.sqrt();
-    let normal = if dist_sq > DEGENERATE_DIST_SQ { offset / dist } else { FALLBACK_NORMAL };
+    let normal = if dist_sq > DEGENERATE_DIST_SQ {
+        offset / dist
+    } else {
+        FALLBACK_NORMAL
+    };
     let separation = dist - ra - rb;
     // Midway between the surface points ca + ra n and cb - rb n.
     let point = 0.5 * (ca + cb + (ra - rb) * normal);
@@ -43,7 +47,7 @@ pub(crate) fn sphere_capsule(
 
 /// Sphere A against box B. A centre inside the box is pushed out through the nearest face.
 pub(crate) fn sphere_box(ca: Vec3, ra: f32, b: &WorldBox, speculative: f32) -> Manifold {
-    let c = b.to_local(ca);
+    let c = b.apply_inv(ca);
     let h = b.half;
     let q = c.clamp(-h, h);
     let d = c - q;
@@ -58,7 +62,7 @@ pub(crate) fn sphere_box(ca: Vec3, ra: f32, b: &WorldBox, speculative: f32) -> M
         let n_box = d / dist; // box -> sphere, box frame
         let separation = dist - ra;
         let point = q + 0.5 * (dist - ra) * n_box;
-        return single_point(-(b.rot * n_box), b.to_world(point), separation, 0, speculative);
+        return single_point(-(b.rot * n_box), b.apply(point), separation, 0, speculative);
     }
     // Centre inside (or on) the box: least penetrating face.
     let depth = h - c.abs(); // distance to each face pair, >= 0
@@ -77,7 +81,7 @@ pub(crate) fn sphere_box(ca: Vec3, ra: f32, b: &WorldBox, speculative: f32) -> M
     let separation = -depth[axis] - ra;
     // Sphere's deepest point is c - ra n; the box surface point is `surface`.
     let point = 0.5 * (surface + c - ra * n_box);
-    single_point(-(b.rot * n_box), b.to_world(point), separation, 0, speculative)
+    single_point(-(b.rot * n_box), b.apply(point), separation, 0, speculative)
 }
 
 /// Sphere A against plane B.
@@ -105,7 +109,10 @@ mod tests {
         Transform::new(p, Quat::IDENTITY)
     }
     fn sphere(r: f32) -> Geometry {
-        Geometry::Sphere { center: Vec3::ZERO, radius: r }
+        Geometry::Sphere {
+            center: Vec3::ZERO,
+            radius: r,
+        }
     }
 
     #[test]
@@ -129,7 +136,10 @@ mod tests {
         assert_eq!(m.count, 1);
         assert!((m.points[0].separation - 1.5).abs() < 1e-5);
         assert!(near(m.normal, Vec3::Z));
-        assert_eq!(collide(&a, &at(Vec3::ZERO), &a, &at(Vec3::new(0.0, 0.0, 2.5)), 1.0).count, 0);
+        assert_eq!(
+            collide(&a, &at(Vec3::ZERO), &a, &at(Vec3::new(0.0, 0.0, 2.5)), 1.0).count,
+            0
+        );
         let c = collide(&a, &at(Vec3::ONE), &a, &at(Vec3::ONE), 0.0);
         assert_eq!(c.count, 1);
         assert!(c.normal.is_finite() && (c.normal.length() - 1.0).abs() < 1e-6);
@@ -139,8 +149,14 @@ mod tests {
     #[test]
     fn sphere_offset_center_on_rotated_body() {
         // Sphere centre at local (1,0,0) on a body rotated 90° about Z: world (0,1,0).
-        let a = Geometry::Sphere { center: Vec3::X, radius: 0.5 };
-        let xf = Transform::new(Vec3::ZERO, Quat::from_rotation_z(std::f32::consts::FRAC_PI_2));
+        let a = Geometry::Sphere {
+            center: Vec3::X,
+            radius: 0.5,
+        };
+        let xf = Transform::new(
+            Vec3::ZERO,
+            Quat::from_rotation_z(std::f32::consts::FRAC_PI_2),
+        );
         let m = collide(&a, &xf, &sphere(0.5), &at(Vec3::new(0.0, 1.9, 0.0)), 0.0);
         assert_eq!(m.count, 1);
         assert!(near(m.normal, Vec3::Y));
@@ -149,22 +165,48 @@ mod tests {
 
     #[test]
     fn sphere_capsule_side_and_end() {
-        let cap = Geometry::Capsule { a: Vec3::new(-1.0, 0.0, 0.0), b: Vec3::new(1.0, 0.0, 0.0), radius: 0.25 };
+        let cap = Geometry::Capsule {
+            a: Vec3::new(-1.0, 0.0, 0.0),
+            b: Vec3::new(1.0, 0.0, 0.0),
+            radius: 0.25,
+        };
         let s = sphere(0.5);
-        let m = collide(&s, &at(Vec3::new(0.3, 0.7, 0.0)), &cap, &at(Vec3::ZERO), 0.0);
+        let m = collide(
+            &s,
+            &at(Vec3::new(0.3, 0.7, 0.0)),
+            &cap,
+            &at(Vec3::ZERO),
+            0.0,
+        );
         assert_eq!(m.count, 1);
         assert!(near(m.normal, -Vec3::Y));
         assert!((m.points[0].separation + 0.05).abs() < 1e-5);
         assert!(near(m.points[0].point, Vec3::new(0.3, 0.225, 0.0)));
         // Swapped: capsule first, normal flips.
-        let w = collide(&cap, &at(Vec3::ZERO), &s, &at(Vec3::new(0.3, 0.7, 0.0)), 0.0);
+        let w = collide(
+            &cap,
+            &at(Vec3::ZERO),
+            &s,
+            &at(Vec3::new(0.3, 0.7, 0.0)),
+            0.0,
+        );
         assert!(near(w.normal, Vec3::Y) && near(w.points[0].point, m.points[0].point));
         // Beyond the end cap.
-        let e = collide(&s, &at(Vec3::new(1.6, 0.0, 0.0)), &cap, &at(Vec3::ZERO), 0.0);
+        let e = collide(
+            &s,
+            &at(Vec3::new(1.6, 0.0, 0.0)),
+            &cap,
+            &at(Vec3::ZERO),
+            0.0,
+        );
         assert!(near(e.normal, -Vec3::X));
         assert!((e.points[0].separation + 0.15).abs() < 1e-5);
         // Zero-length capsule centred on the sphere: finite unit normal.
-        let z = Geometry::Capsule { a: Vec3::ZERO, b: Vec3::ZERO, radius: 0.25 };
+        let z = Geometry::Capsule {
+            a: Vec3::ZERO,
+            b: Vec3::ZERO,
+            radius: 0.25,
+        };
         let d = collide(&s, &at(Vec3::ZERO), &z, &at(Vec3::ZERO), 0.0);
         assert_eq!(d.count, 1);
         assert!((d.normal.length() - 1.0).abs() < 1e-6);
@@ -172,7 +214,11 @@ mod tests {
 
     #[test]
     fn sphere_box_face_edge_and_rotated() {
-        let bx = Geometry::Box { center: Vec3::ZERO, rotation: Quat::IDENTITY, half_extents: Vec3::new(1.0, 0.5, 1.0) };
+        let bx = Geometry::Box {
+            center: Vec3::ZERO,
+            rotation: Quat::IDENTITY,
+            half_extents: Vec3::new(1.0, 0.5, 1.0),
+        };
         let s = sphere(0.5);
         let m = collide(&s, &at(Vec3::new(0.2, 0.9, 0.0)), &bx, &at(Vec3::ZERO), 0.0);
         assert_eq!(m.count, 1);
@@ -188,7 +234,10 @@ mod tests {
         assert!(near(e.normal, dir));
         assert!((e.points[0].separation - (0.3 * 2f32.sqrt() - 0.5)).abs() < 1e-5);
         // Box rotated 90° about Z: its long axis is now world Y, so the top face is at y=1.
-        let xf = Transform::new(Vec3::ZERO, Quat::from_rotation_z(std::f32::consts::FRAC_PI_2));
+        let xf = Transform::new(
+            Vec3::ZERO,
+            Quat::from_rotation_z(std::f32::consts::FRAC_PI_2),
+        );
         let r = collide(&s, &at(Vec3::new(0.0, 1.4, 0.0)), &bx, &xf, 0.0);
         assert!(near(r.normal, -Vec3::Y));
         assert!((r.points[0].separation + 0.1).abs() < 1e-5);
@@ -196,9 +245,19 @@ mod tests {
 
     #[test]
     fn sphere_inside_box_exits_nearest_face() {
-        let bx = Geometry::Box { center: Vec3::ZERO, rotation: Quat::IDENTITY, half_extents: Vec3::new(1.0, 1.0, 1.0) };
+        let bx = Geometry::Box {
+            center: Vec3::ZERO,
+            rotation: Quat::IDENTITY,
+            half_extents: Vec3::new(1.0, 1.0, 1.0),
+        };
         let s = sphere(0.25);
-        let m = collide(&s, &at(Vec3::new(0.1, 0.0, -0.7)), &bx, &at(Vec3::ZERO), 0.0);
+        let m = collide(
+            &s,
+            &at(Vec3::new(0.1, 0.0, -0.7)),
+            &bx,
+            &at(Vec3::ZERO),
+            0.0,
+        );
         assert_eq!(m.count, 1);
         // Nearest face is z = -1; the sphere leaves through it, so A->B normal is +Z.
         assert!(near(m.normal, Vec3::Z));
@@ -207,36 +266,73 @@ mod tests {
         assert!(near(m.points[0].point, Vec3::new(0.1, 0.0, -0.725)));
         // Centre exactly at the box centre: still finite and unit.
         let c = collide(&s, &at(Vec3::ZERO), &bx, &at(Vec3::ZERO), 0.0);
-        assert!((c.normal.length() - 1.0).abs() < 1e-6 && (c.points[0].separation + 1.25).abs() < 1e-5);
+        assert!(
+            (c.normal.length() - 1.0).abs() < 1e-6 && (c.points[0].separation + 1.25).abs() < 1e-5
+        );
     }
 
     #[test]
     fn sphere_box_speculative() {
-        let bx = Geometry::Box { center: Vec3::ZERO, rotation: Quat::IDENTITY, half_extents: Vec3::splat(0.5) };
+        let bx = Geometry::Box {
+            center: Vec3::ZERO,
+            rotation: Quat::IDENTITY,
+            half_extents: Vec3::splat(0.5),
+        };
         let s = sphere(0.5);
         let m = collide(&s, &at(Vec3::new(2.5, 0.0, 0.0)), &bx, &at(Vec3::ZERO), 2.0);
         assert_eq!(m.count, 1);
         assert!((m.points[0].separation - 1.5).abs() < 1e-5);
         assert!(near(m.normal, -Vec3::X));
-        assert_eq!(collide(&s, &at(Vec3::new(2.5, 0.0, 0.0)), &bx, &at(Vec3::ZERO), 1.4).count, 0);
+        assert_eq!(
+            collide(&s, &at(Vec3::new(2.5, 0.0, 0.0)), &bx, &at(Vec3::ZERO), 1.4).count,
+            0
+        );
     }
 
     #[test]
     fn sphere_plane_wall_speculative_and_rotated_plane() {
         // Wall x <= 0 expressed on a body: local plane +Y rotated to world -X... use identity first.
-        let wall = Geometry::Plane { normal: Vec3::X, offset: 0.0 };
+        let wall = Geometry::Plane {
+            normal: Vec3::X,
+            offset: 0.0,
+        };
         let s = sphere(0.5);
-        let m = collide(&s, &at(Vec3::new(2.0, 1.0, 0.0)), &wall, &Transform::IDENTITY, 2.0);
+        let m = collide(
+            &s,
+            &at(Vec3::new(2.0, 1.0, 0.0)),
+            &wall,
+            &Transform::IDENTITY,
+            2.0,
+        );
         assert_eq!(m.count, 1);
         assert!((m.points[0].separation - 1.5).abs() < 1e-5);
         assert!(near(m.normal, -Vec3::X)); // toward the wall
         assert!(near(m.points[0].point, Vec3::new(0.75, 1.0, 0.0)));
-        assert_eq!(collide(&s, &at(Vec3::new(2.0, 1.0, 0.0)), &wall, &Transform::IDENTITY, 1.0).count, 0);
+        assert_eq!(
+            collide(
+                &s,
+                &at(Vec3::new(2.0, 1.0, 0.0)),
+                &wall,
+                &Transform::IDENTITY,
+                1.0
+            )
+            .count,
+            0
+        );
         // Plane first: normal flips.
-        let w = collide(&wall, &Transform::IDENTITY, &s, &at(Vec3::new(0.4, 0.0, 0.0)), 0.0);
+        let w = collide(
+            &wall,
+            &Transform::IDENTITY,
+            &s,
+            &at(Vec3::new(0.4, 0.0, 0.0)),
+            0.0,
+        );
         assert!(near(w.normal, Vec3::X) && (w.points[0].separation + 0.1).abs() < 1e-5);
         // Ground plane y <= 1 on a body translated by (0,1,0) and rotated about Y (normal unchanged).
-        let ground = Geometry::Plane { normal: Vec3::Y, offset: 1.0 };
+        let ground = Geometry::Plane {
+            normal: Vec3::Y,
+            offset: 1.0,
+        };
         let xf = Transform::new(Vec3::new(0.0, 1.0, 0.0), Quat::from_rotation_y(0.7));
         let g = collide(&s, &at(Vec3::new(3.0, 2.4, 0.0)), &ground, &xf, 0.0);
         assert!(near(g.normal, -Vec3::Y) && (g.points[0].separation + 0.1).abs() < 1e-5);
