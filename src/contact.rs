@@ -10,12 +10,19 @@ use crate::shape::{Shape, ShapeDef};
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct PointImpulse {
     pub normal: f32,
-    /// Friction impulse as a world vector (the tangent basis may turn between steps).
-    pub tangent: Vec3,
-    /// The point was sliding (dynamic friction applies) at the end of the last step.
-    pub sliding: bool,
     /// Largest normal impulse of the last step (> 0 means the point really pushed).
     pub max_normal: f32,
+}
+
+/// Friction of the whole contact patch, applied at the centroid of the manifold.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct FrictionImpulse {
+    /// Tangential impulse as a world vector (the tangent basis may turn between steps).
+    pub tangent: Vec3,
+    /// Torsional impulse about the normal.
+    pub twist: f32,
+    /// The surfaces were sliding (dynamic friction applies) at the end of the last step.
+    pub sliding: bool,
 }
 
 pub struct Contact {
@@ -25,6 +32,7 @@ pub struct Contact {
     pub body_b: u32,
     pub manifold: Manifold,
     pub impulses: [PointImpulse; MAX_MANIFOLD_POINTS],
+    pub friction: FrictionImpulse,
     pub static_friction: f32,
     pub dynamic_friction: f32,
     pub restitution: f32,
@@ -52,6 +60,7 @@ impl Contact {
             body_b: b.body,
             manifold: Manifold::EMPTY,
             impulses: [PointImpulse::default(); MAX_MANIFOLD_POINTS],
+            friction: FrictionImpulse::default(),
             static_friction: fs,
             dynamic_friction: fd,
             restitution: e,
@@ -85,6 +94,9 @@ impl Contact {
                     break;
                 }
             }
+        }
+        if !self.touching {
+            self.friction = FrictionImpulse::default();
         }
         self.touching && !was_touching
     }

@@ -14,15 +14,29 @@ const STICK_SPEED: f32 = 0.01;
 pub struct ConstraintPoint {
     pub ra: Vec3,
     pub rb: Vec3,
-    /// Separation at the start of the step minus the anchor offset along the normal.
-    pub adjusted_separation: f32,
+    /// Separation at the start of the step (m, negative when overlapping).
+    pub separation: f32,
     pub normal_mass: f32,
-    pub tangent_mass: [f32; 2],
     pub normal_impulse: f32,
-    pub tangent_impulse: [f32; 2],
     pub max_normal_impulse: f32,
     /// Normal relative velocity before the solve (for restitution).
     pub relative_velocity: f32,
+}
+
+/// Coulomb friction of the contact patch: two tangent directions at the centroid of the
+/// manifold and a twist about the normal, clamped by μ times the total normal impulse.
+/// Solving the patch as one (rather than per point) keeps friction from leaking into
+/// spurious twist, so a sliding box feels exactly μ·N.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct PatchFriction {
+    pub ra: Vec3,
+    pub rb: Vec3,
+    pub tangent_mass: [f32; 2],
+    pub twist_mass: f32,
+    /// Mean distance of the points from the centroid: the lever of torsional friction.
+    pub twist_radius: f32,
+    pub tangent_impulse: [f32; 2],
+    pub twist_impulse: f32,
     pub sliding: bool,
 }
 
@@ -39,6 +53,7 @@ pub struct ContactConstraint {
     pub soft: Softness,
     pub count: usize,
     pub points: [ConstraintPoint; MAX_MANIFOLD_POINTS],
+    pub friction: PatchFriction,
 }
 
 /// Builds constraints for every awake contact with manifold points.
@@ -81,37 +96,57 @@ pub fn prepare(world: &mut World, h: f32) {
             },
             count: c.manifold.count,
             points: [ConstraintPoint::default(); MAX_MANIFOLD_POINTS],
+            friction: PatchFriction::default(),
         };
+        let inv_mass = |ra: Vec3, rb: Vec3, d: Vec3| {
+            let (rna, rnb) = (ra.cross(d), rb.cross(d));
+            let k = sa.inv_mass + sb.inv_mass + rna.dot(sa.inv_i * rna) + rnb.dot(sb.inv_i * rnb);
+            if k > 0.0 {
+                1.0 / k
+            } else {
+                0.0
+            }
+        };
+        let mut centroid = Vec3::ZERO;
         for i in 0..c.manifold.count {
             let mp = &c.manifold.points[i];
-            let imp = &c.impulses[i];
+            centroid += mp.point;
             let ra = mp.point - ba.center;
             let rb = mp.point - bb.center;
-            let k = |d: Vec3| {
-                let (rna, rnb) = (ra.cross(d), rb.cross(d));
-                let k =
-                    sa.inv_mass + sb.inv_mass + rna.dot(sa.inv_i * rna) + rnb.dot(sb.inv_i * rnb);
-                if k > 0.0 {
-                    1.0 / k
-                } else {
-                    0.0
-                }
-            };
             let dv = sb.v + sb.w.cross(rb) - sa.v - sa.w.cross(ra);
-            let vt = dv - n * dv.dot(n);
             cc.points[i] = ConstraintPoint {
                 ra,
                 rb,
-                adjusted_separation: mp.separation - (rb - ra).dot(n),
-                normal_mass: k(n),
-                tangent_mass: [k(t1), k(t2)],
-                normal_impulse: imp.normal,
-                tangent_impulse: [imp.tangent.dot(t1), imp.tangent.dot(t2)],
+                separation: mp.separation,
+                normal_mass: inv_mass(ra, rb, n),
+                normal_impulse: c.impulses[i].normal,
                 max_normal_impulse: 0.0,
                 relative_velocity: dv.dot(n),
-                sliding: vt.length_squared() > STICK_SPEED * STICK_SPEED,
             };
         }
+        centroid /= c.manifold.count as f32;
+        let twist_radius = c
+            .manifold
+            .points()
+            .iter()
+            .map(|p| (p.point - centroid).length())
+            .sum::<f32>()
+            / c.manifold.count as f32;
+        let (ra, rb) = (centroid - ba.center, centroid - bb.center);
+        let dv = sb.v + sb.w.cross(rb) - sa.v - sa.w.cross(ra);
+        let vt = dv - n * dv.dot(n);
+        let k_twist = n.dot(sa.inv_i * n) + n.dot(sb.inv_i * n);
+        let f = &c.friction;
+        cc.friction = PatchFriction {
+            ra,
+            rb,
+            tangent_mass: [inv_mass(ra, rb, t1), inv_mass(ra, rb, t2)],
+            twist_mass: if k_twist > 0.0 { 1.0 / k_twist } else { 0.0 },
+            twist_radius,
+            tangent_impulse: [f.tangent.dot(t1), f.tangent.dot(t2)],
+            twist_impulse: f.twist,
+            sliding: vt.length_squared() > STICK_SPEED * STICK_SPEED,
+        };
         constraints.push(cc);
     }
 }
@@ -122,6 +157,25 @@ fn apply(sa: &mut BodyState, sb: &mut BodyState, ra: Vec3, rb: Vec3, p: Vec3) {
     sa.w -= sa.inv_i * ra.cross(p);
     sb.v += sb.inv_mass * p;
     sb.w += sb.inv_i * rb.cross(p);
+}
+
+/// Where an impulse between the two bodies acts now. `ra`, `rb` are the lever arms of one
+/// world point at the start of the step; since then each body moved by its own `dp`, `dq`.
+/// Returns the arms from each current centre of mass to the midpoint of the two material
+/// points, and the gap between those points (B minus A). Applying equal and opposite
+/// impulses at one point keeps angular momentum exact while the bodies move in the step.
+#[inline]
+fn current_arms(sa: &BodyState, sb: &BodyState, ra: Vec3, rb: Vec3) -> (Vec3, Vec3, Vec3) {
+    let pra = sa.dq * ra;
+    let prb = sb.dq * rb;
+    let gap = (ra - rb) + (sb.dp - sa.dp) + (prb - pra);
+    (pra + 0.5 * gap, prb - 0.5 * gap, gap)
+}
+
+#[inline]
+fn apply_angular(sa: &mut BodyState, sb: &mut BodyState, l: Vec3) {
+    sa.w -= sa.inv_i * l;
+    sb.w += sb.inv_i * l;
 }
 
 #[inline]
@@ -144,11 +198,14 @@ pub fn warm_start(states: &mut [BodyState], constraints: &[ContactConstraint]) {
     for c in constraints {
         let (mut sa, mut sb) = states_pair(states, c.a, c.b);
         for p in &c.points[..c.count] {
-            let imp = c.normal * p.normal_impulse
-                + c.tangents[0] * p.tangent_impulse[0]
-                + c.tangents[1] * p.tangent_impulse[1];
-            apply(&mut sa, &mut sb, p.ra, p.rb, imp);
+            let (ra, rb, _) = current_arms(&sa, &sb, p.ra, p.rb);
+            apply(&mut sa, &mut sb, ra, rb, c.normal * p.normal_impulse);
         }
+        let f = &c.friction;
+        let t = c.tangents[0] * f.tangent_impulse[0] + c.tangents[1] * f.tangent_impulse[1];
+        let (ra, rb, _) = current_arms(&sa, &sb, f.ra, f.rb);
+        apply(&mut sa, &mut sb, ra, rb, t);
+        apply_angular(&mut sa, &mut sb, c.normal * f.twist_impulse);
         write_back(states, c.a, c.b, sa, sb);
     }
 }
@@ -166,24 +223,37 @@ pub fn solve(
     for c in constraints.iter_mut() {
         let (mut sa, mut sb) = states_pair(states, c.a, c.b);
         let n = c.normal;
-        let d_p = sb.dp - sa.dp;
-        for p in c.points[..c.count].iter_mut() {
+        let count = c.count;
+        for k in 0..count {
+            // Alternate the order between passes so no point is always solved first: a fixed
+            // order biases the impulse distribution and tilts tall stacks.
+            let p = &mut c.points[if use_bias { k } else { count - 1 - k }];
             // Current separation from the motion of the step so far.
-            let pra = sa.dq * p.ra;
-            let prb = sb.dq * p.rb;
-            let s = (d_p + prb - pra).dot(n) + p.adjusted_separation;
+            let (ra, rb, gap) = current_arms(&sa, &sb, p.ra, p.rb);
+            let s = gap.dot(n) + p.separation;
             let (bias, mass_scale, impulse_scale) = if s > 0.0 {
                 (s * inv_h, 1.0, 0.0) // speculative: may close the gap, no more
             } else if use_bias {
-                (
-                    (c.soft.bias_rate * (s + slop).min(0.0)).max(-max_push),
-                    c.soft.mass_scale,
-                    c.soft.impulse_scale,
-                )
+                // Soft push-out (rate from the contact's stiffness and damping) but a rigid
+                // mass: the load is carried by the accumulated impulse, not by overlap, so a
+                // deep stack does not sag like a column of springs.
+                if std::env::var("HEARTH_SOFT").is_ok() {
+                    (
+                        (c.soft.bias_rate * (s + slop).min(0.0)).max(-max_push),
+                        c.soft.mass_scale,
+                        c.soft.impulse_scale,
+                    )
+                } else {
+                    (
+                        (c.soft.bias_rate * (s + slop).min(0.0)).max(-max_push),
+                        1.0,
+                        0.0,
+                    )
+                }
             } else {
                 (0.0, 1.0, 0.0)
             };
-            let dv = sb.v + sb.w.cross(p.rb) - sa.v - sa.w.cross(p.ra);
+            let dv = sb.v + sb.w.cross(rb) - sa.v - sa.w.cross(ra);
             let vn = dv.dot(n);
             let impulse =
                 -p.normal_mass * mass_scale * (vn + bias) - impulse_scale * p.normal_impulse;
@@ -191,34 +261,41 @@ pub fn solve(
             let applied = new_impulse - p.normal_impulse;
             p.normal_impulse = new_impulse;
             p.max_normal_impulse = p.max_normal_impulse.max(applied);
-            apply(&mut sa, &mut sb, p.ra, p.rb, n * applied);
+            apply(&mut sa, &mut sb, ra, rb, n * applied);
         }
-        for p in c.points[..c.count].iter_mut() {
-            let dv = sb.v + sb.w.cross(p.rb) - sa.v - sa.w.cross(p.ra);
-            let old = p.tangent_impulse;
-            let mut new = [
-                old[0] - p.tangent_mass[0] * dv.dot(c.tangents[0]),
-                old[1] - p.tangent_mass[1] * dv.dot(c.tangents[1]),
-            ];
-            let len2 = new[0] * new[0] + new[1] * new[1];
-            let static_limit = c.static_friction * p.normal_impulse;
-            if !p.sliding && len2 > static_limit * static_limit {
-                p.sliding = true; // static friction broke: the surfaces slide
-            }
-            let limit = if p.sliding {
-                c.dynamic_friction * p.normal_impulse
-            } else {
-                static_limit
-            };
-            if len2 > limit * limit {
-                let scale = limit / len2.sqrt();
-                new[0] *= scale;
-                new[1] *= scale;
-            }
-            p.tangent_impulse = new;
-            let d = c.tangents[0] * (new[0] - old[0]) + c.tangents[1] * (new[1] - old[1]);
-            apply(&mut sa, &mut sb, p.ra, p.rb, d);
+        let total_normal: f32 = c.points[..c.count].iter().map(|p| p.normal_impulse).sum();
+        let f = &mut c.friction;
+        let (fra, frb, _) = current_arms(&sa, &sb, f.ra, f.rb);
+        let dv = sb.v + sb.w.cross(frb) - sa.v - sa.w.cross(fra);
+        let old = f.tangent_impulse;
+        let mut new = [
+            old[0] - f.tangent_mass[0] * dv.dot(c.tangents[0]),
+            old[1] - f.tangent_mass[1] * dv.dot(c.tangents[1]),
+        ];
+        let old_twist = f.twist_impulse;
+        let mut twist = old_twist - f.twist_mass * (sb.w - sa.w).dot(n);
+        let len2 = new[0] * new[0] + new[1] * new[1];
+        let static_limit = c.static_friction * total_normal;
+        if !f.sliding && len2 > static_limit * static_limit {
+            f.sliding = true; // static friction broke: the surfaces slide
         }
+        let limit = if f.sliding {
+            c.dynamic_friction * total_normal
+        } else {
+            static_limit
+        };
+        if len2 > limit * limit {
+            let scale = limit / len2.sqrt();
+            new[0] *= scale;
+            new[1] *= scale;
+        }
+        let twist_limit = limit * f.twist_radius;
+        twist = twist.clamp(-twist_limit, twist_limit);
+        f.tangent_impulse = new;
+        f.twist_impulse = twist;
+        let d = c.tangents[0] * (new[0] - old[0]) + c.tangents[1] * (new[1] - old[1]);
+        apply(&mut sa, &mut sb, fra, frb, d);
+        apply_angular(&mut sa, &mut sb, n * (twist - old_twist));
         write_back(states, c.a, c.b, sa, sb);
     }
 }
@@ -239,14 +316,15 @@ pub fn apply_restitution(
             if p.relative_velocity > -threshold || p.max_normal_impulse == 0.0 {
                 continue;
             }
-            let dv = sb.v + sb.w.cross(p.rb) - sa.v - sa.w.cross(p.ra);
+            let (ra, rb, _) = current_arms(&sa, &sb, p.ra, p.rb);
+            let dv = sb.v + sb.w.cross(rb) - sa.v - sa.w.cross(ra);
             let vn = dv.dot(c.normal);
             let impulse = -p.normal_mass * (vn + c.restitution * p.relative_velocity);
             let new_impulse = (p.normal_impulse + impulse).max(0.0);
             let applied = new_impulse - p.normal_impulse;
             p.normal_impulse = new_impulse;
             p.max_normal_impulse = p.max_normal_impulse.max(applied);
-            apply(&mut sa, &mut sb, p.ra, p.rb, c.normal * applied);
+            apply(&mut sa, &mut sb, ra, rb, c.normal * applied);
         }
         write_back(states, c.a, c.b, sa, sb);
     }
@@ -259,10 +337,12 @@ pub fn store_impulses(world: &mut World) {
         for (i, p) in c.points[..c.count].iter().enumerate() {
             let imp = &mut contact.impulses[i];
             imp.normal = p.normal_impulse;
-            imp.tangent =
-                c.tangents[0] * p.tangent_impulse[0] + c.tangents[1] * p.tangent_impulse[1];
-            imp.sliding = p.sliding;
             imp.max_normal = p.max_normal_impulse;
         }
+        let f = &c.friction;
+        contact.friction.tangent =
+            c.tangents[0] * f.tangent_impulse[0] + c.tangents[1] * f.tangent_impulse[1];
+        contact.friction.twist = f.twist_impulse;
+        contact.friction.sliding = f.sliding;
     }
 }

@@ -9,46 +9,102 @@ use crate::world::{World, WorldSettings};
 pub const H: f32 = 0.5;
 
 fn material() -> ShapeDef {
-    ShapeDef { static_friction: 0.6, dynamic_friction: 0.6, ..ShapeDef::default() }
+    ShapeDef {
+        static_friction: 0.6,
+        dynamic_friction: 0.6,
+        ..ShapeDef::default()
+    }
 }
 
 /// A static ground plane `y <= 0`.
 pub fn ground_plane(world: &mut World) -> BodyHandle {
     let g = world.create_body(&BodyDef::default()).unwrap();
-    world.create_shape(g, &material(), &Geometry::Plane { normal: Vec3::Y, offset: 0.0 }).unwrap();
+    world
+        .create_shape(
+            g,
+            &material(),
+            &Geometry::Plane {
+                normal: Vec3::Y,
+                offset: 0.0,
+            },
+        )
+        .unwrap();
     g
 }
 
 /// A static box ground, top face at `y = 0`.
 pub fn ground_box(world: &mut World, half_width: f32) -> BodyHandle {
     let g = world
-        .create_body(&BodyDef { transform: Transform::new(Vec3::new(0.0, -1.0, 0.0), Quat::IDENTITY), ..Default::default() })
+        .create_body(&BodyDef {
+            transform: Transform::new(Vec3::new(0.0, -1.0, 0.0), Quat::IDENTITY),
+            ..Default::default()
+        })
         .unwrap();
-    let geom = Geometry::Box { center: Vec3::ZERO, rotation: Quat::IDENTITY, half_extents: Vec3::new(half_width, 1.0, half_width) };
+    let geom = Geometry::Box {
+        center: Vec3::ZERO,
+        rotation: Quat::IDENTITY,
+        half_extents: Vec3::new(half_width, 1.0, half_width),
+    };
     world.create_shape(g, &material(), &geom).unwrap();
     g
 }
 
 pub fn dynamic_box(world: &mut World, p: Vec3, h: Vec3, def: &ShapeDef) -> BodyHandle {
     let b = world
-        .create_body(&BodyDef { body_type: BodyType::Dynamic, transform: Transform::new(p, Quat::IDENTITY), ..Default::default() })
+        .create_body(&BodyDef {
+            body_type: BodyType::Dynamic,
+            transform: Transform::new(p, Quat::IDENTITY),
+            ..Default::default()
+        })
         .unwrap();
-    world.create_shape(b, def, &Geometry::Box { center: Vec3::ZERO, rotation: Quat::IDENTITY, half_extents: h }).unwrap();
+    world
+        .create_shape(
+            b,
+            def,
+            &Geometry::Box {
+                center: Vec3::ZERO,
+                rotation: Quat::IDENTITY,
+                half_extents: h,
+            },
+        )
+        .unwrap();
     b
 }
 
 pub fn dynamic_sphere(world: &mut World, p: Vec3, r: f32, def: &ShapeDef) -> BodyHandle {
     let b = world
-        .create_body(&BodyDef { body_type: BodyType::Dynamic, transform: Transform::new(p, Quat::IDENTITY), ..Default::default() })
+        .create_body(&BodyDef {
+            body_type: BodyType::Dynamic,
+            transform: Transform::new(p, Quat::IDENTITY),
+            ..Default::default()
+        })
         .unwrap();
-    world.create_shape(b, def, &Geometry::Sphere { center: Vec3::ZERO, radius: r }).unwrap();
+    world
+        .create_shape(
+            b,
+            def,
+            &Geometry::Sphere {
+                center: Vec3::ZERO,
+                radius: r,
+            },
+        )
+        .unwrap();
     b
 }
 
 /// A tower of `n` unit boxes standing on the ground. Returns the boxes bottom to top.
 pub fn tower(world: &mut World, n: usize) -> Vec<BodyHandle> {
     ground_box(world, 20.0);
-    (0..n).map(|i| dynamic_box(world, Vec3::new(0.0, H + 2.0 * H * i as f32, 0.0), Vec3::splat(H), &material())).collect()
+    (0..n)
+        .map(|i| {
+            dynamic_box(
+                world,
+                Vec3::new(0.0, H + 2.0 * H * i as f32, 0.0),
+                Vec3::splat(H),
+                &material(),
+            )
+        })
+        .collect()
 }
 
 /// A square pyramid with `base` boxes per side at the bottom: base² + (base−1)² + … boxes.
@@ -60,7 +116,11 @@ pub fn pyramid(world: &mut World, base: usize) -> Vec<BodyHandle> {
         let offset = -(n as f32 - 1.0) * H;
         for i in 0..n {
             for k in 0..n {
-                let p = Vec3::new(offset + 2.0 * H * i as f32, H + 2.0 * H * layer as f32, offset + 2.0 * H * k as f32);
+                let p = Vec3::new(
+                    offset + 2.0 * H * i as f32,
+                    H + 2.0 * H * layer as f32,
+                    offset + 2.0 * H * k as f32,
+                );
                 out.push(dynamic_box(world, p, Vec3::splat(H), &material()));
             }
         }
@@ -73,14 +133,45 @@ pub fn pyramid(world: &mut World, base: usize) -> Vec<BodyHandle> {
 pub fn pile(world: &mut World, count: usize) -> Vec<BodyHandle> {
     ground_box(world, 15.0);
     let wall = |world: &mut World, p: Vec3, h: Vec3| {
-        let b = world.create_body(&BodyDef { transform: Transform::new(p, Quat::IDENTITY), ..Default::default() }).unwrap();
-        world.create_shape(b, &material(), &Geometry::Box { center: Vec3::ZERO, rotation: Quat::IDENTITY, half_extents: h }).unwrap();
+        let b = world
+            .create_body(&BodyDef {
+                transform: Transform::new(p, Quat::IDENTITY),
+                ..Default::default()
+            })
+            .unwrap();
+        world
+            .create_shape(
+                b,
+                &material(),
+                &Geometry::Box {
+                    center: Vec3::ZERO,
+                    rotation: Quat::IDENTITY,
+                    half_extents: h,
+                },
+            )
+            .unwrap();
     };
     let height = 30.0;
-    wall(world, Vec3::new(15.5, height, 0.0), Vec3::new(0.5, height, 16.0));
-    wall(world, Vec3::new(-15.5, height, 0.0), Vec3::new(0.5, height, 16.0));
-    wall(world, Vec3::new(0.0, height, 15.5), Vec3::new(16.0, height, 0.5));
-    wall(world, Vec3::new(0.0, height, -15.5), Vec3::new(16.0, height, 0.5));
+    wall(
+        world,
+        Vec3::new(15.5, height, 0.0),
+        Vec3::new(0.5, height, 16.0),
+    );
+    wall(
+        world,
+        Vec3::new(-15.5, height, 0.0),
+        Vec3::new(0.5, height, 16.0),
+    );
+    wall(
+        world,
+        Vec3::new(0.0, height, 15.5),
+        Vec3::new(16.0, height, 0.5),
+    );
+    wall(
+        world,
+        Vec3::new(0.0, height, -15.5),
+        Vec3::new(16.0, height, 0.5),
+    );
     let per_row = 19; // 19 × 1.5 = 28.5 m fits inside the 30 m container
     let mut out = Vec::with_capacity(count);
     for i in 0..count {
@@ -114,5 +205,9 @@ pub fn spheres_grid(world: &mut World, n: usize) -> Vec<BodyHandle> {
 
 /// A world with default settings, optionally without sleep.
 pub fn world(sleep: bool) -> World {
-    World::new(WorldSettings { enable_sleep: sleep, ..WorldSettings::default() }).unwrap()
+    World::new(WorldSettings {
+        enable_sleep: sleep,
+        ..WorldSettings::default()
+    })
+    .unwrap()
 }

@@ -16,7 +16,11 @@ fn root() -> PathBuf {
 fn lib_dir() -> PathBuf {
     let exe = std::env::current_exe().unwrap();
     let dir = exe.parent().unwrap().parent().unwrap().to_path_buf();
-    assert!(dir.join(shared_lib_name()).exists(), "shared library missing in {}", dir.display());
+    assert!(
+        dir.join(shared_lib_name()).exists(),
+        "shared library missing in {}",
+        dir.display()
+    );
     dir
 }
 
@@ -65,8 +69,14 @@ fn compiler(cpp: bool) -> Command {
 }
 
 fn run(cmd: &mut Command) -> String {
-    let out = cmd.output().unwrap_or_else(|e| panic!("cannot run {cmd:?}: {e}"));
-    let text = format!("{}{}", String::from_utf8_lossy(&out.stdout), String::from_utf8_lossy(&out.stderr));
+    let out = cmd
+        .output()
+        .unwrap_or_else(|e| panic!("cannot run {cmd:?}: {e}"));
+    let text = format!(
+        "{}{}",
+        String::from_utf8_lossy(&out.stdout),
+        String::from_utf8_lossy(&out.stderr)
+    );
     assert!(out.status.success(), "{cmd:?} failed:\n{text}");
     text
 }
@@ -99,7 +109,10 @@ fn build(source: &str, cpp: bool, link: Link) -> PathBuf {
     cmd.arg("-o").arg(&exe);
     match link {
         Link::Shared => {
-            cmd.arg("-L").arg(&lib).arg("-lhearth").arg(format!("-Wl,-rpath,{}", lib.display()));
+            cmd.arg("-L")
+                .arg(&lib)
+                .arg("-lhearth")
+                .arg(format!("-Wl,-rpath,{}", lib.display()));
         }
         Link::Static => {
             cmd.arg(lib.join("libhearth.a")).args(["-lpthread", "-ldl"]);
@@ -116,8 +129,16 @@ fn run_program(exe: &Path) -> String {
     print!("{text}");
     if std::env::var("HEARTH_VALGRIND").as_deref() == Ok("1") {
         let v = run(Command::new("valgrind")
-            .args(["--error-exitcode=99", "--leak-check=full", "--show-leak-kinds=definite,indirect,possible"])
-            .args(["--errors-for-leak-kinds=definite,indirect,possible", "--track-origins=yes", "-q"])
+            .args([
+                "--error-exitcode=99",
+                "--leak-check=full",
+                "--show-leak-kinds=definite,indirect,possible",
+            ])
+            .args([
+                "--errors-for-leak-kinds=definite,indirect,possible",
+                "--track-origins=yes",
+                "-q",
+            ])
             .arg(exe));
         assert!(v.contains(" 0 failed"), "under valgrind:\n{v}");
         println!("valgrind clean: {}", exe.display());
@@ -181,17 +202,27 @@ fn committed_header_matches_a_fresh_generation() {
 #[test]
 fn shared_library_exports_only_hearth_symbols() {
     let lib = lib_dir().join(shared_lib_name());
-    let out = Command::new("nm").args(["-D", "--defined-only"]).arg(&lib).output().expect("nm");
+    let out = Command::new("nm")
+        .args(["-D", "--defined-only"])
+        .arg(&lib)
+        .output()
+        .expect("nm");
     assert!(out.status.success());
     let text = String::from_utf8_lossy(&out.stdout);
     let mut exported = 0;
     for line in text.lines() {
         let mut parts = line.split_whitespace();
-        let (Some(_addr), Some(kind), Some(name)) = (parts.next(), parts.next(), parts.next()) else { continue };
+        let (Some(_addr), Some(kind), Some(name)) = (parts.next(), parts.next(), parts.next())
+        else {
+            continue;
+        };
         if !matches!(kind, "T" | "D" | "B" | "R" | "W" | "V" | "i") {
             continue;
         }
-        assert!(name.starts_with("hearth_"), "unexpected exported symbol {name} ({kind})");
+        assert!(
+            name.starts_with("hearth_"),
+            "unexpected exported symbol {name} ({kind})"
+        );
         exported += 1;
     }
     assert!(exported >= 30, "only {exported} hearth_ symbols exported");

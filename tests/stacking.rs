@@ -18,7 +18,11 @@ fn stands(w: &mut World, ids: &[BodyHandle], seconds: f32) -> (f32, f32) {
         w.step(DT).unwrap();
     }
     let end = positions(w, ids);
-    let worst = start.iter().zip(&end).map(|(a, b)| (*a - *b).length()).fold(0.0, f32::max);
+    let worst = start
+        .iter()
+        .zip(&end)
+        .map(|(a, b)| (*a - *b).length())
+        .fold(0.0, f32::max);
     let top = (start[start.len() - 1] - end[end.len() - 1]).length();
     (worst, top)
 }
@@ -28,7 +32,10 @@ fn tower_of_30_boxes_stands_and_sleeps() {
     let mut w = scenes::world(true);
     let ids = scenes::tower(&mut w, 30);
     let (worst, top) = stands(&mut w, &ids, 10.0);
-    println!("tower 30: worst {worst:.4} m, top {top:.4} m, awake {}", w.awake_body_count());
+    println!(
+        "tower 30: worst {worst:.4} m, top {top:.4} m, awake {}",
+        w.awake_body_count()
+    );
     assert!(worst < 0.05 && top < 0.05, "worst {worst} top {top}");
     assert_eq!(w.awake_body_count(), 0, "the tower did not fall asleep");
 }
@@ -48,7 +55,10 @@ fn pyramid_of_385_boxes_stands_and_sleeps() {
     let ids = scenes::pyramid(&mut w, 10);
     assert_eq!(ids.len(), 385);
     let (worst, top) = stands(&mut w, &ids, 10.0);
-    println!("pyramid 385: worst {worst:.4} m, top {top:.4} m, awake {}", w.awake_body_count());
+    println!(
+        "pyramid 385: worst {worst:.4} m, top {top:.4} m, awake {}",
+        w.awake_body_count()
+    );
     assert!(worst < 0.05 && top < 0.05, "worst {worst} top {top}");
     assert_eq!(w.awake_body_count(), 0, "the pyramid did not fall asleep");
 }
@@ -62,7 +72,12 @@ fn box_rests_at_its_half_height() {
         } else {
             scenes::ground_box(&mut w, 10.0);
         }
-        let b = scenes::dynamic_box(&mut w, Vec3::new(0.0, 2.0, 0.0), Vec3::new(0.5, 0.25, 0.75), &ShapeDef::default());
+        let b = scenes::dynamic_box(
+            &mut w,
+            Vec3::new(0.0, 2.0, 0.0),
+            Vec3::new(0.5, 0.25, 0.75),
+            &ShapeDef::default(),
+        );
         let s = scenes::dynamic_sphere(&mut w, Vec3::new(3.0, 2.0, 0.0), 0.3, &ShapeDef::default());
         for _ in 0..180 {
             w.step(DT).unwrap();
@@ -90,8 +105,16 @@ fn box_on_its_edge_topples_onto_a_face_and_stays() {
             ..Default::default()
         })
         .unwrap();
-    w.create_shape(b, &ShapeDef::default(), &Geometry::Box { center: Vec3::ZERO, rotation: Quat::IDENTITY, half_extents: Vec3::splat(h) })
-        .unwrap();
+    w.create_shape(
+        b,
+        &ShapeDef::default(),
+        &Geometry::Box {
+            center: Vec3::ZERO,
+            rotation: Quat::IDENTITY,
+            half_extents: Vec3::splat(h),
+        },
+    )
+    .unwrap();
     for _ in 0..(5.0 / DT) as usize {
         w.step(DT).unwrap();
     }
@@ -99,28 +122,55 @@ fn box_on_its_edge_topples_onto_a_face_and_stays() {
     // On a face: the rotation about z is a multiple of 90° and the centre is at h.
     let (_, _, rz) = t.q.to_euler(glam::EulerRot::XYZ);
     let k = (rz / std::f32::consts::FRAC_PI_2).round();
-    assert!((rz - k * std::f32::consts::FRAC_PI_2).abs() < 0.01, "rotation {rz}");
+    assert!(
+        (rz - k * std::f32::consts::FRAC_PI_2).abs() < 0.01,
+        "rotation {rz}"
+    );
     assert!((t.p.y - h).abs() < 0.01, "height {}", t.p.y);
     let y_then = t.p.y;
     for _ in 0..(3.0 / DT) as usize {
         w.step(DT).unwrap();
     }
-    assert!((w.transform(b).unwrap().p.y - y_then).abs() < 1e-3, "it swung back up");
+    assert!(
+        (w.transform(b).unwrap().p.y - y_then).abs() < 1e-3,
+        "it swung back up"
+    );
 }
 
 #[test]
 fn fast_sphere_does_not_tunnel_through_a_thin_wall() {
-    let mut w = World::new(hearth::WorldSettings { gravity: Vec3::ZERO, ..Default::default() }).unwrap();
+    let mut w = World::new(hearth::WorldSettings {
+        gravity: Vec3::ZERO,
+        ..Default::default()
+    })
+    .unwrap();
     let wall = w.create_body(&BodyDef::default()).unwrap();
-    w.create_shape(wall, &ShapeDef::default(), &Geometry::Box { center: Vec3::ZERO, rotation: Quat::IDENTITY, half_extents: Vec3::new(0.1, 2.0, 2.0) })
-        .unwrap();
+    w.create_shape(
+        wall,
+        &ShapeDef::default(),
+        &Geometry::Box {
+            center: Vec3::ZERO,
+            rotation: Quat::IDENTITY,
+            half_extents: Vec3::new(0.1, 2.0, 2.0),
+        },
+    )
+    .unwrap();
     for (start, speed) in [(-5.0f32, 100.0f32), (-3.3, 100.0), (-7.7, 250.0)] {
-        let s = scenes::dynamic_sphere(&mut w, Vec3::new(start, 0.0, 0.0), 0.05, &ShapeDef::default());
-        w.set_linear_velocity(s, Vec3::new(speed, 0.0, 0.0)).unwrap();
+        let s = scenes::dynamic_sphere(
+            &mut w,
+            Vec3::new(start, 0.0, 0.0),
+            0.05,
+            &ShapeDef::default(),
+        );
+        w.set_linear_velocity(s, Vec3::new(speed, 0.0, 0.0))
+            .unwrap();
         for _ in 0..60 {
             w.step(DT).unwrap();
             let x = w.transform(s).unwrap().p.x;
-            assert!(x < -0.1, "start {start}: the sphere passed the wall (x = {x})");
+            assert!(
+                x < -0.1,
+                "start {start}: the sphere passed the wall (x = {x})"
+            );
         }
         w.destroy_body(s).unwrap();
     }
@@ -136,10 +186,18 @@ fn sleeping_bodies_wake_when_hit_and_cost_nothing() {
     assert_eq!(w.awake_body_count(), 0);
     w.step(DT).unwrap();
     assert_eq!(w.counters.pairs_tested, 0);
-    assert_eq!(w.counters.touching_contacts, 0, "sleeping contacts were updated");
+    assert_eq!(
+        w.counters.touching_contacts, 0,
+        "sleeping contacts were updated"
+    );
     // A falling box hits the top: the whole tower wakes.
     let top = w.transform(ids[4]).unwrap().p;
-    let hammer = scenes::dynamic_box(&mut w, top + Vec3::new(0.0, 3.0, 0.0), Vec3::splat(0.5), &ShapeDef::default());
+    let hammer = scenes::dynamic_box(
+        &mut w,
+        top + Vec3::new(0.0, 3.0, 0.0),
+        Vec3::splat(0.5),
+        &ShapeDef::default(),
+    );
     let mut woke = false;
     for _ in 0..120 {
         w.step(DT).unwrap();
@@ -155,7 +213,8 @@ fn sleeping_bodies_wake_when_hit_and_cost_nothing() {
         w.step(DT).unwrap();
     }
     assert!(!w.is_awake(ids[2]).unwrap());
-    w.apply_force(ids[2], Vec3::new(1.0, 0.0, 0.0), true).unwrap();
+    w.apply_force(ids[2], Vec3::new(1.0, 0.0, 0.0), true)
+        .unwrap();
     assert!(w.is_awake(ids[0]).unwrap() && w.is_awake(ids[4]).unwrap());
 }
 
@@ -172,7 +231,10 @@ fn destroying_a_support_wakes_what_rests_on_it() {
     for _ in 0..120 {
         w.step(DT).unwrap();
     }
-    assert!((w.transform(ids[1]).unwrap().p.y - 0.5).abs() < 0.02, "did not fall into the gap");
+    assert!(
+        (w.transform(ids[1]).unwrap().p.y - 0.5).abs() < 0.02,
+        "did not fall into the gap"
+    );
 }
 
 /// Deterministic pseudo-random numbers for scene generation.
@@ -193,11 +255,20 @@ fn every_overlapping_pair_has_a_contact_like_brute_force() {
     let mut rng = Rng(0x2545F4914F6CDD1D);
     let mut ids = vec![];
     for _ in 0..300 {
-        let p = Vec3::new(rng.next() * 12.0 - 6.0, rng.next() * 6.0 + 0.5, rng.next() * 12.0 - 6.0);
+        let p = Vec3::new(
+            rng.next() * 12.0 - 6.0,
+            rng.next() * 6.0 + 0.5,
+            rng.next() * 12.0 - 6.0,
+        );
         ids.push(if rng.next() < 0.5 {
             scenes::dynamic_sphere(&mut w, p, 0.2 + rng.next() * 0.4, &ShapeDef::default())
         } else {
-            scenes::dynamic_box(&mut w, p, Vec3::new(0.2, 0.3, 0.4) + Vec3::splat(rng.next() * 0.3), &ShapeDef::default())
+            scenes::dynamic_box(
+                &mut w,
+                p,
+                Vec3::new(0.2, 0.3, 0.4) + Vec3::splat(rng.next() * 0.3),
+                &ShapeDef::default(),
+            )
         });
     }
     for step in 0..120 {
@@ -221,13 +292,17 @@ fn every_overlapping_pair_has_a_contact_like_brute_force() {
                 if boxes[i].1.overlaps(&boxes[j].1) {
                     overlapping += 1;
                     let found = w.contacts.iter().any(|(_, c)| {
-                        (c.shape_a == boxes[i].0 && c.shape_b == boxes[j].0) || (c.shape_a == boxes[j].0 && c.shape_b == boxes[i].0)
+                        (c.shape_a == boxes[i].0 && c.shape_b == boxes[j].0)
+                            || (c.shape_a == boxes[j].0 && c.shape_b == boxes[i].0)
                     });
                     missing += (!found) as usize;
                 }
             }
         }
-        assert_eq!(missing, 0, "step {step}: {missing} of {overlapping} overlapping pairs lack a contact");
+        assert_eq!(
+            missing, 0,
+            "step {step}: {missing} of {overlapping} overlapping pairs lack a contact"
+        );
     }
 }
 
