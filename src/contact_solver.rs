@@ -1,20 +1,34 @@
-//! Contact constraints for the soft-step solver: prepare from manifolds, warm start, solve
-//! (normal with soft bias and speculative limits, then Coulomb friction with a static and a
-//! dynamic coefficient), restitution, and storing impulses for the next step.
+//! Contact constraints of the sub-stepped solver.
+//!
+//! Per step, `prepare` builds one constraint per touching manifold. Per sub-step, `refresh`
+//! recomputes each point's lever arms from the bodies' motion so far (the midpoint of the
+//! two material points, so equal and opposite impulses act at one point and angular
+//! momentum is kept exactly), the angular Jacobians and effective masses, and the current
+//! separation. The passes that follow — `warm_start`, two `solve` sweeps over real
+//! velocities (rigid non-penetration, speculative gaps, patch friction with a static and a
+//! dynamic coefficient) and `push_out` (overlap removed by pseudo-velocities) — then cost a
+//! few dot products per point. After the sub-steps: `apply_restitution`, `store_impulses`.
 
 use crate::collision::MAX_MANIFOLD_POINTS;
 use crate::math::{orthonormal_basis, Vec3};
-use crate::solver::{BodyState, Softness};
+use crate::solver::{BodyState, Velocity};
 use crate::world::World;
 
-/// Tangential speed (m/s) below which a contact point is treated as sticking.
+/// Tangential speed (m/s) below which a contact patch starts a step sticking.
 const STICK_SPEED: f32 = 0.01;
 
 #[derive(Clone, Copy, Debug, Default)]
 pub struct ConstraintPoint {
-    pub ra: Vec3,
-    pub rb: Vec3,
+    /// Lever arms of the contact point at the start of the step.
+    pub ra0: Vec3,
+    pub rb0: Vec3,
     /// Separation at the start of the step (m, negative when overlapping).
+    pub separation0: f32,
+    /// Refreshed every sub-step: `r × n` and `I⁻¹ (r × n)` of each body, the separation.
+    pub rna: Vec3,
+    pub rnb: Vec3,
+    pub ia: Vec3,
+    pub ib: Vec3,
     pub separation: f32,
     pub normal_mass: f32,
     pub normal_impulse: f32,
@@ -29,8 +43,16 @@ pub struct ConstraintPoint {
 /// spurious twist, so a sliding box feels exactly μ·N.
 #[derive(Clone, Copy, Debug, Default)]
 pub struct PatchFriction {
-    pub ra: Vec3,
-    pub rb: Vec3,
+    pub ra0: Vec3,
+    pub rb0: Vec3,
+    /// Per tangent: `r × t`, `I⁻¹ (r × t)` of each body; refreshed every sub-step.
+    pub rta: [Vec3; 2],
+    pub rtb: [Vec3; 2],
+    pub ita: [Vec3; 2],
+    pub itb: [Vec3; 2],
+    /// `I⁻¹ n` of each body, for the twist.
+    pub ina: Vec3,
+    pub inb: Vec3,
     pub tangent_mass: [f32; 2],
     pub twist_mass: f32,
     /// Mean distance of the points from the centroid: the lever of torsional friction.
@@ -44,24 +66,22 @@ pub struct PatchFriction {
 pub struct ContactConstraint {
     pub a: u32,
     pub b: u32,
+    /// Inverse masses of the two bodies.
+    pub ma: f32,
+    pub mb: f32,
     pub contact: u32,
     pub normal: Vec3,
     pub tangents: [Vec3; 2],
     pub static_friction: f32,
     pub dynamic_friction: f32,
     pub restitution: f32,
-    pub soft: Softness,
     pub count: usize,
     pub points: [ConstraintPoint; MAX_MANIFOLD_POINTS],
     pub friction: PatchFriction,
 }
 
 /// Builds constraints for every awake contact with manifold points.
-pub fn prepare(world: &mut World, h: f32) {
-    let settings = world.settings;
-    let contact_hertz = settings.contact_hertz.min(0.25 / h);
-    let soft = Softness::new(contact_hertz, settings.contact_damping_ratio, h);
-    let static_soft = Softness::new(2.0 * contact_hertz, settings.contact_damping_ratio, h);
+pub fn prepare(world: &mut World) {
     let constraints = &mut world.solver.constraints;
     let states = &world.solver.states;
     constraints.clear();
@@ -78,34 +98,23 @@ pub fn prepare(world: &mut World, h: f32) {
         if sa.inv_mass == 0.0 && sb.inv_mass == 0.0 {
             continue;
         }
+        let (ua, ub) = (&world.solver.vel[a as usize], &world.solver.vel[b as usize]);
         let n = c.manifold.normal;
         let (t1, t2) = orthonormal_basis(n);
         let mut cc = ContactConstraint {
             a,
             b,
+            ma: sa.inv_mass,
+            mb: sb.inv_mass,
             contact: ci,
             normal: n,
             tangents: [t1, t2],
             static_friction: c.static_friction,
             dynamic_friction: c.dynamic_friction,
             restitution: c.restitution,
-            soft: if sa.inv_mass == 0.0 || sb.inv_mass == 0.0 {
-                static_soft
-            } else {
-                soft
-            },
             count: c.manifold.count,
             points: [ConstraintPoint::default(); MAX_MANIFOLD_POINTS],
             friction: PatchFriction::default(),
-        };
-        let inv_mass = |ra: Vec3, rb: Vec3, d: Vec3| {
-            let (rna, rnb) = (ra.cross(d), rb.cross(d));
-            let k = sa.inv_mass + sb.inv_mass + rna.dot(sa.inv_i * rna) + rnb.dot(sb.inv_i * rnb);
-            if k > 0.0 {
-                1.0 / k
-            } else {
-                0.0
-            }
         };
         let mut centroid = Vec3::ZERO;
         for i in 0..c.manifold.count {
@@ -113,15 +122,14 @@ pub fn prepare(world: &mut World, h: f32) {
             centroid += mp.point;
             let ra = mp.point - ba.center;
             let rb = mp.point - bb.center;
-            let dv = sb.v + sb.w.cross(rb) - sa.v - sa.w.cross(ra);
+            let dv = ub.v + ub.w.cross(rb) - ua.v - ua.w.cross(ra);
             cc.points[i] = ConstraintPoint {
-                ra,
-                rb,
-                separation: mp.separation,
-                normal_mass: inv_mass(ra, rb, n),
+                ra0: ra,
+                rb0: rb,
+                separation0: mp.separation,
                 normal_impulse: c.impulses[i].normal,
-                max_normal_impulse: 0.0,
                 relative_velocity: dv.dot(n),
+                ..Default::default()
             };
         }
         centroid /= c.manifold.count as f32;
@@ -133,147 +141,185 @@ pub fn prepare(world: &mut World, h: f32) {
             .sum::<f32>()
             / c.manifold.count as f32;
         let (ra, rb) = (centroid - ba.center, centroid - bb.center);
-        let dv = sb.v + sb.w.cross(rb) - sa.v - sa.w.cross(ra);
+        let dv = ub.v + ub.w.cross(rb) - ua.v - ua.w.cross(ra);
         let vt = dv - n * dv.dot(n);
-        let k_twist = n.dot(sa.inv_i * n) + n.dot(sb.inv_i * n);
         let f = &c.friction;
         cc.friction = PatchFriction {
-            ra,
-            rb,
-            tangent_mass: [inv_mass(ra, rb, t1), inv_mass(ra, rb, t2)],
-            twist_mass: if k_twist > 0.0 { 1.0 / k_twist } else { 0.0 },
+            ra0: ra,
+            rb0: rb,
             twist_radius,
             tangent_impulse: [f.tangent.dot(t1), f.tangent.dot(t2)],
             twist_impulse: f.twist,
             sliding: vt.length_squared() > STICK_SPEED * STICK_SPEED,
+            ..Default::default()
         };
         constraints.push(cc);
     }
 }
 
-#[inline]
-fn apply(sa: &mut BodyState, sb: &mut BodyState, ra: Vec3, rb: Vec3, p: Vec3) {
-    sa.v -= sa.inv_mass * p;
-    sa.w -= sa.inv_i * ra.cross(p);
-    sb.v += sb.inv_mass * p;
-    sb.w += sb.inv_i * rb.cross(p);
-}
-
 /// Where an impulse between the two bodies acts now. `ra`, `rb` are the lever arms of one
 /// world point at the start of the step; since then each body moved by its own `dp`, `dq`.
 /// Returns the arms from each current centre of mass to the midpoint of the two material
-/// points, and the gap between those points (B minus A). Applying equal and opposite
-/// impulses at one point keeps angular momentum exact while the bodies move in the step.
+/// points, and the gap between those points (B minus A).
 #[inline]
 fn current_arms(sa: &BodyState, sb: &BodyState, ra: Vec3, rb: Vec3) -> (Vec3, Vec3, Vec3) {
-    let pra = sa.dq * ra;
-    let prb = sb.dq * rb;
+    let pra = sa.rot * ra;
+    let prb = sb.rot * rb;
     let gap = (ra - rb) + (sb.dp - sa.dp) + (prb - pra);
     (pra + 0.5 * gap, prb - 0.5 * gap, gap)
 }
 
 #[inline]
-fn apply_angular(sa: &mut BodyState, sb: &mut BodyState, l: Vec3) {
-    sa.w -= sa.inv_i * l;
-    sb.w += sb.inv_i * l;
+fn inverse_or_zero(k: f32) -> f32 {
+    if k > 0.0 {
+        1.0 / k
+    } else {
+        0.0
+    }
+}
+
+/// Recomputes arms, Jacobians, effective masses and separations from the current motion.
+pub fn refresh(states: &[BodyState], constraints: &mut [ContactConstraint]) {
+    for c in constraints.iter_mut() {
+        let (sa, sb) = (&states[c.a as usize], &states[c.b as usize]);
+        let n = c.normal;
+        let m = c.ma + c.mb;
+        for p in c.points[..c.count].iter_mut() {
+            let (ra, rb, gap) = current_arms(sa, sb, p.ra0, p.rb0);
+            p.separation = p.separation0 + gap.dot(n);
+            p.rna = ra.cross(n);
+            p.rnb = rb.cross(n);
+            p.ia = sa.inv_i * p.rna;
+            p.ib = sb.inv_i * p.rnb;
+            p.normal_mass = inverse_or_zero(m + p.rna.dot(p.ia) + p.rnb.dot(p.ib));
+        }
+        let f = &mut c.friction;
+        let (ra, rb, _) = current_arms(sa, sb, f.ra0, f.rb0);
+        for k in 0..2 {
+            let t = c.tangents[k];
+            f.rta[k] = ra.cross(t);
+            f.rtb[k] = rb.cross(t);
+            f.ita[k] = sa.inv_i * f.rta[k];
+            f.itb[k] = sb.inv_i * f.rtb[k];
+            f.tangent_mass[k] =
+                inverse_or_zero(m + f.rta[k].dot(f.ita[k]) + f.rtb[k].dot(f.itb[k]));
+        }
+        f.ina = sa.inv_i * n;
+        f.inb = sb.inv_i * n;
+        f.twist_mass = inverse_or_zero(n.dot(f.ina) + n.dot(f.inb));
+    }
 }
 
 #[inline]
-fn states_pair(states: &mut [BodyState], a: u32, b: u32) -> (BodyState, BodyState) {
-    (states[a as usize], states[b as usize])
+fn pair(vel: &[Velocity], a: u32, b: u32) -> (Velocity, Velocity) {
+    (vel[a as usize], vel[b as usize])
 }
 
 #[inline]
-fn write_back(states: &mut [BodyState], a: u32, b: u32, sa: BodyState, sb: BodyState) {
-    // State 0 is the static dummy: never written.
+fn write_back(vel: &mut [Velocity], a: u32, b: u32, ua: Velocity, ub: Velocity) {
+    // Index 0 is the static dummy: never written.
     if a != 0 {
-        states[a as usize] = sa;
+        vel[a as usize] = ua;
     }
     if b != 0 {
-        states[b as usize] = sb;
+        vel[b as usize] = ub;
     }
 }
 
-pub fn warm_start(states: &mut [BodyState], constraints: &[ContactConstraint]) {
+/// Relative velocity along a direction `d` with angular Jacobians `ja`, `jb`.
+#[inline]
+fn relative_velocity(ua: &Velocity, ub: &Velocity, d: Vec3, ja: Vec3, jb: Vec3) -> f32 {
+    d.dot(ub.v - ua.v) + ub.w.dot(jb) - ua.w.dot(ja)
+}
+
+/// Applies impulse `lambda` along `d`; `ia`, `ib` are `I⁻¹ (r × d)` of each body.
+#[inline]
+#[allow(clippy::too_many_arguments)]
+fn apply(
+    ua: &mut Velocity,
+    ub: &mut Velocity,
+    ma: f32,
+    mb: f32,
+    d: Vec3,
+    ia: Vec3,
+    ib: Vec3,
+    lambda: f32,
+) {
+    ua.v -= (ma * lambda) * d;
+    ua.w -= lambda * ia;
+    ub.v += (mb * lambda) * d;
+    ub.w += lambda * ib;
+}
+
+pub fn warm_start(vel: &mut [Velocity], constraints: &[ContactConstraint]) {
     for c in constraints {
-        let (mut sa, mut sb) = states_pair(states, c.a, c.b);
+        let (mut ua, mut ub) = pair(vel, c.a, c.b);
         for p in &c.points[..c.count] {
-            let (ra, rb, _) = current_arms(&sa, &sb, p.ra, p.rb);
-            apply(&mut sa, &mut sb, ra, rb, c.normal * p.normal_impulse);
+            apply(
+                &mut ua,
+                &mut ub,
+                c.ma,
+                c.mb,
+                c.normal,
+                p.ia,
+                p.ib,
+                p.normal_impulse,
+            );
         }
         let f = &c.friction;
-        let t = c.tangents[0] * f.tangent_impulse[0] + c.tangents[1] * f.tangent_impulse[1];
-        let (ra, rb, _) = current_arms(&sa, &sb, f.ra, f.rb);
-        apply(&mut sa, &mut sb, ra, rb, t);
-        apply_angular(&mut sa, &mut sb, c.normal * f.twist_impulse);
-        write_back(states, c.a, c.b, sa, sb);
+        for k in 0..2 {
+            apply(
+                &mut ua,
+                &mut ub,
+                c.ma,
+                c.mb,
+                c.tangents[k],
+                f.ita[k],
+                f.itb[k],
+                f.tangent_impulse[k],
+            );
+        }
+        ua.w -= f.twist_impulse * f.ina;
+        ub.w += f.twist_impulse * f.inb;
+        write_back(vel, c.a, c.b, ua, ub);
     }
 }
 
-/// One Gauss–Seidel pass. With `use_bias` overlap is pushed out softly; without it (relax)
-/// only velocities are made consistent, removing the energy the push added.
+/// One Gauss–Seidel sweep over real velocities: non-penetration (rigid; a speculative point
+/// may close its gap within the sub-step and no more), then patch friction. `forward`
+/// alternates the order of points between sweeps so no point is always solved first: a fixed
+/// order biases the impulse distribution and tilts tall stacks.
 pub fn solve(
-    states: &mut [BodyState],
+    vel: &mut [Velocity],
     constraints: &mut [ContactConstraint],
     inv_h: f32,
-    max_push: f32,
-    slop: f32,
-    use_bias: bool,
+    forward: bool,
 ) {
     for c in constraints.iter_mut() {
-        let (mut sa, mut sb) = states_pair(states, c.a, c.b);
+        let (mut ua, mut ub) = pair(vel, c.a, c.b);
         let n = c.normal;
         let count = c.count;
+        let mut total_normal = 0.0;
         for k in 0..count {
-            // Alternate the order between passes so no point is always solved first: a fixed
-            // order biases the impulse distribution and tilts tall stacks.
-            let p = &mut c.points[if use_bias { k } else { count - 1 - k }];
-            // Current separation from the motion of the step so far.
-            let (ra, rb, gap) = current_arms(&sa, &sb, p.ra, p.rb);
-            let s = gap.dot(n) + p.separation;
-            let (bias, mass_scale, impulse_scale) = if s > 0.0 {
-                (s * inv_h, 1.0, 0.0) // speculative: may close the gap, no more
-            } else if use_bias {
-                // Soft push-out (rate from the contact's stiffness and damping) but a rigid
-                // mass: the load is carried by the accumulated impulse, not by overlap, so a
-                // deep stack does not sag like a column of springs.
-                if std::env::var("HEARTH_SOFT").is_ok() {
-                    (
-                        (c.soft.bias_rate * (s + slop).min(0.0)).max(-max_push),
-                        c.soft.mass_scale,
-                        c.soft.impulse_scale,
-                    )
-                } else {
-                    (
-                        (c.soft.bias_rate * (s + slop).min(0.0)).max(-max_push),
-                        1.0,
-                        0.0,
-                    )
-                }
-            } else {
-                (0.0, 1.0, 0.0)
-            };
-            let dv = sb.v + sb.w.cross(rb) - sa.v - sa.w.cross(ra);
-            let vn = dv.dot(n);
-            let impulse =
-                -p.normal_mass * mass_scale * (vn + bias) - impulse_scale * p.normal_impulse;
-            let new_impulse = (p.normal_impulse + impulse).max(0.0);
+            let p = &mut c.points[if forward { k } else { count - 1 - k }];
+            let bias = p.separation.max(0.0) * inv_h;
+            let vn = relative_velocity(&ua, &ub, n, p.rna, p.rnb);
+            let new_impulse = (p.normal_impulse - p.normal_mass * (vn + bias)).max(0.0);
             let applied = new_impulse - p.normal_impulse;
             p.normal_impulse = new_impulse;
             p.max_normal_impulse = p.max_normal_impulse.max(applied);
-            apply(&mut sa, &mut sb, ra, rb, n * applied);
+            total_normal += new_impulse;
+            apply(&mut ua, &mut ub, c.ma, c.mb, n, p.ia, p.ib, applied);
         }
-        let total_normal: f32 = c.points[..c.count].iter().map(|p| p.normal_impulse).sum();
         let f = &mut c.friction;
-        let (fra, frb, _) = current_arms(&sa, &sb, f.ra, f.rb);
-        let dv = sb.v + sb.w.cross(frb) - sa.v - sa.w.cross(fra);
         let old = f.tangent_impulse;
-        let mut new = [
-            old[0] - f.tangent_mass[0] * dv.dot(c.tangents[0]),
-            old[1] - f.tangent_mass[1] * dv.dot(c.tangents[1]),
-        ];
+        let mut new = [0.0; 2];
+        for k in 0..2 {
+            let vt = relative_velocity(&ua, &ub, c.tangents[k], f.rta[k], f.rtb[k]);
+            new[k] = old[k] - f.tangent_mass[k] * vt;
+        }
         let old_twist = f.twist_impulse;
-        let mut twist = old_twist - f.twist_mass * (sb.w - sa.w).dot(n);
+        let mut twist = old_twist - f.twist_mass * (ub.w - ua.w).dot(n);
         let len2 = new[0] * new[0] + new[1] * new[1];
         let static_limit = c.static_friction * total_normal;
         if !f.sliding && len2 > static_limit * static_limit {
@@ -291,19 +337,62 @@ pub fn solve(
         }
         let twist_limit = limit * f.twist_radius;
         twist = twist.clamp(-twist_limit, twist_limit);
+        for k in 0..2 {
+            apply(
+                &mut ua,
+                &mut ub,
+                c.ma,
+                c.mb,
+                c.tangents[k],
+                f.ita[k],
+                f.itb[k],
+                new[k] - old[k],
+            );
+        }
         f.tangent_impulse = new;
+        ua.w -= (twist - old_twist) * f.ina;
+        ub.w += (twist - old_twist) * f.inb;
         f.twist_impulse = twist;
-        let d = c.tangents[0] * (new[0] - old[0]) + c.tangents[1] * (new[1] - old[1]);
-        apply(&mut sa, &mut sb, fra, frb, d);
-        apply_angular(&mut sa, &mut sb, n * (twist - old_twist));
-        write_back(states, c.a, c.b, sa, sb);
+        write_back(vel, c.a, c.b, ua, ub);
+    }
+}
+
+/// Removes overlap with pseudo-velocities (split impulse): they move bodies apart in this
+/// sub-step's position update and are then dropped, so push-out never adds kinetic energy
+/// and never launches the top of a stack. `rate` (1/s) is the fraction of the overlap beyond
+/// `slop` removed per second, capped at `max_push` (m/s).
+pub fn push_out(
+    pseudo: &mut [Velocity],
+    constraints: &[ContactConstraint],
+    rate: f32,
+    slop: f32,
+    max_push: f32,
+) {
+    for c in constraints {
+        let (mut ua, mut ub) = pair(pseudo, c.a, c.b);
+        let n = c.normal;
+        let mut changed = false;
+        for p in &c.points[..c.count] {
+            let s = p.separation + slop;
+            if s >= 0.0 {
+                continue;
+            }
+            let target = (-rate * s).min(max_push);
+            let vn = relative_velocity(&ua, &ub, n, p.rna, p.rnb);
+            let impulse = (p.normal_mass * (target - vn)).max(0.0);
+            apply(&mut ua, &mut ub, c.ma, c.mb, n, p.ia, p.ib, impulse);
+            changed = true;
+        }
+        if changed {
+            write_back(pseudo, c.a, c.b, ua, ub);
+        }
     }
 }
 
 /// Bounces: drives the normal velocity to `-e · (approach velocity)` for points that
 /// approached faster than the threshold and really pushed.
 pub fn apply_restitution(
-    states: &mut [BodyState],
+    vel: &mut [Velocity],
     constraints: &mut [ContactConstraint],
     threshold: f32,
 ) {
@@ -311,22 +400,21 @@ pub fn apply_restitution(
         if c.restitution == 0.0 {
             continue;
         }
-        let (mut sa, mut sb) = states_pair(states, c.a, c.b);
+        let (mut ua, mut ub) = pair(vel, c.a, c.b);
         for p in c.points[..c.count].iter_mut() {
             if p.relative_velocity > -threshold || p.max_normal_impulse == 0.0 {
                 continue;
             }
-            let (ra, rb, _) = current_arms(&sa, &sb, p.ra, p.rb);
-            let dv = sb.v + sb.w.cross(rb) - sa.v - sa.w.cross(ra);
-            let vn = dv.dot(c.normal);
-            let impulse = -p.normal_mass * (vn + c.restitution * p.relative_velocity);
-            let new_impulse = (p.normal_impulse + impulse).max(0.0);
+            let vn = relative_velocity(&ua, &ub, c.normal, p.rna, p.rnb);
+            let new_impulse = (p.normal_impulse
+                - p.normal_mass * (vn + c.restitution * p.relative_velocity))
+                .max(0.0);
             let applied = new_impulse - p.normal_impulse;
             p.normal_impulse = new_impulse;
             p.max_normal_impulse = p.max_normal_impulse.max(applied);
-            apply(&mut sa, &mut sb, ra, rb, c.normal * applied);
+            apply(&mut ua, &mut ub, c.ma, c.mb, c.normal, p.ia, p.ib, applied);
         }
-        write_back(states, c.a, c.b, sa, sb);
+        write_back(vel, c.a, c.b, ua, ub);
     }
 }
 

@@ -10,26 +10,31 @@ use crate::contact_solver::{self, ContactConstraint};
 use crate::math::{integrate_rotation, Mat3, Quat, Vec3};
 use crate::world::{Integrator, World};
 
-/// Velocity and accumulated motion of one awake body during a step. Index 0 is a shared
-/// static dummy with zero velocity and infinite mass.
-#[derive(Clone, Copy, Debug)]
-pub struct BodyState {
+/// Linear and angular velocity of one awake body: the only data the velocity sweeps touch.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Velocity {
     pub v: Vec3,
     pub w: Vec3,
+}
+
+/// Motion of one awake body since the start of the step, and its inverse mass. Index 0 of
+/// every solver array is a shared static dummy with infinite mass that is never written.
+#[derive(Clone, Copy, Debug)]
+pub struct BodyState {
     /// Translation of the centre of mass since the start of the step.
     pub dp: Vec3,
-    /// Rotation since the start of the step.
+    /// Rotation since the start of the step, and the same as a matrix.
     pub dq: Quat,
+    pub rot: Mat3,
     pub inv_mass: f32,
     pub inv_i: Mat3,
 }
 
 impl BodyState {
     pub const STATIC: BodyState = BodyState {
-        v: Vec3::ZERO,
-        w: Vec3::ZERO,
         dp: Vec3::ZERO,
         dq: Quat::IDENTITY,
+        rot: Mat3::IDENTITY,
         inv_mass: 0.0,
         inv_i: Mat3::ZERO,
     };
@@ -58,6 +63,9 @@ pub struct BodySim {
 
 #[derive(Default)]
 pub struct SolverScratch {
+    pub vel: Vec<Velocity>,
+    /// Pseudo-velocities of the push-out, cleared every sub-step.
+    pub pseudo: Vec<Velocity>,
     pub states: Vec<BodyState>,
     pub sims: Vec<BodySim>,
     pub constraints: Vec<ContactConstraint>,
@@ -130,8 +138,12 @@ pub fn prepare_bodies(world: &mut World, dt: f32) {
     let gravity = world.settings.gravity;
     let scratch = &mut world.solver;
     scratch.states.clear();
+    scratch.vel.clear();
+    scratch.pseudo.clear();
     scratch.sims.clear();
     scratch.states.push(BodyState::STATIC);
+    scratch.vel.push(Velocity::default());
+    scratch.pseudo.push(Velocity::default());
     scratch.sims.push(BodySim {
         body: u32::MAX,
         lin_accel: Vec3::ZERO,
@@ -168,13 +180,17 @@ pub fn prepare_bodies(world: &mut World, dt: f32) {
         }
         body.update_world_inertia();
         scratch.states.push(BodyState {
-            v: body.v,
-            w: body.w,
             dp: Vec3::ZERO,
             dq: Quat::IDENTITY,
+            rot: Mat3::IDENTITY,
             inv_mass: body.inv_mass,
             inv_i: body.inv_inertia_world,
         });
+        scratch.vel.push(Velocity {
+            v: body.v,
+            w: body.w,
+        });
+        scratch.pseudo.push(Velocity::default());
         scratch.sims.push(BodySim {
             body: bi,
             lin_accel: if dynamic {
@@ -195,13 +211,19 @@ pub fn prepare_bodies(world: &mut World, dt: f32) {
     }
 }
 
-fn integrate_velocities(states: &mut [BodyState], sims: &[BodySim], h: f32, max_speed: f32) {
-    for (s, sim) in states.iter_mut().zip(sims).skip(1) {
+fn integrate_velocities(
+    vel: &mut [Velocity],
+    states: &[BodyState],
+    sims: &[BodySim],
+    h: f32,
+    max_speed: f32,
+) {
+    for ((u, s), sim) in vel.iter_mut().zip(states).zip(sims).skip(1) {
         if !sim.dynamic || sim.rk4 {
             continue;
         }
-        let mut v = s.v + h * sim.lin_accel;
-        let mut w = s.w + h * (s.inv_i * sim.torque);
+        let mut v = u.v + h * sim.lin_accel;
+        let mut w = u.w + h * (s.inv_i * sim.torque);
         if sim.gyroscopic {
             w = gyroscopic_step(w, s.dq * sim.q0, &sim.inertia, &sim.inv_inertia, h);
         }
@@ -211,22 +233,38 @@ fn integrate_velocities(states: &mut [BodyState], sims: &[BodySim], h: f32, max_
         if speed2 > max_speed * max_speed {
             v *= max_speed / speed2.sqrt();
         }
-        s.v = v;
-        s.w = w;
+        u.v = v;
+        u.w = w;
     }
 }
 
-fn integrate_positions(states: &mut [BodyState], sims: &[BodySim], h: f32) {
-    for (s, sim) in states.iter_mut().zip(sims).skip(1) {
+/// Moves every awake body by its velocity plus the push-out's pseudo-velocity, which is then
+/// cleared.
+fn integrate_positions(
+    vel: &mut [Velocity],
+    pseudo: &mut [Velocity],
+    states: &mut [BodyState],
+    sims: &[BodySim],
+    h: f32,
+) {
+    for (((u, b), s), sim) in vel
+        .iter_mut()
+        .zip(pseudo.iter_mut())
+        .zip(states.iter_mut())
+        .zip(sims)
+        .skip(1)
+    {
         if sim.rk4 {
-            rk4_step(s, sim, h);
-            continue;
+            rk4_step(u, s, sim, h);
+        } else {
+            s.dp += h * (u.v + b.v);
+            s.dq = integrate_rotation(s.dq, u.w + b.w, h);
         }
-        s.dp += h * s.v;
-        s.dq = integrate_rotation(s.dq, s.w, h);
+        *b = Velocity::default();
+        s.rot = Mat3::from_quat(s.dq);
         if sim.gyroscopic {
             // Anisotropic inertia turns with the body: keep the world inverse current.
-            let r = Mat3::from_quat(s.dq * sim.q0);
+            let r = s.rot * Mat3::from_quat(sim.q0);
             s.inv_i = r * sim.inv_inertia * r.transpose();
         }
     }
@@ -235,7 +273,7 @@ fn integrate_positions(states: &mut [BodyState], sims: &[BodySim], h: f32) {
 /// Classical RK4 over the free rigid-body equations for one sub-step: position, orientation,
 /// linear velocity and world angular momentum, with continuous damping. Computed in f64 so
 /// rounding does not show as energy drift over long spins.
-fn rk4_step(s: &mut BodyState, sim: &BodySim, h: f32) {
+fn rk4_step(u: &mut Velocity, s: &mut BodyState, sim: &BodySim, h: f32) {
     use glam::{DMat3, DQuat, DVec3, DVec4};
     #[derive(Clone, Copy)]
     struct Y {
@@ -273,8 +311,8 @@ fn rk4_step(s: &mut BodyState, sim: &BodySim, h: f32) {
     let y0 = Y {
         p: s.dp.as_dvec3(),
         q: DVec4::from(q_start),
-        v: s.v.as_dvec3(),
-        l: r * (inertia * (r.transpose() * s.w.as_dvec3())),
+        v: u.v.as_dvec3(),
+        l: r * (inertia * (r.transpose() * u.w.as_dvec3())),
     };
     let k1 = deriv(&y0);
     let k2 = deriv(&add(&y0, &k1, 0.5 * h));
@@ -288,8 +326,8 @@ fn rk4_step(s: &mut BodyState, sim: &BodySim, h: f32) {
     };
     let q = DQuat::from_vec4(y.q).normalize();
     s.dp = y.p.as_vec3();
-    s.v = y.v.as_vec3();
-    s.w = omega(y.q, y.l).as_vec3();
+    u.v = y.v.as_vec3();
+    u.w = omega(y.q, y.l).as_vec3();
     s.dq = (q * sim.q0.as_dquat().conjugate()).normalize().as_quat();
 }
 
@@ -299,7 +337,7 @@ pub fn solve(world: &mut World, dt: f32) {
     prepare_bodies(world, dt);
     let substeps = world.settings.substeps;
     let h = dt / substeps as f32;
-    contact_solver::prepare(world, h);
+    contact_solver::prepare(world);
 
     let settings = world.settings;
     let scratch = &mut world.solver;
@@ -313,32 +351,34 @@ pub fn solve(world: &mut World, dt: f32) {
             scratch.sims[c.b as usize].rk4 = false;
         }
     }
-    let states = &mut scratch.states;
-    let sims = &scratch.sims;
+    let (vel, pseudo, states, sims) = (
+        &mut scratch.vel,
+        &mut scratch.pseudo,
+        &mut scratch.states,
+        &scratch.sims,
+    );
     let constraints = &mut scratch.constraints;
     let inv_h = 1.0 / h;
+    let push_rate = crate::world::push_out_rate(&settings, h);
     for _ in 0..substeps {
-        integrate_velocities(states, sims, h, settings.max_linear_speed);
-        contact_solver::warm_start(states, constraints);
-        contact_solver::solve(
-            states,
+        integrate_velocities(vel, states, sims, h, settings.max_linear_speed);
+        contact_solver::refresh(states, constraints);
+        contact_solver::warm_start(vel, constraints);
+        contact_solver::solve(vel, constraints, inv_h, true);
+        contact_solver::solve(vel, constraints, inv_h, false);
+        contact_solver::push_out(
+            pseudo,
             constraints,
-            inv_h,
-            settings.contact_push_max_velocity,
+            push_rate,
             settings.linear_slop,
-            true,
-        );
-        integrate_positions(states, sims, h);
-        contact_solver::solve(
-            states,
-            constraints,
-            inv_h,
             settings.contact_push_max_velocity,
-            settings.linear_slop,
-            false,
         );
+        integrate_positions(vel, pseudo, states, sims, h);
     }
-    contact_solver::apply_restitution(states, constraints, settings.restitution_threshold);
+    if constraints.iter().any(|c| c.restitution > 0.0) {
+        contact_solver::refresh(states, constraints);
+        contact_solver::apply_restitution(vel, constraints, settings.restitution_threshold);
+    }
     contact_solver::store_impulses(world);
     finalize_bodies(world);
 }
@@ -346,10 +386,16 @@ pub fn solve(world: &mut World, dt: f32) {
 /// Writes solver results back: transforms, velocities, world inertia; clears forces.
 fn finalize_bodies(world: &mut World) {
     let scratch = &world.solver;
-    for (s, sim) in scratch.states.iter().zip(&scratch.sims).skip(1) {
+    for ((s, u), sim) in scratch
+        .states
+        .iter()
+        .zip(&scratch.vel)
+        .zip(&scratch.sims)
+        .skip(1)
+    {
         let body = world.bodies.at_mut(sim.body);
-        body.v = s.v;
-        body.w = s.w;
+        body.v = u.v;
+        body.w = u.w;
         let q = (s.dq * sim.q0).normalize();
         body.set_center_rotation(body.center + s.dp, q);
         body.update_world_inertia();

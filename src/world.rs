@@ -83,6 +83,15 @@ impl WorldSettings {
     }
 }
 
+/// Rate (1/s) at which overlap is pushed out, from the contact stiffness: the bias rate of a
+/// critically over-damped spring of `contact_hertz` (Box2D v3's soft contact), capped at a
+/// quarter of the sub-step rate.
+pub fn push_out_rate(s: &WorldSettings, h: f32) -> f32 {
+    let hertz = s.contact_hertz.min(0.25 / h);
+    let omega = 2.0 * std::f32::consts::PI * hertz;
+    omega / (2.0 * s.contact_damping_ratio + h * omega)
+}
+
 /// Margin added around shape boxes in the tree so small motions do not touch it (m).
 pub const AABB_MARGIN: f32 = 0.1;
 
