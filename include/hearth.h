@@ -312,6 +312,10 @@ typedef struct HearthWorldDef {
      */
     float max_linear_speed;
     /**
+     * Velocity sweeps over the contacts per sub-step, 1..=64. Default 3.
+     */
+    uint32_t velocity_iterations;
+    /**
      * Set by `hearth_world_def_default()`; do not change.
      */
     uint32_t internal_value;

@@ -22,10 +22,7 @@ impl Aabb {
 
     #[inline]
     pub fn from_center_extents(c: Vec3, e: Vec3) -> Self {
-        Aabb {
-            min: c - e,
-            max: c + e,
-        }
+        Aabb { min: c - e, max: c + e }
     }
 
     #[inline]

@@ -72,14 +72,7 @@ impl Contact {
 
     /// Recomputes the manifold and carries impulses over to points with the same feature id.
     /// Returns true when the contact started touching in this update.
-    pub fn update(
-        &mut self,
-        a: &Shape,
-        xf_a: &Transform,
-        b: &Shape,
-        xf_b: &Transform,
-        speculative: f32,
-    ) -> bool {
+    pub fn update(&mut self, a: &Shape, xf_a: &Transform, b: &Shape, xf_b: &Transform, speculative: f32) -> bool {
         let old = self.manifold;
         let old_impulses = self.impulses;
         let was_touching = self.touching;

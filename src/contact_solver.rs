@@ -77,7 +77,60 @@ pub struct ContactConstraint {
     pub restitution: f32,
     pub count: usize,
     pub points: [ConstraintPoint; MAX_MANIFOLD_POINTS],
+    /// Coupling of the points' normal impulses, `K = J M⁻¹ Jᵀ`, and the inverse of K
+    /// (slightly regularised: four coplanar points constrain only three motions); refreshed
+    /// every sub-step.
+    pub k: [[f32; MAX_MANIFOLD_POINTS]; MAX_MANIFOLD_POINTS],
+    pub k_inv: [[f32; MAX_MANIFOLD_POINTS]; MAX_MANIFOLD_POINTS],
     pub friction: PatchFriction,
+}
+
+/// Inner iterations of the per-manifold block solve when its exact solution would pull. They
+/// run on the cached `K` without touching body state.
+const BLOCK_ITERATIONS: usize = 4;
+
+/// Relative regularisation of `K` before inversion.
+const BLOCK_REGULARIZATION: f32 = 1.0e-3;
+
+/// Inverts the leading `n × n` block of `m` by Gauss–Jordan with partial pivoting; false
+/// when singular.
+fn invert(
+    m: &[[f32; MAX_MANIFOLD_POINTS]; MAX_MANIFOLD_POINTS],
+    n: usize,
+    out: &mut [[f32; MAX_MANIFOLD_POINTS]; MAX_MANIFOLD_POINTS],
+) -> bool {
+    let mut a = *m;
+    *out = [[0.0; MAX_MANIFOLD_POINTS]; MAX_MANIFOLD_POINTS];
+    for (i, row) in out.iter_mut().enumerate().take(n) {
+        row[i] = 1.0;
+    }
+    for col in 0..n {
+        let pivot = (col..n)
+            .max_by(|&x, &y| a[x][col].abs().total_cmp(&a[y][col].abs()))
+            .unwrap();
+        if a[pivot][col].abs() < 1e-30 {
+            return false;
+        }
+        a.swap(col, pivot);
+        out.swap(col, pivot);
+        let inv = 1.0 / a[col][col];
+        for j in 0..n {
+            a[col][j] *= inv;
+            out[col][j] *= inv;
+        }
+        for r in 0..n {
+            if r != col {
+                let f = a[r][col];
+                if f != 0.0 {
+                    for j in 0..n {
+                        a[r][j] -= f * a[col][j];
+                        out[r][j] -= f * out[col][j];
+                    }
+                }
+            }
+        }
+    }
+    true
 }
 
 /// Builds constraints for every awake contact with manifold points.
@@ -114,6 +167,8 @@ pub fn prepare(world: &mut World) {
             restitution: c.restitution,
             count: c.manifold.count,
             points: [ConstraintPoint::default(); MAX_MANIFOLD_POINTS],
+            k: [[0.0; MAX_MANIFOLD_POINTS]; MAX_MANIFOLD_POINTS],
+            k_inv: [[0.0; MAX_MANIFOLD_POINTS]; MAX_MANIFOLD_POINTS],
             friction: PatchFriction::default(),
         };
         let mut centroid = Vec3::ZERO;
@@ -193,6 +248,23 @@ pub fn refresh(states: &[BodyState], constraints: &mut [ContactConstraint]) {
             p.ib = sb.inv_i * p.rnb;
             p.normal_mass = inverse_or_zero(m + p.rna.dot(p.ia) + p.rnb.dot(p.ib));
         }
+        for i in 0..c.count {
+            for j in i..c.count {
+                let (pi, pj) = (&c.points[i], &c.points[j]);
+                let kij = m + pi.rna.dot(pj.ia) + pi.rnb.dot(pj.ib);
+                c.k[i][j] = kij;
+                c.k[j][i] = kij;
+            }
+        }
+        if c.count > 1 {
+            let mut reg = c.k;
+            for (i, row) in reg.iter_mut().enumerate().take(c.count) {
+                row[i] *= 1.0 + BLOCK_REGULARIZATION;
+            }
+            if !invert(&reg, c.count, &mut c.k_inv) {
+                c.k_inv = [[0.0; MAX_MANIFOLD_POINTS]; MAX_MANIFOLD_POINTS];
+            }
+        }
         let f = &mut c.friction;
         let (ra, rb, _) = current_arms(sa, sb, f.ra0, f.rb0);
         for k in 0..2 {
@@ -201,8 +273,7 @@ pub fn refresh(states: &[BodyState], constraints: &mut [ContactConstraint]) {
             f.rtb[k] = rb.cross(t);
             f.ita[k] = sa.inv_i * f.rta[k];
             f.itb[k] = sb.inv_i * f.rtb[k];
-            f.tangent_mass[k] =
-                inverse_or_zero(m + f.rta[k].dot(f.ita[k]) + f.rtb[k].dot(f.itb[k]));
+            f.tangent_mass[k] = inverse_or_zero(m + f.rta[k].dot(f.ita[k]) + f.rtb[k].dot(f.itb[k]));
         }
         f.ina = sa.inv_i * n;
         f.inb = sb.inv_i * n;
@@ -235,16 +306,7 @@ fn relative_velocity(ua: &Velocity, ub: &Velocity, d: Vec3, ja: Vec3, jb: Vec3) 
 /// Applies impulse `lambda` along `d`; `ia`, `ib` are `I⁻¹ (r × d)` of each body.
 #[inline]
 #[allow(clippy::too_many_arguments)]
-fn apply(
-    ua: &mut Velocity,
-    ub: &mut Velocity,
-    ma: f32,
-    mb: f32,
-    d: Vec3,
-    ia: Vec3,
-    ib: Vec3,
-    lambda: f32,
-) {
+fn apply(ua: &mut Velocity, ub: &mut Velocity, ma: f32, mb: f32, d: Vec3, ia: Vec3, ib: Vec3, lambda: f32) {
     ua.v -= (ma * lambda) * d;
     ua.w -= lambda * ia;
     ub.v += (mb * lambda) * d;
@@ -255,16 +317,7 @@ pub fn warm_start(vel: &mut [Velocity], constraints: &[ContactConstraint]) {
     for c in constraints {
         let (mut ua, mut ub) = pair(vel, c.a, c.b);
         for p in &c.points[..c.count] {
-            apply(
-                &mut ua,
-                &mut ub,
-                c.ma,
-                c.mb,
-                c.normal,
-                p.ia,
-                p.ib,
-                p.normal_impulse,
-            );
+            apply(&mut ua, &mut ub, c.ma, c.mb, c.normal, p.ia, p.ib, p.normal_impulse);
         }
         let f = &c.friction;
         for k in 0..2 {
@@ -289,28 +342,64 @@ pub fn warm_start(vel: &mut [Velocity], constraints: &[ContactConstraint]) {
 /// may close its gap within the sub-step and no more), then patch friction. `forward`
 /// alternates the order of points between sweeps so no point is always solved first: a fixed
 /// order biases the impulse distribution and tilts tall stacks.
-pub fn solve(
-    vel: &mut [Velocity],
-    constraints: &mut [ContactConstraint],
-    inv_h: f32,
-    forward: bool,
-) {
+pub fn solve(vel: &mut [Velocity], constraints: &mut [ContactConstraint], inv_h: f32, forward: bool) {
     for c in constraints.iter_mut() {
         let (mut ua, mut ub) = pair(vel, c.a, c.b);
         let n = c.normal;
         let count = c.count;
-        let mut total_normal = 0.0;
-        for k in 0..count {
-            let p = &mut c.points[if forward { k } else { count - 1 - k }];
-            let bias = p.separation.max(0.0) * inv_h;
-            let vn = relative_velocity(&ua, &ub, n, p.rna, p.rnb);
-            let new_impulse = (p.normal_impulse - p.normal_mass * (vn + bias)).max(0.0);
-            let applied = new_impulse - p.normal_impulse;
-            p.normal_impulse = new_impulse;
-            p.max_normal_impulse = p.max_normal_impulse.max(applied);
-            total_normal += new_impulse;
-            apply(&mut ua, &mut ub, c.ma, c.mb, n, p.ia, p.ib, applied);
+        // Normal impulses of all points at once: projected Gauss–Seidel on the cached K.
+        let mut rhs = [0.0f32; MAX_MANIFOLD_POINTS];
+        for (r, p) in rhs.iter_mut().zip(&c.points[..count]) {
+            *r = relative_velocity(&ua, &ub, n, p.rna, p.rnb) + p.separation.max(0.0) * inv_h;
         }
+        let mut delta = [0.0f32; MAX_MANIFOLD_POINTS];
+        // Touching without load and not approaching (side faces of neighbours): nothing to do.
+        let idle = c.points[..count]
+            .iter()
+            .zip(&rhs)
+            .all(|(p, &r)| p.normal_impulse == 0.0 && r >= 0.0);
+        // The exact solution with every point pushing: one small matrix product.
+        let mut exact = count > 1 && !idle;
+        if exact {
+            for i in 0..count {
+                let mut d = 0.0;
+                for (kij, r) in c.k_inv[i][..count].iter().zip(&rhs[..count]) {
+                    d -= kij * r;
+                }
+                delta[i] = d;
+                exact &= c.points[i].normal_impulse + d >= 0.0;
+            }
+        }
+        if !exact && !idle {
+            // Some point would pull: projected Gauss–Seidel on the cached K instead.
+            delta = [0.0; MAX_MANIFOLD_POINTS];
+            let iterations = if count == 1 { 1 } else { BLOCK_ITERATIONS };
+            for it in 0..iterations {
+                for k in 0..count {
+                    let i = if forward ^ (it % 2 == 1) { k } else { count - 1 - k };
+                    let p = &c.points[i];
+                    let mut r = rhs[i];
+                    for (kij, dj) in c.k[i][..count].iter().zip(&delta[..count]) {
+                        r += kij * dj;
+                    }
+                    let new_impulse = (p.normal_impulse + delta[i] - p.normal_mass * r).max(0.0);
+                    delta[i] = new_impulse - p.normal_impulse;
+                }
+            }
+        }
+        let (mut lin, mut ang_a, mut ang_b) = (0.0, Vec3::ZERO, Vec3::ZERO);
+        for (p, d) in c.points[..count].iter_mut().zip(delta) {
+            p.normal_impulse += d;
+            p.max_normal_impulse = p.max_normal_impulse.max(d);
+            lin += d;
+            ang_a += d * p.ia;
+            ang_b += d * p.ib;
+        }
+        ua.v -= (c.ma * lin) * n;
+        ua.w -= ang_a;
+        ub.v += (c.mb * lin) * n;
+        ub.w += ang_b;
+        let total_normal: f32 = c.points[..count].iter().map(|p| p.normal_impulse).sum();
         let f = &mut c.friction;
         let old = f.tangent_impulse;
         let mut new = [0.0; 2];
@@ -361,13 +450,7 @@ pub fn solve(
 /// sub-step's position update and are then dropped, so push-out never adds kinetic energy
 /// and never launches the top of a stack. `rate` (1/s) is the fraction of the overlap beyond
 /// `slop` removed per second, capped at `max_push` (m/s).
-pub fn push_out(
-    pseudo: &mut [Velocity],
-    constraints: &[ContactConstraint],
-    rate: f32,
-    slop: f32,
-    max_push: f32,
-) {
+pub fn push_out(pseudo: &mut [Velocity], constraints: &[ContactConstraint], rate: f32, slop: f32, max_push: f32) {
     for c in constraints {
         let (mut ua, mut ub) = pair(pseudo, c.a, c.b);
         let n = c.normal;
@@ -391,11 +474,7 @@ pub fn push_out(
 
 /// Bounces: drives the normal velocity to `-e · (approach velocity)` for points that
 /// approached faster than the threshold and really pushed.
-pub fn apply_restitution(
-    vel: &mut [Velocity],
-    constraints: &mut [ContactConstraint],
-    threshold: f32,
-) {
+pub fn apply_restitution(vel: &mut [Velocity], constraints: &mut [ContactConstraint], threshold: f32) {
     for c in constraints.iter_mut() {
         if c.restitution == 0.0 {
             continue;
@@ -406,9 +485,7 @@ pub fn apply_restitution(
                 continue;
             }
             let vn = relative_velocity(&ua, &ub, c.normal, p.rna, p.rnb);
-            let new_impulse = (p.normal_impulse
-                - p.normal_mass * (vn + c.restitution * p.relative_velocity))
-                .max(0.0);
+            let new_impulse = (p.normal_impulse - p.normal_mass * (vn + c.restitution * p.relative_velocity)).max(0.0);
             let applied = new_impulse - p.normal_impulse;
             p.normal_impulse = new_impulse;
             p.max_normal_impulse = p.max_normal_impulse.max(applied);
@@ -428,8 +505,7 @@ pub fn store_impulses(world: &mut World) {
             imp.max_normal = p.max_normal_impulse;
         }
         let f = &c.friction;
-        contact.friction.tangent =
-            c.tangents[0] * f.tangent_impulse[0] + c.tangents[1] * f.tangent_impulse[1];
+        contact.friction.tangent = c.tangents[0] * f.tangent_impulse[0] + c.tangents[1] * f.tangent_impulse[1];
         contact.friction.twist = f.twist_impulse;
         contact.friction.sliding = f.sliding;
     }

@@ -296,13 +296,7 @@ impl DynamicTree {
     /// hits, and returns 0 to terminate, a negative value to ignore the proxy, or a value
     /// `t` in `(0, max_t_so_far]` to clip the segment to `[0, t]` (returning
     /// `max_t_so_far` continues unclipped).
-    pub fn ray_cast<F: FnMut(u32, u32, f32) -> f32>(
-        &self,
-        origin: Vec3,
-        dir: Vec3,
-        max_t: f32,
-        mut f: F,
-    ) {
+    pub fn ray_cast<F: FnMut(u32, u32, f32) -> f32>(&self, origin: Vec3, dir: Vec3, max_t: f32, mut f: F) {
         if self.root == NULL_NODE || max_t.is_nan() || max_t < 0.0 {
             return;
         }
@@ -601,10 +595,7 @@ impl DynamicTree {
         let mut reached = 0u32;
         let mut leaves = 0u32;
         if self.root != NULL_NODE {
-            assert_eq!(
-                self.nodes[self.root as usize].parent, NULL_NODE,
-                "root has a parent"
-            );
+            assert_eq!(self.nodes[self.root as usize].parent, NULL_NODE, "root has a parent");
             let mut stack = Stack::new();
             stack.push(self.root);
             while let Some(i) = stack.pop() {
@@ -613,26 +604,17 @@ impl DynamicTree {
                 assert!(n.height >= 0, "node {i} is free but linked");
                 if n.is_leaf() {
                     leaves += 1;
-                    assert!(
-                        n.child1 == NULL_NODE && n.child2 == NULL_NODE,
-                        "leaf {i} has children"
-                    );
+                    assert!(n.child1 == NULL_NODE && n.child2 == NULL_NODE, "leaf {i} has children");
                     continue;
                 }
                 let (c1, c2) = (n.child1, n.child2);
-                assert!(
-                    c1 != NULL_NODE && c2 != NULL_NODE && c1 != c2,
-                    "node {i} children"
-                );
+                assert!(c1 != NULL_NODE && c2 != NULL_NODE && c1 != c2, "node {i} children");
                 let a = &self.nodes[c1 as usize];
                 let b = &self.nodes[c2 as usize];
                 assert_eq!(a.parent, i, "child {c1} parent link");
                 assert_eq!(b.parent, i, "child {c2} parent link");
                 assert_eq!(n.height, 1 + a.height.max(b.height), "node {i} height");
-                assert!(
-                    n.aabb.contains(&a.aabb) && n.aabb.contains(&b.aabb),
-                    "node {i} box"
-                );
+                assert!(n.aabb.contains(&a.aabb) && n.aabb.contains(&b.aabb), "node {i} box");
                 stack.push(c1);
                 stack.push(c2);
             }
@@ -647,11 +629,7 @@ impl DynamicTree {
             assert!(free <= self.nodes.len(), "free list cycle");
             i = self.nodes[i as usize].parent;
         }
-        assert_eq!(
-            free + self.node_count as usize,
-            self.nodes.len(),
-            "leaked nodes"
-        );
+        assert_eq!(free + self.node_count as usize, self.nodes.len(), "leaked nodes");
     }
 }
 

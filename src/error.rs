@@ -13,10 +13,7 @@ pub enum Error {
 impl fmt::Display for Error {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
-            Error::InvalidId(what) => write!(
-                f,
-                "invalid {what} id (null, destroyed, or from another world)"
-            ),
+            Error::InvalidId(what) => write!(f, "invalid {what} id (null, destroyed, or from another world)"),
             Error::InvalidArgument(m) => f.write_str(m),
         }
     }
@@ -68,9 +65,7 @@ pub fn check_positive(name: &str, x: f32) -> Result<()> {
 pub fn check_quat(name: &str, q: glam::Quat) -> Result<glam::Quat> {
     let l = q.length();
     if !q.is_finite() || !l.is_finite() || l < 1.0e-6 {
-        return Err(invalid(format!(
-            "{name} must be a finite non-zero quaternion, got {q}"
-        )));
+        return Err(invalid(format!("{name} must be a finite non-zero quaternion, got {q}")));
     }
     Ok(q / l)
 }

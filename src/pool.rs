@@ -94,8 +94,7 @@ impl<T> Pool<T> {
             return None;
         }
         let slot = self.slots.get(h.index as usize)?;
-        (slot.value.is_some() && slot.counter == h.generation & COUNTER_MASK)
-            .then_some(h.index as usize)
+        (slot.value.is_some() && slot.counter == h.generation & COUNTER_MASK).then_some(h.index as usize)
     }
 
     pub fn contains(&self, h: Handle) -> bool {
@@ -138,35 +137,26 @@ impl<T> Pool<T> {
     /// Direct slot access by index for hot loops that hold indices, not handles.
     #[inline]
     pub fn at(&self, index: u32) -> &T {
-        self.slots[index as usize]
-            .value
-            .as_ref()
-            .expect("live slot")
+        self.slots[index as usize].value.as_ref().expect("live slot")
     }
 
     #[inline]
     pub fn at_mut(&mut self, index: u32) -> &mut T {
-        self.slots[index as usize]
-            .value
-            .as_mut()
-            .expect("live slot")
+        self.slots[index as usize].value.as_mut().expect("live slot")
     }
 
     /// The handle of the live object at `index`.
     pub fn handle_at(&self, index: u32) -> Option<Handle> {
         let slot = self.slots.get(index as usize)?;
-        slot.value
-            .as_ref()
-            .map(|_| self.handle(index, slot.counter))
+        slot.value.as_ref().map(|_| self.handle(index, slot.counter))
     }
 
     /// Live objects in slot order (deterministic).
     pub fn iter(&self) -> impl Iterator<Item = (Handle, &T)> {
-        self.slots.iter().enumerate().filter_map(move |(i, s)| {
-            s.value
-                .as_ref()
-                .map(|v| (self.handle(i as u32, s.counter), v))
-        })
+        self.slots
+            .iter()
+            .enumerate()
+            .filter_map(move |(i, s)| s.value.as_ref().map(|v| (self.handle(i as u32, s.counter), v)))
     }
 
     /// Two distinct live objects mutably at once.
@@ -205,10 +195,7 @@ mod tests {
         assert!(!a.contains(h));
         let h2 = a.insert(8);
         assert_eq!(h2.index, h.index);
-        assert!(
-            a.get(h).is_none(),
-            "a reused slot must not revive the old handle"
-        );
+        assert!(a.get(h).is_none(), "a reused slot must not revive the old handle");
         assert_eq!(a.get(h2), Some(&8));
         assert_eq!(a.len(), 1);
     }

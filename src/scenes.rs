@@ -152,26 +152,10 @@ pub fn pile(world: &mut World, count: usize) -> Vec<BodyHandle> {
             .unwrap();
     };
     let height = 30.0;
-    wall(
-        world,
-        Vec3::new(15.5, height, 0.0),
-        Vec3::new(0.5, height, 16.0),
-    );
-    wall(
-        world,
-        Vec3::new(-15.5, height, 0.0),
-        Vec3::new(0.5, height, 16.0),
-    );
-    wall(
-        world,
-        Vec3::new(0.0, height, 15.5),
-        Vec3::new(16.0, height, 0.5),
-    );
-    wall(
-        world,
-        Vec3::new(0.0, height, -15.5),
-        Vec3::new(16.0, height, 0.5),
-    );
+    wall(world, Vec3::new(15.5, height, 0.0), Vec3::new(0.5, height, 16.0));
+    wall(world, Vec3::new(-15.5, height, 0.0), Vec3::new(0.5, height, 16.0));
+    wall(world, Vec3::new(0.0, height, 15.5), Vec3::new(16.0, height, 0.5));
+    wall(world, Vec3::new(0.0, height, -15.5), Vec3::new(16.0, height, 0.5));
     let per_row = 19; // 19 × 1.5 = 28.5 m fits inside the 30 m container
     let mut out = Vec::with_capacity(count);
     for i in 0..count {

@@ -56,9 +56,7 @@ impl Geometry {
     /// World-space bounds under the body transform `xf`. Planes get an enormous box.
     pub fn aabb(&self, xf: &Transform) -> Aabb {
         match *self {
-            Geometry::Sphere { center, radius } => {
-                Aabb::from_center_extents(xf.apply(center), Vec3::splat(radius))
-            }
+            Geometry::Sphere { center, radius } => Aabb::from_center_extents(xf.apply(center), Vec3::splat(radius)),
             Geometry::Box {
                 center,
                 rotation,
@@ -85,9 +83,7 @@ impl Geometry {
     pub fn volume(&self) -> f32 {
         match *self {
             Geometry::Sphere { radius, .. } => 4.0 / 3.0 * std::f32::consts::PI * radius.powi(3),
-            Geometry::Box {
-                half_extents: h, ..
-            } => 8.0 * h.x * h.y * h.z,
+            Geometry::Box { half_extents: h, .. } => 8.0 * h.x * h.y * h.z,
             Geometry::Capsule { a, b, radius } => {
                 let l = (b - a).length();
                 std::f32::consts::PI * radius * radius * (l + 4.0 / 3.0 * radius)
@@ -188,11 +184,7 @@ impl MassProperties {
             let shift = Mat3::from_diagonal(Vec3::splat(d.dot(d))) - outer(d, d);
             inertia += p.inertia + shift * p.mass;
         }
-        MassProperties {
-            mass,
-            center,
-            inertia,
-        }
+        MassProperties { mass, center, inertia }
     }
 }
 
@@ -219,11 +211,7 @@ mod tests {
         let mp = g.mass_properties(2.0);
         assert!(close(mp.mass, 96.0, 1e-6));
         // I_x = m/12 (h² + d²) with full sizes 4 and 6
-        assert!(close(
-            mp.inertia.x_axis.x,
-            96.0 / 12.0 * (16.0 + 36.0),
-            1e-5
-        ));
+        assert!(close(mp.inertia.x_axis.x, 96.0 / 12.0 * (16.0 + 36.0), 1e-5));
         assert!(close(mp.inertia.y_axis.y, 96.0 / 12.0 * (4.0 + 36.0), 1e-5));
         assert!(close(mp.inertia.z_axis.z, 96.0 / 12.0 * (4.0 + 16.0), 1e-5));
     }
@@ -246,8 +234,7 @@ mod tests {
             rotation: Quat::IDENTITY,
             half_extents: Vec3::new(1.0, 0.5, 0.5),
         };
-        let c =
-            MassProperties::combine([a.mass_properties(3.0), b.mass_properties(3.0)].into_iter());
+        let c = MassProperties::combine([a.mass_properties(3.0), b.mass_properties(3.0)].into_iter());
         let w = whole.mass_properties(3.0);
         assert!(close(c.mass, w.mass, 1e-6));
         assert!(c.center.length() < 1e-6);
@@ -367,9 +354,7 @@ impl Geometry {
                 let rotation = check_quat("box rotation", rotation)?;
                 check_vec("box half_extents", half_extents)?;
                 if half_extents.min_element() <= 0.0 {
-                    return Err(invalid(format!(
-                        "box half_extents must be > 0, got {half_extents}"
-                    )));
+                    return Err(invalid(format!("box half_extents must be > 0, got {half_extents}")));
                 }
                 Geometry::Box {
                     center,
@@ -403,13 +388,9 @@ impl Geometry {
         match *self {
             Geometry::Sphere { center, radius } => (center - local_center).length() + radius,
             Geometry::Box {
-                center,
-                half_extents,
-                ..
+                center, half_extents, ..
             } => (center - local_center).length() + half_extents.length(),
-            Geometry::Capsule { a, b, radius } => {
-                (a - local_center).length().max((b - local_center).length()) + radius
-            }
+            Geometry::Capsule { a, b, radius } => (a - local_center).length().max((b - local_center).length()) + radius,
             Geometry::Plane { .. } => 0.0,
         }
     }

@@ -186,10 +186,7 @@ pub fn prepare_bodies(world: &mut World, dt: f32) {
             inv_mass: body.inv_mass,
             inv_i: body.inv_inertia_world,
         });
-        scratch.vel.push(Velocity {
-            v: body.v,
-            w: body.w,
-        });
+        scratch.vel.push(Velocity { v: body.v, w: body.w });
         scratch.pseudo.push(Velocity::default());
         scratch.sims.push(BodySim {
             body: bi,
@@ -211,13 +208,7 @@ pub fn prepare_bodies(world: &mut World, dt: f32) {
     }
 }
 
-fn integrate_velocities(
-    vel: &mut [Velocity],
-    states: &[BodyState],
-    sims: &[BodySim],
-    h: f32,
-    max_speed: f32,
-) {
+fn integrate_velocities(vel: &mut [Velocity], states: &[BodyState], sims: &[BodySim], h: f32, max_speed: f32) {
     for ((u, s), sim) in vel.iter_mut().zip(states).zip(sims).skip(1) {
         if !sim.dynamic || sim.rk4 {
             continue;
@@ -364,8 +355,10 @@ pub fn solve(world: &mut World, dt: f32) {
         integrate_velocities(vel, states, sims, h, settings.max_linear_speed);
         contact_solver::refresh(states, constraints);
         contact_solver::warm_start(vel, constraints);
-        contact_solver::solve(vel, constraints, inv_h, true);
-        contact_solver::solve(vel, constraints, inv_h, false);
+        // Sweeps alternate direction through each manifold's points.
+        for k in 0..settings.velocity_iterations {
+            contact_solver::solve(vel, constraints, inv_h, k % 2 == 0);
+        }
         contact_solver::push_out(
             pseudo,
             constraints,
@@ -386,13 +379,7 @@ pub fn solve(world: &mut World, dt: f32) {
 /// Writes solver results back: transforms, velocities, world inertia; clears forces.
 fn finalize_bodies(world: &mut World) {
     let scratch = &world.solver;
-    for ((s, u), sim) in scratch
-        .states
-        .iter()
-        .zip(&scratch.vel)
-        .zip(&scratch.sims)
-        .skip(1)
-    {
+    for ((s, u), sim) in scratch.states.iter().zip(&scratch.vel).zip(&scratch.sims).skip(1) {
         let body = world.bodies.at_mut(sim.body);
         body.v = u.v;
         body.w = u.w;

@@ -12,9 +12,7 @@ impl World {
     /// Advances the world by `dt` seconds (`dt >= 0`; 0 does nothing).
     pub fn step(&mut self, dt: f32) -> crate::error::Result<()> {
         if !dt.is_finite() || dt < 0.0 {
-            return Err(crate::error::invalid(format!(
-                "dt must be finite and >= 0, got {dt}"
-            )));
+            return Err(crate::error::invalid(format!("dt must be finite and >= 0, got {dt}")));
         }
         if dt == 0.0 {
             return Ok(());

@@ -24,6 +24,8 @@ pub struct WorldSettings {
     pub gravity: Vec3,
     /// Solver sub-steps per step.
     pub substeps: u32,
+    /// Velocity sweeps over the contacts per sub-step.
+    pub velocity_iterations: u32,
     pub integrator: Integrator,
     pub enable_sleep: bool,
     /// Speed (m/s, and rad/s) below which a body counts as still.
@@ -48,6 +50,7 @@ impl Default for WorldSettings {
         WorldSettings {
             gravity: Vec3::new(0.0, -9.81, 0.0),
             substeps: 4,
+            velocity_iterations: 3,
             integrator: Integrator::SemiImplicitEuler,
             enable_sleep: true,
             sleep_threshold: 0.05,
@@ -66,9 +69,12 @@ impl WorldSettings {
     pub fn validate(&self) -> Result<()> {
         check_vec("gravity", self.gravity)?;
         if self.substeps == 0 || self.substeps > 64 {
+            return Err(invalid(format!("substeps must be in 1..=64, got {}", self.substeps)));
+        }
+        if self.velocity_iterations == 0 || self.velocity_iterations > 64 {
             return Err(invalid(format!(
-                "substeps must be in 1..=64, got {}",
-                self.substeps
+                "velocity_iterations must be in 1..=64, got {}",
+                self.velocity_iterations
             )));
         }
         check_non_negative("sleep_threshold", self.sleep_threshold)?;
@@ -288,13 +294,7 @@ impl World {
     }
 
     /// Adds a force (N) at a world point: a force plus the torque of its lever arm.
-    pub fn apply_force_at_point(
-        &mut self,
-        h: BodyHandle,
-        f: Vec3,
-        point: Vec3,
-        wake: bool,
-    ) -> Result<()> {
+    pub fn apply_force_at_point(&mut self, h: BodyHandle, f: Vec3, point: Vec3, wake: bool) -> Result<()> {
         check_vec("force", f)?;
         check_vec("point", point)?;
         if let Some(i) = self.dynamic_index(h)? {
@@ -325,13 +325,7 @@ impl World {
     }
 
     /// Applies an impulse (N·s) at a world point: changes velocity at once.
-    pub fn apply_impulse_at_point(
-        &mut self,
-        h: BodyHandle,
-        j: Vec3,
-        point: Vec3,
-        wake: bool,
-    ) -> Result<()> {
+    pub fn apply_impulse_at_point(&mut self, h: BodyHandle, j: Vec3, point: Vec3, wake: bool) -> Result<()> {
         check_vec("impulse", j)?;
         check_vec("point", point)?;
         if let Some(i) = self.dynamic_index(h)? {
@@ -404,12 +398,7 @@ impl World {
 
     // ---------------------------------------------------------------- shapes
 
-    pub fn create_shape(
-        &mut self,
-        body: BodyHandle,
-        def: &ShapeDef,
-        geometry: &Geometry,
-    ) -> Result<ShapeHandle> {
+    pub fn create_shape(&mut self, body: BodyHandle, def: &ShapeDef, geometry: &Geometry) -> Result<ShapeHandle> {
         let bi = self.body_index(body)?;
         def.validate()?;
         let geometry = geometry.validated()?;

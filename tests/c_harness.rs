@@ -69,9 +69,7 @@ fn compiler(cpp: bool) -> Command {
 }
 
 fn run(cmd: &mut Command) -> String {
-    let out = cmd
-        .output()
-        .unwrap_or_else(|e| panic!("cannot run {cmd:?}: {e}"));
+    let out = cmd.output().unwrap_or_else(|e| panic!("cannot run {cmd:?}: {e}"));
     let text = format!(
         "{}{}",
         String::from_utf8_lossy(&out.stdout),
@@ -174,9 +172,17 @@ fn c_programs_pass_with_the_static_library() {
 #[test]
 fn header_compiles_as_c11_and_cpp17_with_warnings_as_errors() {
     let src_c = out_dir().join("header_only.c");
-    std::fs::write(&src_c, "#include \"hearth.h\"\nint main(void) { return hearth_version() == HEARTH_VERSION ? 0 : 1; }\n").unwrap();
+    std::fs::write(
+        &src_c,
+        "#include \"hearth.h\"\nint main(void) { return hearth_version() == HEARTH_VERSION ? 0 : 1; }\n",
+    )
+    .unwrap();
     let src_cpp = out_dir().join("header_only.cpp");
-    std::fs::write(&src_cpp, "#include \"hearth.h\"\nint main() { HearthResult r = HEARTH_OK; return static_cast<int>(r); }\n").unwrap();
+    std::fs::write(
+        &src_cpp,
+        "#include \"hearth.h\"\nint main() { HearthResult r = HEARTH_OK; return static_cast<int>(r); }\n",
+    )
+    .unwrap();
     run(compiler(false).arg("-fsyntax-only").arg(&src_c));
     run(compiler(true).arg("-fsyntax-only").arg(&src_cpp));
 }
@@ -212,8 +218,7 @@ fn shared_library_exports_only_hearth_symbols() {
     let mut exported = 0;
     for line in text.lines() {
         let mut parts = line.split_whitespace();
-        let (Some(_addr), Some(kind), Some(name)) = (parts.next(), parts.next(), parts.next())
-        else {
+        let (Some(_addr), Some(kind), Some(name)) = (parts.next(), parts.next(), parts.next()) else {
             continue;
         };
         if !matches!(kind, "T" | "D" | "B" | "R" | "W" | "V" | "i") {

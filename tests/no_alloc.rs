@@ -42,19 +42,11 @@ fn allocations_per_step(world: &mut hearth::World, warmup: usize, measured: usiz
 fn steady_steps_do_not_allocate() {
     let mut w = scenes::world(false);
     scenes::pyramid(&mut w, 10);
-    assert_eq!(
-        allocations_per_step(&mut w, 120, 120),
-        0,
-        "pyramid (sleep off)"
-    );
+    assert_eq!(allocations_per_step(&mut w, 120, 120), 0, "pyramid (sleep off)");
 
     let mut w = scenes::world(false);
     scenes::spheres_grid(&mut w, 30);
-    assert_eq!(
-        allocations_per_step(&mut w, 60, 120),
-        0,
-        "spheres grid (sleep off)"
-    );
+    assert_eq!(allocations_per_step(&mut w, 60, 120), 0, "spheres grid (sleep off)");
 
     let mut w = scenes::world(true);
     scenes::tower(&mut w, 10);

@@ -28,12 +28,7 @@ fn body_at(world: &mut World, t: BodyType, p: Vec3, q: Quat) -> hearth::BodyHand
 #[test]
 fn free_fall_follows_kinematics() {
     let mut w = scenes::world(true);
-    let b = scenes::dynamic_sphere(
-        &mut w,
-        Vec3::new(0.0, 100.0, 0.0),
-        0.5,
-        &ShapeDef::default(),
-    );
+    let b = scenes::dynamic_sphere(&mut w, Vec3::new(0.0, 100.0, 0.0), 0.5, &ShapeDef::default());
     run(&mut w, 2.0);
     let y = w.transform(b).unwrap().p.y;
     let v = w.linear_velocity(b).unwrap().y;
@@ -112,15 +107,8 @@ fn slide(theta: f32, mu_s: f32, mu_d: f32, t: f32) -> f32 {
         dynamic_friction: mu_d,
         ..ShapeDef::default()
     };
-    w.create_shape(
-        g,
-        &mat,
-        &Geometry::Plane {
-            normal: n,
-            offset: 0.0,
-        },
-    )
-    .unwrap();
+    w.create_shape(g, &mat, &Geometry::Plane { normal: n, offset: 0.0 })
+        .unwrap();
     let b = body_at(&mut w, BodyType::Dynamic, n * 0.5, q);
     w.create_shape(
         b,
@@ -161,10 +149,7 @@ fn sliding_distance_uses_dynamic_friction() {
     // Frictionless check of the same set-up.
     let d0 = slide(theta, 0.0, 0.0, t);
     let e0 = 0.5 * G * theta.sin() * t * t;
-    assert!(
-        (d0 - e0).abs() < 0.02 * e0,
-        "frictionless {d0:.4} vs {e0:.4}"
-    );
+    assert!((d0 - e0).abs() < 0.02 * e0, "frictionless {d0:.4} vs {e0:.4}");
 }
 
 fn zero_g() -> World {
@@ -185,19 +170,9 @@ fn collisions_conserve_linear_and_angular_momentum() {
         dynamic_friction: 0.3,
         ..ShapeDef::default()
     };
-    let a = scenes::dynamic_box(
-        &mut w,
-        Vec3::new(-3.0, 0.2, 0.0),
-        Vec3::new(0.5, 0.3, 0.4),
-        &mat,
-    );
+    let a = scenes::dynamic_box(&mut w, Vec3::new(-3.0, 0.2, 0.0), Vec3::new(0.5, 0.3, 0.4), &mat);
     let b = scenes::dynamic_sphere(&mut w, Vec3::new(3.0, -0.1, 0.15), 0.4, &mat);
-    let c = scenes::dynamic_box(
-        &mut w,
-        Vec3::new(0.0, 3.0, 0.1),
-        Vec3::new(0.3, 0.3, 0.3),
-        &mat,
-    );
+    let c = scenes::dynamic_box(&mut w, Vec3::new(0.0, 3.0, 0.1), Vec3::new(0.3, 0.3, 0.3), &mat);
     w.set_linear_velocity(a, Vec3::new(4.0, 0.0, 0.0)).unwrap();
     w.set_angular_velocity(a, Vec3::new(0.0, 1.0, 2.0)).unwrap();
     w.set_linear_velocity(b, Vec3::new(-3.0, 0.5, 0.0)).unwrap();
@@ -221,14 +196,8 @@ fn collisions_conserve_linear_and_angular_momentum() {
     }
     assert!(touched > 0, "the bodies never collided");
     let (p1, l1) = totals(&w);
-    assert!(
-        (p1 - p0).length() < 1e-3 * p0.length(),
-        "momentum {p0} -> {p1}"
-    );
-    assert!(
-        (l1 - l0).length() < 2e-2 * l0.length(),
-        "angular momentum {l0} -> {l1}"
-    );
+    assert!((p1 - p0).length() < 1e-3 * p0.length(), "momentum {p0} -> {p1}");
+    assert!((l1 - l0).length() < 2e-2 * l0.length(), "angular momentum {l0} -> {l1}");
 }
 
 /// An asymmetric box (inertia 1 : 2 : 3) spun about one principal axis with a tiny
@@ -279,10 +248,7 @@ fn intermediate_axis_spin_tumbles_and_conserves_momentum() {
         );
         let (l0, e0) = (ls[0], es[0]);
         for (l, e) in ls.iter().zip(&es) {
-            assert!(
-                (l - l0).abs() < 0.02 * l0,
-                "{integrator:?}: |L| drifted {l0} -> {l}"
-            );
+            assert!((l - l0).abs() < 0.02 * l0, "{integrator:?}: |L| drifted {l0} -> {l}");
             assert!(*e <= e0 * 1.001, "{integrator:?}: energy grew {e0} -> {e}");
         }
     }
@@ -292,10 +258,7 @@ fn intermediate_axis_spin_tumbles_and_conserves_momentum() {
 fn major_and_minor_axis_spins_are_stable() {
     for axis in [0usize, 2] {
         let (ws, _, _) = spin(axis, Integrator::SemiImplicitEuler, 10.0);
-        assert!(
-            ws.iter().all(|w| w[axis] > 3.8),
-            "axis {axis}: spin wandered"
-        );
+        assert!(ws.iter().all(|w| w[axis] > 3.8), "axis {axis}: spin wandered");
     }
 }
 
@@ -331,13 +294,8 @@ fn force_at_point_produces_torque() {
     let b = scenes::dynamic_box(&mut w, Vec3::ZERO, Vec3::splat(0.5), &ShapeDef::default());
     // 1000 kg unit cube: I = m/6 = 166.7 kg·m². A force of 100 N at x = 0.5 along +Y gives a
     // torque of 50 N·m about +Z for one step.
-    w.apply_force_at_point(
-        b,
-        Vec3::new(0.0, 100.0, 0.0),
-        Vec3::new(0.5, 0.0, 0.0),
-        true,
-    )
-    .unwrap();
+    w.apply_force_at_point(b, Vec3::new(0.0, 100.0, 0.0), Vec3::new(0.5, 0.0, 0.0), true)
+        .unwrap();
     w.step(DT).unwrap();
     let wz = w.angular_velocity(b).unwrap().z;
     let v = w.linear_velocity(b).unwrap().y;

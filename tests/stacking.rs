@@ -122,19 +122,13 @@ fn box_on_its_edge_topples_onto_a_face_and_stays() {
     // On a face: the rotation about z is a multiple of 90° and the centre is at h.
     let (_, _, rz) = t.q.to_euler(glam::EulerRot::XYZ);
     let k = (rz / std::f32::consts::FRAC_PI_2).round();
-    assert!(
-        (rz - k * std::f32::consts::FRAC_PI_2).abs() < 0.01,
-        "rotation {rz}"
-    );
+    assert!((rz - k * std::f32::consts::FRAC_PI_2).abs() < 0.01, "rotation {rz}");
     assert!((t.p.y - h).abs() < 0.01, "height {}", t.p.y);
     let y_then = t.p.y;
     for _ in 0..(3.0 / DT) as usize {
         w.step(DT).unwrap();
     }
-    assert!(
-        (w.transform(b).unwrap().p.y - y_then).abs() < 1e-3,
-        "it swung back up"
-    );
+    assert!((w.transform(b).unwrap().p.y - y_then).abs() < 1e-3, "it swung back up");
 }
 
 #[test]
@@ -156,21 +150,12 @@ fn fast_sphere_does_not_tunnel_through_a_thin_wall() {
     )
     .unwrap();
     for (start, speed) in [(-5.0f32, 100.0f32), (-3.3, 100.0), (-7.7, 250.0)] {
-        let s = scenes::dynamic_sphere(
-            &mut w,
-            Vec3::new(start, 0.0, 0.0),
-            0.05,
-            &ShapeDef::default(),
-        );
-        w.set_linear_velocity(s, Vec3::new(speed, 0.0, 0.0))
-            .unwrap();
+        let s = scenes::dynamic_sphere(&mut w, Vec3::new(start, 0.0, 0.0), 0.05, &ShapeDef::default());
+        w.set_linear_velocity(s, Vec3::new(speed, 0.0, 0.0)).unwrap();
         for _ in 0..60 {
             w.step(DT).unwrap();
             let x = w.transform(s).unwrap().p.x;
-            assert!(
-                x < -0.1,
-                "start {start}: the sphere passed the wall (x = {x})"
-            );
+            assert!(x < -0.1, "start {start}: the sphere passed the wall (x = {x})");
         }
         w.destroy_body(s).unwrap();
     }
@@ -186,10 +171,7 @@ fn sleeping_bodies_wake_when_hit_and_cost_nothing() {
     assert_eq!(w.awake_body_count(), 0);
     w.step(DT).unwrap();
     assert_eq!(w.counters.pairs_tested, 0);
-    assert_eq!(
-        w.counters.touching_contacts, 0,
-        "sleeping contacts were updated"
-    );
+    assert_eq!(w.counters.touching_contacts, 0, "sleeping contacts were updated");
     // A falling box hits the top: the whole tower wakes.
     let top = w.transform(ids[4]).unwrap().p;
     let hammer = scenes::dynamic_box(
@@ -213,8 +195,7 @@ fn sleeping_bodies_wake_when_hit_and_cost_nothing() {
         w.step(DT).unwrap();
     }
     assert!(!w.is_awake(ids[2]).unwrap());
-    w.apply_force(ids[2], Vec3::new(1.0, 0.0, 0.0), true)
-        .unwrap();
+    w.apply_force(ids[2], Vec3::new(1.0, 0.0, 0.0), true).unwrap();
     assert!(w.is_awake(ids[0]).unwrap() && w.is_awake(ids[4]).unwrap());
 }
 
@@ -255,11 +236,7 @@ fn every_overlapping_pair_has_a_contact_like_brute_force() {
     let mut rng = Rng(0x2545F4914F6CDD1D);
     let mut ids = vec![];
     for _ in 0..300 {
-        let p = Vec3::new(
-            rng.next() * 12.0 - 6.0,
-            rng.next() * 6.0 + 0.5,
-            rng.next() * 12.0 - 6.0,
-        );
+        let p = Vec3::new(rng.next() * 12.0 - 6.0, rng.next() * 6.0 + 0.5, rng.next() * 12.0 - 6.0);
         ids.push(if rng.next() < 0.5 {
             scenes::dynamic_sphere(&mut w, p, 0.2 + rng.next() * 0.4, &ShapeDef::default())
         } else {

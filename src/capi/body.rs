@@ -67,11 +67,7 @@ fn body_def(d: &HearthBodyDef) -> Result<BodyDef, Failure> {
         HEARTH_BODY_STATIC => BodyType::Static,
         HEARTH_BODY_KINEMATIC => BodyType::Kinematic,
         HEARTH_BODY_DYNAMIC => BodyType::Dynamic,
-        v => {
-            return Err(Failure::invalid(format!(
-                "type must be a HEARTH_BODY_* code, got {v}"
-            )))
-        }
+        v => return Err(Failure::invalid(format!("type must be a HEARTH_BODY_* code, got {v}"))),
     };
     Ok(BodyDef {
         body_type,
@@ -119,10 +115,7 @@ pub unsafe extern "C" fn hearth_body_create(
 /// # Safety
 /// `world` must be NULL or a live world.
 #[no_mangle]
-pub unsafe extern "C" fn hearth_body_destroy(
-    world: *mut HearthWorld,
-    body: HearthBodyId,
-) -> HearthResult {
+pub unsafe extern "C" fn hearth_body_destroy(world: *mut HearthWorld, body: HearthBodyId) -> HearthResult {
     guard(|| Ok(world_mut(world)?.destroy_body(body.into())?))
 }
 
@@ -321,11 +314,7 @@ unsafe fn set_vec(
     world: *mut HearthWorld,
     body: HearthBodyId,
     value: HearthVec3,
-    write: impl FnOnce(
-        &mut crate::world::World,
-        crate::pool::Handle,
-        crate::math::Vec3,
-    ) -> Result<(), crate::error::Error>,
+    write: impl FnOnce(&mut crate::world::World, crate::pool::Handle, crate::math::Vec3) -> Result<(), crate::error::Error>,
 ) -> HearthResult {
     guard(|| Ok(write(world_mut(world)?, body.into(), value.into())?))
 }
@@ -430,9 +419,7 @@ pub unsafe extern "C" fn hearth_body_apply_angular_impulse(
     body: HearthBodyId,
     value: HearthVec3,
 ) -> HearthResult {
-    set_vec(world, body, value, |w, h, v| {
-        w.apply_angular_impulse(h, v, true)
-    })
+    set_vec(world, body, value, |w, h, v| w.apply_angular_impulse(h, v, true))
 }
 
 /// Adds a force (N) at a world point (m) for the next step: a force plus the torque of its
@@ -449,16 +436,7 @@ pub unsafe extern "C" fn hearth_body_apply_force_at_point(
     force: HearthVec3,
     point: HearthVec3,
 ) -> HearthResult {
-    guard(|| {
-        Ok(
-            world_mut(world)?.apply_force_at_point(
-                body.into(),
-                force.into(),
-                point.into(),
-                true,
-            )?,
-        )
-    })
+    guard(|| Ok(world_mut(world)?.apply_force_at_point(body.into(), force.into(), point.into(), true)?))
 }
 
 /// Applies an impulse (N·s) at a world point (m). Wakes the body.
@@ -474,14 +452,7 @@ pub unsafe extern "C" fn hearth_body_apply_impulse_at_point(
     impulse: HearthVec3,
     point: HearthVec3,
 ) -> HearthResult {
-    guard(|| {
-        Ok(world_mut(world)?.apply_impulse_at_point(
-            body.into(),
-            impulse.into(),
-            point.into(),
-            true,
-        )?)
-    })
+    guard(|| Ok(world_mut(world)?.apply_impulse_at_point(body.into(), impulse.into(), point.into(), true)?))
 }
 
 /// Wakes the body's island (`awake` = 1) or puts it to sleep (0).
@@ -492,11 +463,7 @@ pub unsafe extern "C" fn hearth_body_apply_impulse_at_point(
 /// # Safety
 /// `world` must be NULL or a live world.
 #[no_mangle]
-pub unsafe extern "C" fn hearth_body_set_awake(
-    world: *mut HearthWorld,
-    body: HearthBodyId,
-    awake: u8,
-) -> HearthResult {
+pub unsafe extern "C" fn hearth_body_set_awake(world: *mut HearthWorld, body: HearthBodyId, awake: u8) -> HearthResult {
     guard(|| {
         let w = world_mut(world)?;
         let awake = validate::flag(awake, "awake")?;

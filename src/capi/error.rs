@@ -46,10 +46,7 @@ impl Failure {
         }
     }
     pub fn null(what: &str) -> Failure {
-        Failure::new(
-            HEARTH_ERROR_NULL_POINTER,
-            format!("{what} must not be NULL"),
-        )
+        Failure::new(HEARTH_ERROR_NULL_POINTER, format!("{what} must not be NULL"))
     }
     pub fn invalid(message: impl Into<String>) -> Failure {
         Failure::new(HEARTH_ERROR_INVALID_ARGUMENT, message)
@@ -104,10 +101,7 @@ pub fn guard(f: impl FnOnce() -> FfiResult) -> HearthResult {
             failure.code
         }
         Err(payload) => {
-            set_last_error(&format!(
-                "internal error (panic): {}",
-                panic_message(&*payload)
-            ));
+            set_last_error(&format!("internal error (panic): {}", panic_message(&*payload)));
             HEARTH_ERROR_PANIC
         }
     }
@@ -118,10 +112,7 @@ pub fn guard_value<T>(fallback: T, f: impl FnOnce() -> T) -> T {
     match catch_unwind(AssertUnwindSafe(f)) {
         Ok(v) => v,
         Err(payload) => {
-            set_last_error(&format!(
-                "internal error (panic): {}",
-                panic_message(&*payload)
-            ));
+            set_last_error(&format!("internal error (panic): {}", panic_message(&*payload)));
             fallback
         }
     }

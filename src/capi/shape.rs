@@ -127,12 +127,10 @@ pub unsafe extern "C" fn hearth_shape_create_capsule(
     capsule: *const HearthCapsule,
     out_shape: *mut HearthShapeId,
 ) -> HearthResult {
-    create(world, body, def, capsule, out_shape, |c| {
-        Geometry::Capsule {
-            a: c.a.into(),
-            b: c.b.into(),
-            radius: c.radius,
-        }
+    create(world, body, def, capsule, out_shape, |c| Geometry::Capsule {
+        a: c.a.into(),
+        b: c.b.into(),
+        radius: c.radius,
     })
 }
 
@@ -163,10 +161,7 @@ pub unsafe extern "C" fn hearth_shape_create_plane(
 /// # Safety
 /// `world` must be NULL or a live world.
 #[no_mangle]
-pub unsafe extern "C" fn hearth_shape_destroy(
-    world: *mut HearthWorld,
-    shape: HearthShapeId,
-) -> HearthResult {
+pub unsafe extern "C" fn hearth_shape_destroy(world: *mut HearthWorld, shape: HearthShapeId) -> HearthResult {
     guard(|| Ok(world_mut(world)?.destroy_shape(shape.into())?))
 }
 
@@ -186,11 +181,7 @@ pub unsafe extern "C" fn hearth_shape_get_body(
         let w = world_ref(world)?;
         let s = w.shape(shape.into())?;
         let out = validate::output(out_body, "out_body")?;
-        *out = w
-            .bodies
-            .handle_at(s.body)
-            .expect("shape's body is live")
-            .into();
+        *out = w.bodies.handle_at(s.body).expect("shape's body is live").into();
         Ok(())
     })
 }

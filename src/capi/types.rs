@@ -37,11 +37,7 @@ impl From<HearthVec3> for Vec3 {
 }
 impl From<Vec3> for HearthVec3 {
     fn from(v: Vec3) -> HearthVec3 {
-        HearthVec3 {
-            x: v.x,
-            y: v.y,
-            z: v.z,
-        }
+        HearthVec3 { x: v.x, y: v.y, z: v.z }
     }
 }
 impl From<HearthQuat> for Quat {

@@ -39,6 +39,8 @@ pub struct HearthWorldDef {
     pub restitution_threshold: f32,
     /// Largest speed a body may reach (m/s). Default 400.
     pub max_linear_speed: f32,
+    /// Velocity sweeps over the contacts per sub-step, 1..=64. Default 3.
+    pub velocity_iterations: u32,
     /// Set by `hearth_world_def_default()`; do not change.
     pub internal_value: u32,
 }
@@ -100,6 +102,7 @@ pub(crate) fn settings_from_def(def: &HearthWorldDef) -> Result<WorldSettings, F
         contact_push_max_velocity: def.contact_push_max_velocity,
         restitution_threshold: def.restitution_threshold,
         max_linear_speed: def.max_linear_speed,
+        velocity_iterations: def.velocity_iterations,
         ..WorldSettings::default()
     };
     s.validate()?;
@@ -122,6 +125,7 @@ pub extern "C" fn hearth_world_def_default() -> HearthWorldDef {
         contact_push_max_velocity: s.contact_push_max_velocity,
         restitution_threshold: s.restitution_threshold,
         max_linear_speed: s.max_linear_speed,
+        velocity_iterations: s.velocity_iterations,
         internal_value: DEF_COOKIE,
     }
 }
@@ -189,9 +193,7 @@ pub unsafe extern "C" fn hearth_world_step(world: *mut HearthWorld, dt: f32) -> 
         }
         let w = world_mut(world)?;
         if !dt.is_finite() || dt < 0.0 {
-            return Err(Failure::invalid(format!(
-                "dt must be finite and >= 0, got {dt}"
-            )));
+            return Err(Failure::invalid(format!("dt must be finite and >= 0, got {dt}")));
         }
         handle.locked.set(true);
         let r = catch_unwind(AssertUnwindSafe(|| w.step(dt)));
@@ -211,10 +213,7 @@ pub unsafe extern "C" fn hearth_world_step(world: *mut HearthWorld, dt: f32) -> 
 /// # Safety
 /// `world` must be NULL or a live world.
 #[no_mangle]
-pub unsafe extern "C" fn hearth_world_set_gravity(
-    world: *mut HearthWorld,
-    gravity: HearthVec3,
-) -> HearthResult {
+pub unsafe extern "C" fn hearth_world_set_gravity(world: *mut HearthWorld, gravity: HearthVec3) -> HearthResult {
     guard(|| Ok(world_mut(world)?.set_gravity(gravity.into())?))
 }
 
@@ -223,10 +222,7 @@ pub unsafe extern "C" fn hearth_world_set_gravity(
 /// # Safety
 /// `world` must be NULL or a live world; `out` NULL or writable.
 #[no_mangle]
-pub unsafe extern "C" fn hearth_world_get_gravity(
-    world: *const HearthWorld,
-    out: *mut HearthVec3,
-) -> HearthResult {
+pub unsafe extern "C" fn hearth_world_get_gravity(world: *const HearthWorld, out: *mut HearthVec3) -> HearthResult {
     guard(|| {
         let w = world_ref(world)?;
         let out = validate::output(out, "out")?;

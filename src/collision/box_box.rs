@@ -134,15 +134,7 @@ pub(crate) fn box_box(a: &WorldBox, b: &WorldBox, speculative: f32) -> Manifold 
             Vec3::new(rc[0].y, rc[1].y, rc[2].y),
             Vec3::new(rc[0].z, rc[1].z, rc[2].z),
         ];
-        face_contact(
-            b,
-            face_b,
-            b.apply_inv(a.center),
-            &axes,
-            ha,
-            speculative,
-            true,
-        )
+        face_contact(b, face_b, b.apply_inv(a.center), &axes, ha, speculative, true)
     } else {
         face_contact(a, face_a, t, &rc, hb, speculative, false)
     }
@@ -180,12 +172,7 @@ fn edge_contact(
     let (u1, u2) = (-sign(n.dot(rc[j1])), -sign(n.dot(rc[j2])));
     let base_b = t + (u1 * hb[j1]) * rc[j1] + (u2 * hb[j2]) * rc[j2];
     let ext_b = hb[j] * rc[j];
-    let (pa, qa, pb, qb) = (
-        base_a - ext_a,
-        base_a + ext_a,
-        base_b - ext_b,
-        base_b + ext_b,
-    );
+    let (pa, qa, pb, qb) = (base_a - ext_a, base_a + ext_a, base_b - ext_b, base_b + ext_b);
     let (sa, sb) = closest_segment_segment(pa, qa, pb, qb);
     let ca = pa + sa * (qa - pa);
     let cb = pb + sb * (qb - pb);
@@ -200,24 +187,12 @@ fn edge_contact(
         normal: a.rot * n,
         ..Manifold::EMPTY
     };
-    push_point(
-        &mut m,
-        a.apply(0.5 * (ca + cb)),
-        sep,
-        EDGE_FLAG | id_a << 8 | id_b,
-    );
+    push_point(&mut m, a.apply(0.5 * (ca + cb)), sep, EDGE_FLAG | id_a << 8 | id_b);
     m
 }
 
 /// Clips `input` to the half-space `side * p[axis] <= limit`; the new edge lies on `line`.
-fn clip(
-    input: &[ClipVertex],
-    out: &mut [ClipVertex; CLIP_CAP],
-    axis: usize,
-    side: f32,
-    limit: f32,
-    line: u8,
-) -> usize {
+fn clip(input: &[ClipVertex], out: &mut [ClipVertex; CLIP_CAP], axis: usize, side: f32, limit: f32, line: u8) -> usize {
     let mut n = 0;
     let count = input.len();
     for idx in 0..count {
@@ -367,12 +342,7 @@ fn face_contact(
     let (keep, kept) = reduce(&cand[..m_count], k1, k2);
     for &ci in &keep[..kept] {
         let cp = cand[ci];
-        push_point(
-            &mut m,
-            rf.apply(cp.p - (0.5 * cp.sep) * normal_local),
-            cp.sep,
-            cp.id,
-        );
+        push_point(&mut m, rf.apply(cp.p - (0.5 * cp.sep) * normal_local), cp.sep, cp.id);
     }
     m
 }

@@ -64,10 +64,7 @@ fn unit_box_resting_on_slab_gives_four_corners() {
     let s = collide(&slab(), &at(Vec3::ZERO), &cube(0.5), &top, 0.0);
     assert!(near(s.normal, Vec3::Y, 1e-6));
     assert!(same_points(&s, &corners, 1e-5));
-    assert!(s
-        .points()
-        .iter()
-        .all(|p| (p.separation + 0.01).abs() < 1e-5));
+    assert!(s.points().iter().all(|p| (p.separation + 0.01).abs() < 1e-5));
 }
 
 #[test]
@@ -172,32 +169,20 @@ fn rotated_45_on_equal_box_reduces_octagon_to_four() {
             }
         }
     }
-    let min_sep = m
-        .points()
-        .iter()
-        .map(|p| p.separation)
-        .fold(f32::MAX, f32::min);
+    let min_sep = m.points().iter().map(|p| p.separation).fold(f32::MAX, f32::min);
     assert!((min_sep - deepest).abs() < 2e-3, "{min_sep} vs {deepest}");
     // Every point lies on the octagon: its two surface points are on the two faces, inside
     // both footprints.
     for p in m.points() {
         let on_a = p.point - 0.5 * p.separation * m.normal;
         let on_b = top.apply_inv(p.point + 0.5 * p.separation * m.normal);
-        assert!(
-            (on_a.y - 0.5).abs() < 1e-4 && on_a.x.abs() <= 0.5 + 1e-4 && on_a.z.abs() <= 0.5 + 1e-4
-        );
-        assert!(
-            (on_b.y + 0.5).abs() < 1e-4 && on_b.x.abs() <= 0.5 + 1e-4 && on_b.z.abs() <= 0.5 + 1e-4
-        );
+        assert!((on_a.y - 0.5).abs() < 1e-4 && on_a.x.abs() <= 0.5 + 1e-4 && on_a.z.abs() <= 0.5 + 1e-4);
+        assert!((on_b.y + 0.5).abs() < 1e-4 && on_b.x.abs() <= 0.5 + 1e-4 && on_b.z.abs() <= 0.5 + 1e-4);
     }
     // The four kept points span most of the octagon (area 0.828).
     let mut pts: Vec<Vec3> = m.points().iter().map(|p| p.point).collect();
     let c = pts.iter().fold(Vec3::ZERO, |s, p| s + *p) / 4.0;
-    pts.sort_by(|a, b| {
-        (a.z - c.z)
-            .atan2(a.x - c.x)
-            .total_cmp(&(b.z - c.z).atan2(b.x - c.x))
-    });
+    pts.sort_by(|a, b| (a.z - c.z).atan2(a.x - c.x).total_cmp(&(b.z - c.z).atan2(b.x - c.x)));
     let mut area = 0.0;
     for i in 0..4 {
         let (a, b) = (pts[i], pts[(i + 1) % 4]);
@@ -212,35 +197,22 @@ fn crossed_edges_give_one_point() {
     // edge along X), overlapping by 0.05.
     let r = 0.5 * 2f32.sqrt();
     let a = Transform::new(Vec3::ZERO, Quat::from_rotation_z(FRAC_PI_4));
-    let b = Transform::new(
-        Vec3::new(0.0, 2.0 * r - 0.05, 0.0),
-        Quat::from_rotation_x(FRAC_PI_4),
-    );
+    let b = Transform::new(Vec3::new(0.0, 2.0 * r - 0.05, 0.0), Quat::from_rotation_x(FRAC_PI_4));
     let m = collide(&cube(0.5), &a, &cube(0.5), &b, 0.0);
     assert_eq!(m.count, 1);
     // Edge directions Z (A) and X (B): normal along Z x X = +Y, from A to B.
     assert!(near(m.normal, Vec3::Z.cross(Vec3::X), 1e-5));
     assert!((m.points[0].separation + 0.05).abs() < 1e-4);
-    assert!(near(
-        m.points[0].point,
-        Vec3::new(0.0, r - 0.025, 0.0),
-        1e-4
-    ));
+    assert!(near(m.points[0].point, Vec3::new(0.0, r - 0.025, 0.0), 1e-4));
     assert!(m.points[0].id & EDGE_FLAG != 0);
     // Swapped.
     let s = collide(&cube(0.5), &b, &cube(0.5), &a, 0.0);
     assert!(near(s.normal, -Vec3::Y, 1e-5) && near(s.points[0].point, m.points[0].point, 1e-4));
     // Offset edges: the closest points are off-centre.
-    let b2 = Transform::new(
-        Vec3::new(0.2, 2.0 * r - 0.05, -0.1),
-        Quat::from_rotation_x(FRAC_PI_4),
-    );
+    let b2 = Transform::new(Vec3::new(0.2, 2.0 * r - 0.05, -0.1), Quat::from_rotation_x(FRAC_PI_4));
     let o = collide(&cube(0.5), &a, &cube(0.5), &b2, 0.0);
     assert_eq!(o.count, 1);
-    assert!(
-        near(o.points[0].point, Vec3::new(0.0, r - 0.025, -0.1), 1e-4),
-        "{o:?}"
-    );
+    assert!(near(o.points[0].point, Vec3::new(0.0, r - 0.025, -0.1), 1e-4), "{o:?}");
     assert_eq!(o.points[0].id, m.points[0].id);
 }
 
@@ -254,10 +226,7 @@ fn tilted_box_under_slab_uses_face_of_b() {
     assert_eq!(m.count, 2);
     assert!(near(m.normal, Vec3::Y, 1e-5));
     let x = 0.5 * (FRAC_PI_6.cos() - FRAC_PI_6.sin());
-    let expected = [
-        Vec3::new(x, top - 0.005, 0.5),
-        Vec3::new(x, top - 0.005, -0.5),
-    ];
+    let expected = [Vec3::new(x, top - 0.005, 0.5), Vec3::new(x, top - 0.005, -0.5)];
     assert!(same_points(&m, &expected, 1e-4), "{m:?}");
     assert!(m
         .points()
@@ -276,17 +245,11 @@ fn speculative_and_separated() {
         .points()
         .iter()
         .all(|p| (p.separation - 1.5).abs() < 1e-5 && (p.point.x - 1.25).abs() < 1e-5));
-    assert_eq!(
-        collide(&cube(0.5), &at(Vec3::ZERO), &cube(0.5), &b, 1.4).count,
-        0
-    );
+    assert_eq!(collide(&cube(0.5), &at(Vec3::ZERO), &cube(0.5), &b, 1.4).count, 0);
     // Separated along an edge axis beyond speculative.
     let r = 0.5 * 2f32.sqrt();
     let a = Transform::new(Vec3::ZERO, Quat::from_rotation_z(FRAC_PI_4));
-    let far = Transform::new(
-        Vec3::new(0.0, 2.0 * r + 0.3, 0.0),
-        Quat::from_rotation_x(FRAC_PI_4),
-    );
+    let far = Transform::new(Vec3::new(0.0, 2.0 * r + 0.3, 0.0), Quat::from_rotation_x(FRAC_PI_4));
     assert_eq!(collide(&cube(0.5), &a, &cube(0.5), &far, 0.1).count, 0);
     let e = collide(&cube(0.5), &a, &cube(0.5), &far, 0.5);
     assert_eq!(e.count, 1);
@@ -330,9 +293,6 @@ fn equal_boxes_stacked_keep_ids_under_noise() {
         let m = collide(&cube(0.5), &at(Vec3::ZERO), &cube(0.5), &xf, 0.02);
         assert_eq!(m.count, 4, "{m:?}");
         assert_eq!(sorted_ids(&m), ids, "{dx} {dz} {yaw} {tilt}");
-        assert!(m
-            .points()
-            .iter()
-            .all(|p| (p.separation + 0.001).abs() < 2e-4));
+        assert!(m.points().iter().all(|p| (p.separation + 0.001).abs() < 2e-4));
     }
 }

@@ -4,8 +4,8 @@
 //! id 0, one derived from the end `b` has id 1.
 
 use super::geom::{
-    any_perpendicular, closest_segment_segment, push_point, single_point, WorldBox, WorldPlane,
-    DEGENERATE_DIST_SQ, FALLBACK_NORMAL,
+    any_perpendicular, closest_segment_segment, push_point, single_point, WorldBox, WorldPlane, DEGENERATE_DIST_SQ,
+    FALLBACK_NORMAL,
 };
 use super::Manifold;
 use crate::math::Vec3;
@@ -22,15 +22,7 @@ const EDGE_REL_TOL: f32 = 0.05;
 const EDGE_ABS_TOL: f32 = 0.002;
 
 /// Capsule A (world segment `pa`–`qa`) against capsule B.
-pub(crate) fn capsule_capsule(
-    pa: Vec3,
-    qa: Vec3,
-    ra: f32,
-    pb: Vec3,
-    qb: Vec3,
-    rb: f32,
-    speculative: f32,
-) -> Manifold {
+pub(crate) fn capsule_capsule(pa: Vec3, qa: Vec3, ra: f32, pb: Vec3, qb: Vec3, rb: f32, speculative: f32) -> Manifold {
     let (s, t) = closest_segment_segment(pa, qa, pb, qb);
     let da = qa - pa;
     let db = qb - pb;
@@ -119,13 +111,7 @@ pub(crate) fn capsule_capsule(
 }
 
 /// Capsule A against plane B: one point per end cap within reach.
-pub(crate) fn capsule_plane(
-    pa: Vec3,
-    qa: Vec3,
-    r: f32,
-    plane: &WorldPlane,
-    speculative: f32,
-) -> Manifold {
+pub(crate) fn capsule_plane(pa: Vec3, qa: Vec3, r: f32, plane: &WorldPlane, speculative: f32) -> Manifold {
     let n = plane.n;
     let mut m = Manifold {
         normal: -n,
@@ -192,11 +178,7 @@ fn segment_box_closest(p: Vec3, d: Vec3, h: Vec3) -> (f32, f32) {
             num -= d[k] * (p[k] - b);
             den += d[k] * d[k];
         }
-        let t = if den > 1.0e-12 {
-            (num / den).clamp(t0, t1)
-        } else {
-            t0
-        };
+        let t = if den > 1.0e-12 { (num / den).clamp(t0, t1) } else { t0 };
         let x = p + t * d;
         let dd = (x - x.clamp(-h, h)).length_squared();
         if dd < best.1 {
@@ -209,15 +191,7 @@ fn segment_box_closest(p: Vec3, d: Vec3, h: Vec3) -> (f32, f32) {
 /// Clips the box-frame segment `p`–`q` to the face `sign * e_k` of the box and reports the
 /// clipped ends measured along that face normal. Returns `None` when nothing lies over the face.
 #[allow(clippy::too_many_arguments)]
-fn capsule_face(
-    bx: &WorldBox,
-    p: Vec3,
-    q: Vec3,
-    r: f32,
-    k: usize,
-    sign: f32,
-    speculative: f32,
-) -> Option<Manifold> {
+fn capsule_face(bx: &WorldBox, p: Vec3, q: Vec3, r: f32, k: usize, sign: f32, speculative: f32) -> Option<Manifold> {
     let h = bx.half;
     let d = q - p;
     let (mut t0, mut t1) = (0.0f32, 1.0f32);
@@ -248,11 +222,7 @@ fn capsule_face(
         ..Manifold::EMPTY
     };
     if (t1 - t0) * (t1 - t0) * d.length_squared() < MIN_POINT_SPACING * MIN_POINT_SPACING {
-        let (s, sep, id) = if sep0 <= sep1 {
-            (s0, sep0, 0)
-        } else {
-            (s1, sep1, 1)
-        };
+        let (s, sep, id) = if sep0 <= sep1 { (s0, sep0, 0) } else { (s1, sep1, 1) };
         if sep <= speculative {
             push_point(&mut m, bx.apply(s - (r + 0.5 * sep) * f), sep, id);
         }

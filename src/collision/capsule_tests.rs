@@ -63,10 +63,7 @@ fn capsules_side_by_side_two_points() {
     let v = collide(&a, &at(Vec3::ZERO), &bz, &xf, 0.0);
     assert_eq!(v.count, 2);
     assert!(near(v.normal, Vec3::Y));
-    assert!(v
-        .points()
-        .iter()
-        .all(|p| (p.separation + 0.01).abs() < 1e-5));
+    assert!(v.points().iter().all(|p| (p.separation + 0.01).abs() < 1e-5));
 }
 
 #[test]
@@ -110,13 +107,7 @@ fn capsule_plane_flat_standing_speculative() {
         offset: 0.0,
     };
     let a = cap_x(1.0, 0.25);
-    let m = collide(
-        &a,
-        &at(Vec3::new(0.0, 0.24, 0.0)),
-        &ground,
-        &Transform::IDENTITY,
-        0.0,
-    );
+    let m = collide(&a, &at(Vec3::new(0.0, 0.24, 0.0)), &ground, &Transform::IDENTITY, 0.0);
     assert_eq!(m.count, 2);
     assert!(near(m.normal, -Vec3::Y));
     for p in m.points() {
@@ -129,29 +120,11 @@ fn capsule_plane_flat_standing_speculative() {
     assert_eq!(s.count, 1);
     assert!((s.points[0].separation + 0.05).abs() < 1e-5);
     // Plane first; hovering within speculative.
-    let w = collide(
-        &ground,
-        &Transform::IDENTITY,
-        &a,
-        &at(Vec3::new(0.0, 1.0, 0.0)),
-        1.0,
-    );
+    let w = collide(&ground, &Transform::IDENTITY, &a, &at(Vec3::new(0.0, 1.0, 0.0)), 1.0);
     assert_eq!(w.count, 2);
-    assert!(
-        near(w.normal, Vec3::Y)
-            && w.points()
-                .iter()
-                .all(|p| (p.separation - 0.75).abs() < 1e-5)
-    );
+    assert!(near(w.normal, Vec3::Y) && w.points().iter().all(|p| (p.separation - 0.75).abs() < 1e-5));
     assert_eq!(
-        collide(
-            &a,
-            &at(Vec3::new(0.0, 1.0, 0.0)),
-            &ground,
-            &Transform::IDENTITY,
-            0.5
-        )
-        .count,
+        collide(&a, &at(Vec3::new(0.0, 1.0, 0.0)), &ground, &Transform::IDENTITY, 0.5).count,
         0
     );
     // Zero-length capsule on the plane: one point.
@@ -161,14 +134,7 @@ fn capsule_plane_flat_standing_speculative() {
         radius: 0.25,
     };
     assert_eq!(
-        collide(
-            &z,
-            &at(Vec3::new(0.0, 0.2, 0.0)),
-            &ground,
-            &Transform::IDENTITY,
-            0.0
-        )
-        .count,
+        collide(&z, &at(Vec3::new(0.0, 0.2, 0.0)), &ground, &Transform::IDENTITY, 0.0).count,
         1
     );
 }
@@ -185,13 +151,7 @@ fn slab() -> Geometry {
 fn capsule_flat_on_box_two_clipped_points() {
     // Capsule of length 4 along X lying on a unit box: the clip keeps x in [-0.5, 0.5].
     let a = cap_x(2.0, 0.25);
-    let m = collide(
-        &a,
-        &at(Vec3::new(0.0, 0.74, 0.1)),
-        &slab(),
-        &at(Vec3::ZERO),
-        0.0,
-    );
+    let m = collide(&a, &at(Vec3::new(0.0, 0.74, 0.1)), &slab(), &at(Vec3::ZERO), 0.0);
     assert_eq!(m.count, 2);
     assert!(near(m.normal, -Vec3::Y));
     let mut xs = [m.points[0].point.x, m.points[1].point.x];
@@ -203,24 +163,12 @@ fn capsule_flat_on_box_two_clipped_points() {
     }
     assert_ne!(m.points[0].id, m.points[1].id);
     // Swapped order: normal flips, points stay.
-    let s = collide(
-        &slab(),
-        &at(Vec3::ZERO),
-        &a,
-        &at(Vec3::new(0.0, 0.74, 0.1)),
-        0.0,
-    );
+    let s = collide(&slab(), &at(Vec3::ZERO), &a, &at(Vec3::new(0.0, 0.74, 0.1)), 0.0);
     assert_eq!(s.count, 2);
     assert!(near(s.normal, Vec3::Y));
     // Short capsule entirely over the face: the end caps.
     let short = cap_x(0.3, 0.25);
-    let t = collide(
-        &short,
-        &at(Vec3::new(0.0, 0.74, 0.0)),
-        &slab(),
-        &at(Vec3::ZERO),
-        0.0,
-    );
+    let t = collide(&short, &at(Vec3::new(0.0, 0.74, 0.0)), &slab(), &at(Vec3::ZERO), 0.0);
     assert_eq!(t.count, 2);
     let mut xs = [t.points[0].point.x, t.points[1].point.x];
     xs.sort_by(f32::total_cmp);
@@ -244,30 +192,18 @@ fn capsule_box_end_near_corner_and_rotated_box() {
         b: Vec3::new(0.0, 0.0, 0.2),
         radius: 0.1,
     };
-    let bxf = Transform::new(
-        Vec3::ZERO,
-        Quat::from_rotation_y(std::f32::consts::FRAC_PI_4),
-    );
+    let bxf = Transform::new(Vec3::ZERO, Quat::from_rotation_y(std::f32::consts::FRAC_PI_4));
     let r = collide(&b, &at(Vec3::new(0.0, 0.58, 0.0)), &slab(), &bxf, 0.0);
     assert_eq!(r.count, 2);
     assert!(near(r.normal, -Vec3::Y));
-    assert!(r
-        .points()
-        .iter()
-        .all(|p| (p.separation + 0.02).abs() < 1e-5));
+    assert!(r.points().iter().all(|p| (p.separation + 0.02).abs() < 1e-5));
 }
 
 #[test]
 fn capsule_box_deep_and_speculative() {
     // Capsule axis passes through the box near its top: push out through +Y.
     let a = cap_x(1.0, 0.1);
-    let m = collide(
-        &a,
-        &at(Vec3::new(0.0, 0.4, 0.0)),
-        &slab(),
-        &at(Vec3::ZERO),
-        0.0,
-    );
+    let m = collide(&a, &at(Vec3::new(0.0, 0.4, 0.0)), &slab(), &at(Vec3::ZERO), 0.0);
     assert!(m.count >= 1 && near(m.normal, -Vec3::Y));
     assert!(m.points().iter().all(|p| (p.separation + 0.2).abs() < 1e-4));
     // Standing capsule poking into the top face: one point at the lower end.
@@ -284,26 +220,11 @@ fn capsule_box_deep_and_speculative() {
     let d = collide(&diag, &at(Vec3::ZERO), &slab(), &at(Vec3::ZERO), 0.0);
     assert!(d.count >= 1 && unit(&d) && d.points().iter().all(|p| p.separation < 0.0));
     // Hovering 1.5 m above the face.
-    let h = collide(
-        &a,
-        &at(Vec3::new(0.0, 2.1, 0.0)),
-        &slab(),
-        &at(Vec3::ZERO),
-        2.0,
-    );
+    let h = collide(&a, &at(Vec3::new(0.0, 2.1, 0.0)), &slab(), &at(Vec3::ZERO), 2.0);
     assert_eq!(h.count, 2);
-    assert!(
-        h.points().iter().all(|p| (p.separation - 1.5).abs() < 1e-5) && near(h.normal, -Vec3::Y)
-    );
+    assert!(h.points().iter().all(|p| (p.separation - 1.5).abs() < 1e-5) && near(h.normal, -Vec3::Y));
     assert_eq!(
-        collide(
-            &a,
-            &at(Vec3::new(0.0, 2.1, 0.0)),
-            &slab(),
-            &at(Vec3::ZERO),
-            1.0
-        )
-        .count,
+        collide(&a, &at(Vec3::new(0.0, 2.1, 0.0)), &slab(), &at(Vec3::ZERO), 1.0).count,
         0
     );
 }

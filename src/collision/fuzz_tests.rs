@@ -21,11 +21,7 @@ impl Lcg {
         Vec3::new(self.range(-s, s), self.range(-s, s), self.range(-s, s))
     }
     fn quat(&mut self) -> Quat {
-        let v = Vec3::new(
-            self.range(-1.0, 1.0),
-            self.range(-1.0, 1.0),
-            self.range(-1.0, 1.0),
-        );
+        let v = Vec3::new(self.range(-1.0, 1.0), self.range(-1.0, 1.0), self.range(-1.0, 1.0));
         let w = self.range(-1.0, 1.0);
         Quat::from_xyzw(v.x, v.y, v.z, w).normalize()
     }
@@ -99,19 +95,14 @@ fn check(a: &Geometry, xa: &Transform, b: &Geometry, xb: &Transform, spec: f32, 
     if m.count == 0 {
         return;
     }
-    assert!(
-        m.normal.is_finite() && (m.normal.length() - 1.0).abs() < 1e-4,
-        "{m:?}"
-    );
+    assert!(m.normal.is_finite() && (m.normal.length() - 1.0).abs() < 1e-4, "{m:?}");
     for (i, p) in m.points().iter().enumerate() {
         assert!(p.point.is_finite() && p.separation.is_finite(), "{m:?}");
         assert!(p.separation <= spec + 1e-5, "{m:?}");
         let on_a = p.point - 0.5 * p.separation * m.normal;
         let on_b = p.point + 0.5 * p.separation * m.normal;
         let mut tol = 2e-3 * (1.0 + p.separation.abs());
-        if let (Geometry::Capsule { a: p0, b: p1, .. }, Geometry::Capsule { a: q0, b: q1, .. }) =
-            (a, b)
-        {
+        if let (Geometry::Capsule { a: p0, b: p1, .. }, Geometry::Capsule { a: q0, b: q1, .. }) = (a, b) {
             if m.count == 2 {
                 // Side-by-side capsules share one normal; a slight twist between the axes
                 // (at most 0.05 rad) offsets the points sideways.
@@ -154,11 +145,7 @@ fn random_pairs_are_consistent() {
         let xa = Transform::new(r.vec(0.5), r.quat());
         let reach = if (iter / 16) % 2 == 0 { 0.4 } else { 1.5 };
         let xb = Transform::new(xa.p + r.vec(reach), r.quat());
-        let spec = if r.next() < 0.5 {
-            0.0
-        } else {
-            r.range(0.0, 0.5)
-        };
+        let spec = if r.next() < 0.5 { 0.0 } else { r.range(0.0, 0.5) };
         let m = collide(&a, &xa, &b, &xb, spec);
         check(&a, &xa, &b, &xb, spec, &m);
         if m.count == 0 {
@@ -170,17 +157,9 @@ fn random_pairs_are_consistent() {
             );
         } else {
             // The deepest point never gets deeper with a wider search.
-            let min = m
-                .points()
-                .iter()
-                .map(|p| p.separation)
-                .fold(f32::MAX, f32::min);
+            let min = m.points().iter().map(|p| p.separation).fold(f32::MAX, f32::min);
             let wide = collide(&a, &xa, &b, &xb, spec + 5.0);
-            let wmin = wide
-                .points()
-                .iter()
-                .map(|p| p.separation)
-                .fold(f32::MAX, f32::min);
+            let wmin = wide.points().iter().map(|p| p.separation).fold(f32::MAX, f32::min);
             assert!(
                 wide.count > 0 && (wmin - min).abs() < 1e-4,
                 "{a:?} {b:?} {m:?} {wide:?}"

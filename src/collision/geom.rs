@@ -32,11 +32,7 @@ impl WorldBox {
     /// World direction into the box frame.
     #[inline]
     pub fn dir_to_local(&self, d: Vec3) -> Vec3 {
-        Vec3::new(
-            self.rot.x_axis.dot(d),
-            self.rot.y_axis.dot(d),
-            self.rot.z_axis.dot(d),
-        )
+        Vec3::new(self.rot.x_axis.dot(d), self.rot.y_axis.dot(d), self.rot.z_axis.dot(d))
     }
 
     #[inline]
@@ -142,24 +138,14 @@ pub(crate) fn any_perpendicular(u: Vec3) -> Vec3 {
 #[inline]
 pub(crate) fn push_point(m: &mut Manifold, point: Vec3, separation: f32, id: u32) {
     if m.count < MAX_MANIFOLD_POINTS {
-        m.points[m.count] = ManifoldPoint {
-            point,
-            separation,
-            id,
-        };
+        m.points[m.count] = ManifoldPoint { point, separation, id };
         m.count += 1;
     }
 }
 
 /// A manifold with one point, or empty when `separation > speculative`.
 #[inline]
-pub(crate) fn single_point(
-    normal: Vec3,
-    point: Vec3,
-    separation: f32,
-    id: u32,
-    speculative: f32,
-) -> Manifold {
+pub(crate) fn single_point(normal: Vec3, point: Vec3, separation: f32, id: u32, speculative: f32) -> Manifold {
     if separation > speculative {
         return Manifold::EMPTY;
     }

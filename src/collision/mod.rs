@@ -70,13 +70,7 @@ impl Manifold {
 ///
 /// Pairs are handled with `kind(a) <= kind(b)`; the other order swaps the arguments and
 /// flips the normal (points, separations and ids are unchanged).
-pub fn collide(
-    a: &Geometry,
-    xf_a: &Transform,
-    b: &Geometry,
-    xf_b: &Transform,
-    speculative: f32,
-) -> Manifold {
+pub fn collide(a: &Geometry, xf_a: &Transform, b: &Geometry, xf_b: &Transform, speculative: f32) -> Manifold {
     if a.kind() > b.kind() {
         let mut m = collide_ordered(b, xf_b, a, xf_a, speculative);
         m.normal = -m.normal;
@@ -86,25 +80,12 @@ pub fn collide(
 }
 
 /// `collide` for `kind(a) <= kind(b)`.
-fn collide_ordered(
-    a: &Geometry,
-    xf_a: &Transform,
-    b: &Geometry,
-    xf_b: &Transform,
-    speculative: f32,
-) -> Manifold {
+fn collide_ordered(a: &Geometry, xf_a: &Transform, b: &Geometry, xf_b: &Transform, speculative: f32) -> Manifold {
     use Geometry as G;
     match (*a, *b) {
-        (
-            G::Sphere {
-                center: ca,
-                radius: ra,
-            },
-            G::Sphere {
-                center: cb,
-                radius: rb,
-            },
-        ) => sphere::sphere_sphere(xf_a.apply(ca), ra, xf_b.apply(cb), rb, speculative),
+        (G::Sphere { center: ca, radius: ra }, G::Sphere { center: cb, radius: rb }) => {
+            sphere::sphere_sphere(xf_a.apply(ca), ra, xf_b.apply(cb), rb, speculative)
+        }
         (
             G::Sphere { center, radius },
             G::Capsule {
@@ -156,11 +137,7 @@ fn collide_ordered(
             speculative,
         ),
         (
-            G::Capsule {
-                a: pa,
-                b: qa,
-                radius,
-            },
+            G::Capsule { a: pa, b: qa, radius },
             G::Box {
                 center,
                 rotation,
@@ -170,14 +147,7 @@ fn collide_ordered(
             let bx = WorldBox::new(center, rotation, half_extents, xf_b);
             capsule::capsule_box(xf_a.apply(pa), xf_a.apply(qa), radius, &bx, speculative)
         }
-        (
-            G::Capsule {
-                a: pa,
-                b: qa,
-                radius,
-            },
-            G::Plane { normal, offset },
-        ) => {
+        (G::Capsule { a: pa, b: qa, radius }, G::Plane { normal, offset }) => {
             let plane = WorldPlane::new(normal, offset, xf_b);
             capsule::capsule_plane(xf_a.apply(pa), xf_a.apply(qa), radius, &plane, speculative)
         }

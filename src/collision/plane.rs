@@ -105,10 +105,7 @@ mod tests {
     #[test]
     fn box_on_edge_on_plane_two_points() {
         let h = 0.5 * 2f32.sqrt();
-        let xf = Transform::new(
-            Vec3::new(0.0, h - 0.01, 0.0),
-            Quat::from_rotation_z(FRAC_PI_4),
-        );
+        let xf = Transform::new(Vec3::new(0.0, h - 0.01, 0.0), Quat::from_rotation_z(FRAC_PI_4));
         let m = collide(&unit_box(), &xf, &ground(), &Transform::IDENTITY, 0.05);
         assert_eq!(m.count, 2);
         for p in m.points() {
@@ -125,10 +122,7 @@ mod tests {
         // Bottom four at 1.5, top four at 2.5 (beyond speculative).
         assert_eq!(m.count, 4);
         assert!(m.points().iter().all(|p| (p.separation - 1.5).abs() < 1e-5));
-        assert_eq!(
-            collide(&unit_box(), &xf, &ground(), &Transform::IDENTITY, 1.0).count,
-            0
-        );
+        assert_eq!(collide(&unit_box(), &xf, &ground(), &Transform::IDENTITY, 1.0).count, 0);
         // Plane body rotated so the local +Y normal points to world +X (wall x <= -3).
         let wall_xf = Transform::new(
             Vec3::new(-3.0, 0.0, 0.0),

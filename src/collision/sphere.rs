@@ -1,8 +1,6 @@
 //! Sphere against sphere, capsule, box and plane. Always one point with id 0.
 
-use super::geom::{
-    closest_on_segment, single_point, WorldBox, WorldPlane, DEGENERATE_DIST_SQ, FALLBACK_NORMAL,
-};
+use super::geom::{closest_on_segment, single_point, WorldBox, WorldPlane, DEGENERATE_DIST_SQ, FALLBACK_NORMAL};
 use super::Manifold;
 use crate::math::Vec3;
 
@@ -33,14 +31,7 @@ pub(crate) fn sphere_sphere(ca: Vec3, ra: f32, cb: Vec3, rb: f32, speculative: f
 }
 
 /// Sphere A against capsule B (world segment `pb`–`qb`).
-pub(crate) fn sphere_capsule(
-    ca: Vec3,
-    ra: f32,
-    pb: Vec3,
-    qb: Vec3,
-    rb: f32,
-    speculative: f32,
-) -> Manifold {
+pub(crate) fn sphere_capsule(ca: Vec3, ra: f32, pb: Vec3, qb: Vec3, rb: f32, speculative: f32) -> Manifold {
     let cb = closest_on_segment(ca, pb, qb);
     point_point(ca, ra, cb, rb, speculative)
 }
@@ -153,10 +144,7 @@ mod tests {
             center: Vec3::X,
             radius: 0.5,
         };
-        let xf = Transform::new(
-            Vec3::ZERO,
-            Quat::from_rotation_z(std::f32::consts::FRAC_PI_2),
-        );
+        let xf = Transform::new(Vec3::ZERO, Quat::from_rotation_z(std::f32::consts::FRAC_PI_2));
         let m = collide(&a, &xf, &sphere(0.5), &at(Vec3::new(0.0, 1.9, 0.0)), 0.0);
         assert_eq!(m.count, 1);
         assert!(near(m.normal, Vec3::Y));
@@ -171,34 +159,16 @@ mod tests {
             radius: 0.25,
         };
         let s = sphere(0.5);
-        let m = collide(
-            &s,
-            &at(Vec3::new(0.3, 0.7, 0.0)),
-            &cap,
-            &at(Vec3::ZERO),
-            0.0,
-        );
+        let m = collide(&s, &at(Vec3::new(0.3, 0.7, 0.0)), &cap, &at(Vec3::ZERO), 0.0);
         assert_eq!(m.count, 1);
         assert!(near(m.normal, -Vec3::Y));
         assert!((m.points[0].separation + 0.05).abs() < 1e-5);
         assert!(near(m.points[0].point, Vec3::new(0.3, 0.225, 0.0)));
         // Swapped: capsule first, normal flips.
-        let w = collide(
-            &cap,
-            &at(Vec3::ZERO),
-            &s,
-            &at(Vec3::new(0.3, 0.7, 0.0)),
-            0.0,
-        );
+        let w = collide(&cap, &at(Vec3::ZERO), &s, &at(Vec3::new(0.3, 0.7, 0.0)), 0.0);
         assert!(near(w.normal, Vec3::Y) && near(w.points[0].point, m.points[0].point));
         // Beyond the end cap.
-        let e = collide(
-            &s,
-            &at(Vec3::new(1.6, 0.0, 0.0)),
-            &cap,
-            &at(Vec3::ZERO),
-            0.0,
-        );
+        let e = collide(&s, &at(Vec3::new(1.6, 0.0, 0.0)), &cap, &at(Vec3::ZERO), 0.0);
         assert!(near(e.normal, -Vec3::X));
         assert!((e.points[0].separation + 0.15).abs() < 1e-5);
         // Zero-length capsule centred on the sphere: finite unit normal.
@@ -234,10 +204,7 @@ mod tests {
         assert!(near(e.normal, dir));
         assert!((e.points[0].separation - (0.3 * 2f32.sqrt() - 0.5)).abs() < 1e-5);
         // Box rotated 90° about Z: its long axis is now world Y, so the top face is at y=1.
-        let xf = Transform::new(
-            Vec3::ZERO,
-            Quat::from_rotation_z(std::f32::consts::FRAC_PI_2),
-        );
+        let xf = Transform::new(Vec3::ZERO, Quat::from_rotation_z(std::f32::consts::FRAC_PI_2));
         let r = collide(&s, &at(Vec3::new(0.0, 1.4, 0.0)), &bx, &xf, 0.0);
         assert!(near(r.normal, -Vec3::Y));
         assert!((r.points[0].separation + 0.1).abs() < 1e-5);
@@ -251,13 +218,7 @@ mod tests {
             half_extents: Vec3::new(1.0, 1.0, 1.0),
         };
         let s = sphere(0.25);
-        let m = collide(
-            &s,
-            &at(Vec3::new(0.1, 0.0, -0.7)),
-            &bx,
-            &at(Vec3::ZERO),
-            0.0,
-        );
+        let m = collide(&s, &at(Vec3::new(0.1, 0.0, -0.7)), &bx, &at(Vec3::ZERO), 0.0);
         assert_eq!(m.count, 1);
         // Nearest face is z = -1; the sphere leaves through it, so A->B normal is +Z.
         assert!(near(m.normal, Vec3::Z));
@@ -266,9 +227,7 @@ mod tests {
         assert!(near(m.points[0].point, Vec3::new(0.1, 0.0, -0.725)));
         // Centre exactly at the box centre: still finite and unit.
         let c = collide(&s, &at(Vec3::ZERO), &bx, &at(Vec3::ZERO), 0.0);
-        assert!(
-            (c.normal.length() - 1.0).abs() < 1e-6 && (c.points[0].separation + 1.25).abs() < 1e-5
-        );
+        assert!((c.normal.length() - 1.0).abs() < 1e-6 && (c.points[0].separation + 1.25).abs() < 1e-5);
     }
 
     #[test]
@@ -297,36 +256,17 @@ mod tests {
             offset: 0.0,
         };
         let s = sphere(0.5);
-        let m = collide(
-            &s,
-            &at(Vec3::new(2.0, 1.0, 0.0)),
-            &wall,
-            &Transform::IDENTITY,
-            2.0,
-        );
+        let m = collide(&s, &at(Vec3::new(2.0, 1.0, 0.0)), &wall, &Transform::IDENTITY, 2.0);
         assert_eq!(m.count, 1);
         assert!((m.points[0].separation - 1.5).abs() < 1e-5);
         assert!(near(m.normal, -Vec3::X)); // toward the wall
         assert!(near(m.points[0].point, Vec3::new(0.75, 1.0, 0.0)));
         assert_eq!(
-            collide(
-                &s,
-                &at(Vec3::new(2.0, 1.0, 0.0)),
-                &wall,
-                &Transform::IDENTITY,
-                1.0
-            )
-            .count,
+            collide(&s, &at(Vec3::new(2.0, 1.0, 0.0)), &wall, &Transform::IDENTITY, 1.0).count,
             0
         );
         // Plane first: normal flips.
-        let w = collide(
-            &wall,
-            &Transform::IDENTITY,
-            &s,
-            &at(Vec3::new(0.4, 0.0, 0.0)),
-            0.0,
-        );
+        let w = collide(&wall, &Transform::IDENTITY, &s, &at(Vec3::new(0.4, 0.0, 0.0)), 0.0);
         assert!(near(w.normal, Vec3::X) && (w.points[0].separation + 0.1).abs() < 1e-5);
         // Ground plane y <= 1 on a body translated by (0,1,0) and rotated about Y (normal unchanged).
         let ground = Geometry::Plane {

@@ -28,10 +28,7 @@ impl DynamicTree {
                 self.free_node(i);
             }
         }
-        let centers: Vec<Vec3> = leaves
-            .iter()
-            .map(|&l| self.nodes[l as usize].aabb.center())
-            .collect();
+        let centers: Vec<Vec3> = leaves.iter().map(|&l| self.nodes[l as usize].aabb.center()).collect();
         let mut order: Vec<u32> = (0..leaves.len() as u32).collect();
 
         // Work items: (start, end, parent, is first child). Internal nodes are created
@@ -94,11 +91,7 @@ impl DynamicTree {
             let mut acc = Aabb::EMPTY;
             for b in (1..BIN_COUNT).rev() {
                 acc = acc.union(&boxes[b]);
-                right_area[b] = if acc.min.x <= acc.max.x {
-                    acc.perimeter()
-                } else {
-                    0.0
-                };
+                right_area[b] = if acc.min.x <= acc.max.x { acc.perimeter() } else { 0.0 };
             }
             let mut left = Aabb::EMPTY;
             let mut left_count = 0;
@@ -109,8 +102,7 @@ impl DynamicTree {
                 if left_count == 0 || right_count == 0 {
                     continue;
                 }
-                let cost =
-                    left.perimeter() * left_count as f32 + right_area[split] * right_count as f32;
+                let cost = left.perimeter() * left_count as f32 + right_area[split] * right_count as f32;
                 if cost < best_cost {
                     best_cost = cost;
                     best = Some((axis, split));

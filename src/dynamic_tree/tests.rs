@@ -89,10 +89,7 @@ impl Mirror {
         let mut v: Vec<(u32, f32)> = self
             .ids
             .iter()
-            .filter_map(|&id| {
-                ray_aabb_entry(o, d, inv, max_t, &self.live[id as usize].unwrap().0)
-                    .map(|t| (id, t))
-            })
+            .filter_map(|&id| ray_aabb_entry(o, d, inv, max_t, &self.live[id as usize].unwrap().0).map(|t| (id, t)))
             .collect();
         v.sort_unstable_by_key(|p| p.0);
         v
@@ -102,11 +99,7 @@ impl Mirror {
 fn tree_query(tree: &DynamicTree, q: &Aabb, mirror: &Mirror) -> Vec<u32> {
     let mut v = Vec::new();
     tree.query(q, |p, ud| {
-        assert_eq!(
-            Some(ud),
-            mirror.live[p as usize].map(|e| e.1),
-            "user data of {p}"
-        );
+        assert_eq!(Some(ud), mirror.live[p as usize].map(|e| e.1), "user data of {p}");
         v.push(p);
         true
     });
@@ -156,8 +149,7 @@ fn check_against_brute_force(tree: &DynamicTree, mirror: &Mirror, rng: &mut Rng)
         let inv = reciprocal(d);
         let mut closest = f32::MAX;
         tree.ray_cast(o, d, max_t, |p, _, t| {
-            let entry =
-                ray_aabb_entry(o, d, inv, t, &tree.fat_aabb(p)).expect("reported box is hit");
+            let entry = ray_aabb_entry(o, d, inv, t, &tree.fat_aabb(p)).expect("reported box is hit");
             closest = closest.min(entry);
             if entry > 0.0 {
                 entry
@@ -213,11 +205,7 @@ fn random_insert_remove_move_match_brute_force() {
             }
         }
         tree.validate();
-        assert_eq!(
-            tree.proxy_count() as usize,
-            mirror.ids.len(),
-            "batch {batch}"
-        );
+        assert_eq!(tree.proxy_count() as usize, mirror.ids.len(), "batch {batch}");
         for &id in &mirror.ids {
             let (b, ud) = mirror.live[id as usize].unwrap();
             assert_eq!(tree.fat_aabb(id), b);
@@ -335,10 +323,7 @@ fn random_scene_quality_and_rebuild() {
     check_against_brute_force(&tree, &mirror, &mut rng);
     assert!((h1 as f32) <= 2.0 * 10_000f32.log2() + 4.0);
     assert!((h2 as f32) <= 2.0 * 10_000f32.log2() + 4.0);
-    assert!(
-        r2 <= r1 * 1.25,
-        "rebuild made the tree much worse: {r1} -> {r2}"
-    );
+    assert!(r2 <= r1 * 1.25, "rebuild made the tree much worse: {r1} -> {r2}");
 
     // The tree keeps working incrementally after a rebuild.
     for _ in 0..500 {
@@ -387,9 +372,7 @@ fn proxy_ids_are_reused_and_nodes_do_not_grow() {
 
     // Stable proxy count: no node storage growth under churn after warm-up.
     let mut rng = Rng::new(3);
-    let mut ids: Vec<u32> = (0..1000)
-        .map(|i| tree.create_proxy(random_box(&mut rng), i))
-        .collect();
+    let mut ids: Vec<u32> = (0..1000).map(|i| tree.create_proxy(random_box(&mut rng), i)).collect();
     let len = tree.nodes.len();
     let cap = tree.nodes.capacity();
     for _ in 0..20_000 {
@@ -474,10 +457,7 @@ fn ray_edge_cases() {
     };
     // Origin inside, zero-length segment, axis-aligned along a face, miss, too short.
     assert_eq!(hits(Vec3::splat(0.5), Vec3::X, 0.0), vec![(id, 5)]);
-    assert_eq!(
-        hits(Vec3::new(-1.0, 1.0, 0.5), Vec3::X, 10.0),
-        vec![(id, 5)]
-    );
+    assert_eq!(hits(Vec3::new(-1.0, 1.0, 0.5), Vec3::X, 10.0), vec![(id, 5)]);
     assert!(hits(Vec3::new(-1.0, 1.5, 0.5), Vec3::X, 10.0).is_empty());
     assert!(hits(Vec3::new(-1.0, 0.5, 0.5), Vec3::X, 0.5).is_empty());
     assert_eq!(hits(Vec3::new(-1.0, 0.5, 0.5), Vec3::X, 1.0), vec![(id, 5)]);
@@ -552,10 +532,7 @@ fn deterministic_and_empty_tree() {
     empty.ray_cast(Vec3::ZERO, Vec3::X, 1.0, |_, _, _| {
         panic!("empty tree reported a proxy")
     });
-    assert_eq!(
-        (empty.height(), empty.proxy_count(), empty.area_ratio()),
-        (0, 0, 0.0)
-    );
+    assert_eq!((empty.height(), empty.proxy_count(), empty.area_ratio()), (0, 0, 0.0));
 }
 
 #[test]
