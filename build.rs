@@ -27,8 +27,7 @@ fn main() {
     println!("cargo:rerun-if-changed=cbindgen.toml");
     println!("cargo:rerun-if-changed=build.rs");
 
-    let mut config =
-        cbindgen::Config::from_file(crate_dir.join("cbindgen.toml")).expect("cbindgen.toml");
+    let mut config = cbindgen::Config::from_file(crate_dir.join("cbindgen.toml")).expect("cbindgen.toml");
     config.header = Some(PREAMBLE.to_string());
     config.after_includes = Some(format!(
         "\n/** Version of the header; compare with hearth_version() at run time. */\n\
