@@ -94,3 +94,17 @@ impl Contact {
         self.touching && !was_touching
     }
 }
+
+/// A contact written by a contact generator (rod, cable, user callback) for one step: body
+/// slot indices (`crate::body::NONE` for the world), a world point, the normal from A to B,
+/// the penetration (> 0 when the constraint is violated) and materials.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct GeneratedContact {
+    pub body_a: u32,
+    pub body_b: u32,
+    pub point: Vec3,
+    pub normal: Vec3,
+    pub penetration: f32,
+    pub restitution: f32,
+    pub friction: f32,
+}

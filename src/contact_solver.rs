@@ -66,10 +66,11 @@ pub struct PatchFriction {
 pub struct ContactConstraint {
     pub a: u32,
     pub b: u32,
+    /// The persistent contact, or `NONE` for a generated contact.
+    pub contact: u32,
     /// Inverse masses of the two bodies.
     pub ma: f32,
     pub mb: f32,
-    pub contact: u32,
     pub normal: Vec3,
     pub tangents: [Vec3; 2],
     pub static_friction: f32,
@@ -210,6 +211,71 @@ pub fn prepare(world: &mut World) {
         };
         constraints.push(cc);
     }
+    prepare_generated(world);
+}
+
+/// Constraints for the contacts that contact generators wrote this step (rods, cables, user
+/// callbacks): single points, not persistent, solved together with collision contacts.
+fn prepare_generated(world: &mut World) {
+    let constraints = &mut world.solver.constraints;
+    let states = &world.solver.states;
+    let vel = &world.solver.vel;
+    for g in &world.generated_contacts {
+        let index = |b: u32| -> (u32, crate::math::Vec3) {
+            if b == crate::body::NONE {
+                return (0, g.point);
+            }
+            let body = world.bodies.at(b);
+            (if body.awake { body.solver_index } else { 0 }, body.center)
+        };
+        let ((a, ca), (b, cb)) = (index(g.body_a), index(g.body_b));
+        let (sa, sb) = (&states[a as usize], &states[b as usize]);
+        if sa.inv_mass == 0.0 && sb.inv_mass == 0.0 {
+            continue;
+        }
+        let (ua, ub) = (&vel[a as usize], &vel[b as usize]);
+        let n = g.normal;
+        let (t1, t2) = orthonormal_basis(n);
+        let (ra, rb) = (g.point - ca, g.point - cb);
+        let dv = ub.v + ub.w.cross(rb) - ua.v - ua.w.cross(ra);
+        let mut cc = ContactConstraint {
+            a,
+            b,
+            ma: sa.inv_mass,
+            mb: sb.inv_mass,
+            contact: crate::body::NONE,
+            normal: n,
+            tangents: [t1, t2],
+            static_friction: g.friction,
+            dynamic_friction: g.friction,
+            restitution: g.restitution,
+            count: 1,
+            points: [ConstraintPoint::default(); MAX_MANIFOLD_POINTS],
+            k: [[0.0; MAX_MANIFOLD_POINTS]; MAX_MANIFOLD_POINTS],
+            k_inv: [[0.0; MAX_MANIFOLD_POINTS]; MAX_MANIFOLD_POINTS],
+            friction: PatchFriction::default(),
+        };
+        cc.points[0] = ConstraintPoint {
+            ra0: ra,
+            rb0: rb,
+            separation0: -g.penetration,
+            relative_velocity: dv.dot(n),
+            ..Default::default()
+        };
+        cc.friction = PatchFriction {
+            ra0: ra,
+            rb0: rb,
+            sliding: (dv - n * dv.dot(n)).length_squared() > STICK_SPEED * STICK_SPEED,
+            ..Default::default()
+        };
+        constraints.push(cc);
+    }
+}
+
+/// True for constraints built from generated contacts (they store no impulses).
+#[inline]
+fn is_generated(c: &ContactConstraint) -> bool {
+    c.contact == crate::body::NONE
 }
 
 /// Where an impulse between the two bodies acts now. `ra`, `rb` are the lever arms of one
@@ -497,7 +563,7 @@ pub fn apply_restitution(vel: &mut [Velocity], constraints: &mut [ContactConstra
 
 /// Keeps each point's impulses on its contact for warm starting the next step.
 pub fn store_impulses(world: &mut World) {
-    for c in &world.solver.constraints {
+    for c in world.solver.constraints.iter().filter(|c| !is_generated(c)) {
         let contact = world.contacts.at_mut(c.contact);
         for (i, p) in c.points[..c.count].iter().enumerate() {
             let imp = &mut contact.impulses[i];

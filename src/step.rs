@@ -27,6 +27,7 @@ impl World {
         self.collide(dt);
         // 5–6. Integration and contact resolution, sub-stepped (solver.rs).
         crate::solver::solve(self, dt);
+        self.generated_contacts.clear();
         // 7. Bounds: refit moved proxies, sweeping them along the coming motion.
         self.update_bounds(dt);
         // 8. Sleep.

@@ -124,6 +124,8 @@ pub struct World {
     /// Bodies of each sleeping island.
     pub(crate) islands: Pool<Vec<u32>>,
     pub(crate) solver: SolverScratch,
+    /// Contacts written by contact generators for the current step (cleared each step).
+    pub generated_contacts: Vec<crate::contact::GeneratedContact>,
     pub(crate) scratch_wake: Vec<u32>,
     pub(crate) island_scratch: crate::island::IslandScratch,
     pub counters: StepCounters,
@@ -144,6 +146,7 @@ impl World {
             awake_contacts: Vec::new(),
             islands: Pool::new(tag),
             solver: SolverScratch::default(),
+            generated_contacts: Vec::new(),
             scratch_wake: Vec::new(),
             island_scratch: Default::default(),
             counters: StepCounters::default(),
