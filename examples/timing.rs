@@ -2,7 +2,17 @@
 use hearth::scenes;
 use std::time::Instant;
 fn run(name: &str, sleep: bool, steps: usize, build: &dyn Fn(&mut hearth::World)) {
-    let mut w = scenes::world(sleep);
+    let sub: u32 = std::env::var("SUB").map(|v| v.parse().unwrap()).unwrap_or(4);
+    let it: u32 = std::env::var("IT").map(|v| v.parse().unwrap()).unwrap_or(3);
+    let mut w = hearth::World::new(hearth::WorldSettings {
+        enable_sleep: sleep,
+        substeps: sub,
+        velocity_iterations: it,
+        contact_hertz: 120.0,
+        linear_slop: 0.0002,
+        ..Default::default()
+    })
+    .unwrap();
     build(&mut w);
     let t = Instant::now();
     for _ in 0..steps {

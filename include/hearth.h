@@ -272,7 +272,7 @@ typedef struct HearthWorldDef {
      */
     struct HearthVec3 gravity;
     /**
-     * Solver sub-steps per step, 1..=64. Default 4.
+     * Solver sub-steps per step, 1..=64. Default 8.
      */
     uint32_t substeps;
     /**
@@ -292,7 +292,7 @@ typedef struct HearthWorldDef {
      */
     float time_to_sleep;
     /**
-     * Contact stiffness (Hz). Default 30.
+     * Contact stiffness (Hz), capped at a quarter of the sub-step rate. Default 120.
      */
     float contact_hertz;
     /**
@@ -312,7 +312,8 @@ typedef struct HearthWorldDef {
      */
     float max_linear_speed;
     /**
-     * Velocity sweeps over the contacts per sub-step, 1..=64. Default 3.
+     * Soft velocity sweeps per sub-step (each sub-step also runs one rigid relax sweep),
+     * 1..=64. Default 1: more sub-steps converge better than more sweeps.
      */
     uint32_t velocity_iterations;
     /**
@@ -747,7 +748,7 @@ HearthResult hearth_shape_get_body(const struct HearthWorld *world,
                                    struct HearthBodyId *out_body);
 
 /**
- * The default world settings: gravity (0, -9.81, 0), 4 sub-steps, sleep on.
+ * The default world settings: gravity (0, -9.81, 0), 8 sub-steps of one sweep, sleep on.
  */
 struct HearthWorldDef hearth_world_def_default(void);
 

@@ -383,6 +383,16 @@ impl Geometry {
         })
     }
 
+    /// Radius by which the shape rounds its core (a point for a sphere, a segment for a
+    /// capsule); 0 for boxes and planes. A contact point on a rounded surface does not turn
+    /// with the body: rolling moves the contact over the surface.
+    pub fn rounding_radius(&self) -> f32 {
+        match *self {
+            Geometry::Sphere { radius, .. } | Geometry::Capsule { radius, .. } => radius,
+            Geometry::Box { .. } | Geometry::Plane { .. } => 0.0,
+        }
+    }
+
     /// Radius of a sphere about the body's centre of mass that bounds the shape (planes: 0).
     pub fn extent_from(&self, local_center: Vec3) -> f32 {
         match *self {

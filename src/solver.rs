@@ -7,6 +7,7 @@
 
 use crate::body::Body;
 use crate::contact_solver::{self, ContactConstraint};
+use crate::contact_wide;
 use crate::math::{integrate_rotation, Mat3, Quat, Vec3};
 use crate::world::{Integrator, World};
 
@@ -64,11 +65,10 @@ pub struct BodySim {
 #[derive(Default)]
 pub struct SolverScratch {
     pub vel: Vec<Velocity>,
-    /// Pseudo-velocities of the push-out, cleared every sub-step.
-    pub pseudo: Vec<Velocity>,
     pub states: Vec<BodyState>,
     pub sims: Vec<BodySim>,
     pub constraints: Vec<ContactConstraint>,
+    pub batches: contact_wide::Batches,
 }
 
 /// Soft constraint coefficients (Box2D v3 `b2Softness`), for a sub-step of `h` seconds.
@@ -139,11 +139,9 @@ pub fn prepare_bodies(world: &mut World, dt: f32) {
     let scratch = &mut world.solver;
     scratch.states.clear();
     scratch.vel.clear();
-    scratch.pseudo.clear();
     scratch.sims.clear();
     scratch.states.push(BodyState::STATIC);
     scratch.vel.push(Velocity::default());
-    scratch.pseudo.push(Velocity::default());
     scratch.sims.push(BodySim {
         body: u32::MAX,
         lin_accel: Vec3::ZERO,
@@ -187,7 +185,6 @@ pub fn prepare_bodies(world: &mut World, dt: f32) {
             inv_i: body.inv_inertia_world,
         });
         scratch.vel.push(Velocity { v: body.v, w: body.w });
-        scratch.pseudo.push(Velocity::default());
         scratch.sims.push(BodySim {
             body: bi,
             lin_accel: if dynamic {
@@ -229,29 +226,15 @@ fn integrate_velocities(vel: &mut [Velocity], states: &[BodyState], sims: &[Body
     }
 }
 
-/// Moves every awake body by its velocity plus the push-out's pseudo-velocity, which is then
-/// cleared.
-fn integrate_positions(
-    vel: &mut [Velocity],
-    pseudo: &mut [Velocity],
-    states: &mut [BodyState],
-    sims: &[BodySim],
-    h: f32,
-) {
-    for (((u, b), s), sim) in vel
-        .iter_mut()
-        .zip(pseudo.iter_mut())
-        .zip(states.iter_mut())
-        .zip(sims)
-        .skip(1)
-    {
+/// Moves every awake body by its velocity.
+fn integrate_positions(vel: &mut [Velocity], states: &mut [BodyState], sims: &[BodySim], h: f32) {
+    for ((u, s), sim) in vel.iter_mut().zip(states.iter_mut()).zip(sims).skip(1) {
         if sim.rk4 {
             rk4_step(u, s, sim, h);
         } else {
-            s.dp += h * (u.v + b.v);
-            s.dq = integrate_rotation(s.dq, u.w + b.w, h);
+            s.dp += h * u.v;
+            s.dq = integrate_rotation(s.dq, u.w, h);
         }
-        *b = Velocity::default();
         s.rot = Mat3::from_quat(s.dq);
         if sim.gyroscopic {
             // Anisotropic inertia turns with the body: keep the world inverse current.
@@ -342,36 +325,35 @@ pub fn solve(world: &mut World, dt: f32) {
             scratch.sims[c.b as usize].rk4 = false;
         }
     }
-    let (vel, pseudo, states, sims) = (
-        &mut scratch.vel,
-        &mut scratch.pseudo,
-        &mut scratch.states,
-        &scratch.sims,
-    );
-    let constraints = &mut scratch.constraints;
+    scratch.batches.build(&scratch.constraints, &scratch.states);
+    let (vel, states, sims) = (&mut scratch.vel, &mut scratch.states, &scratch.sims);
+    let batches = &mut scratch.batches.batches;
     let inv_h = 1.0 / h;
-    let push_rate = crate::world::push_out_rate(&settings, h);
-    for _ in 0..substeps {
+    // Contacts stiffer than a quarter of the sub-step rate make Gauss–Seidel unstable.
+    let hertz = settings.contact_hertz.min(0.25 / h);
+    let soft = contact_wide::SoftSweep {
+        soft: Softness::new(hertz, settings.contact_damping_ratio, h),
+        soft_static: Softness::new(2.0 * hertz, settings.contact_damping_ratio, h),
+        max_push: settings.contact_push_max_velocity,
+        slop: settings.linear_slop,
+    };
+    for sub in 0..substeps {
         integrate_velocities(vel, states, sims, h, settings.max_linear_speed);
-        contact_solver::refresh(states, constraints);
-        contact_solver::warm_start(vel, constraints);
-        // Sweeps alternate direction through each manifold's points.
+        contact_wide::refresh(states, batches);
+        contact_wide::warm_start(vel, batches);
+        // Soft, biased sweeps push overlap out and damp; positions move; a rigid relax sweep
+        // removes the push velocity. Sweeps alternate direction through each manifold's points.
         for k in 0..settings.velocity_iterations {
-            contact_solver::solve(vel, constraints, inv_h, k % 2 == 0);
+            contact_wide::solve(vel, batches, inv_h, (sub + k) % 2 == 0, Some(&soft));
         }
-        contact_solver::push_out(
-            pseudo,
-            constraints,
-            push_rate,
-            settings.linear_slop,
-            settings.contact_push_max_velocity,
-        );
-        integrate_positions(vel, pseudo, states, sims, h);
+        integrate_positions(vel, states, sims, h);
+        contact_wide::solve(vel, batches, inv_h, sub % 2 == 1, None);
     }
-    if constraints.iter().any(|c| c.restitution > 0.0) {
-        contact_solver::refresh(states, constraints);
-        contact_solver::apply_restitution(vel, constraints, settings.restitution_threshold);
+    if scratch.constraints.iter().any(|c| c.restitution > 0.0) {
+        contact_wide::refresh(states, batches);
+        contact_wide::restitution(vel, batches, settings.restitution_threshold);
     }
+    contact_wide::store(batches, &mut scratch.constraints);
     contact_solver::store_impulses(world);
     finalize_bodies(world);
 }

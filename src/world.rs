@@ -24,7 +24,8 @@ pub struct WorldSettings {
     pub gravity: Vec3,
     /// Solver sub-steps per step.
     pub substeps: u32,
-    /// Velocity sweeps over the contacts per sub-step.
+    /// Soft (biased) sweeps over the contacts per sub-step, each followed by the position
+    /// update and one rigid relax sweep.
     pub velocity_iterations: u32,
     pub integrator: Integrator,
     pub enable_sleep: bool,
@@ -32,7 +33,8 @@ pub struct WorldSettings {
     pub sleep_threshold: f32,
     /// Seconds an island must stay still before it sleeps.
     pub time_to_sleep: f32,
-    /// Stiffness of contacts (Hz) and their damping ratio.
+    /// Stiffness of contacts (Hz; capped at a quarter of the sub-step rate) and their damping
+    /// ratio. Overlap under load is `weight / (effective mass · (2π·hertz)²)`.
     pub contact_hertz: f32,
     pub contact_damping_ratio: f32,
     /// Fastest speed at which overlap is pushed apart (m/s).
@@ -49,17 +51,17 @@ impl Default for WorldSettings {
     fn default() -> Self {
         WorldSettings {
             gravity: Vec3::new(0.0, -9.81, 0.0),
-            substeps: 4,
-            velocity_iterations: 3,
+            substeps: 8,
+            velocity_iterations: 1,
             integrator: Integrator::SemiImplicitEuler,
             enable_sleep: true,
             sleep_threshold: 0.05,
             time_to_sleep: 0.5,
-            contact_hertz: 30.0,
+            contact_hertz: 120.0,
             contact_damping_ratio: 10.0,
             contact_push_max_velocity: 3.0,
             restitution_threshold: 1.0,
-            linear_slop: 0.001,
+            linear_slop: 0.0002,
             max_linear_speed: 400.0,
         }
     }
@@ -87,15 +89,6 @@ impl WorldSettings {
         check_positive("max_linear_speed", self.max_linear_speed)?;
         Ok(())
     }
-}
-
-/// Rate (1/s) at which overlap is pushed out, from the contact stiffness: the bias rate of a
-/// critically over-damped spring of `contact_hertz` (Box2D v3's soft contact), capped at a
-/// quarter of the sub-step rate.
-pub fn push_out_rate(s: &WorldSettings, h: f32) -> f32 {
-    let hertz = s.contact_hertz.min(0.25 / h);
-    let omega = 2.0 * std::f32::consts::PI * hertz;
-    omega / (2.0 * s.contact_damping_ratio + h * omega)
 }
 
 /// Margin added around shape boxes in the tree so small motions do not touch it (m).

@@ -12,15 +12,14 @@ fn root() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR"))
 }
 
-/// `target/<profile>`, where cargo put `libhearth.so` and `libhearth.a` for this build.
+/// Where this build put `libhearth.so` and `libhearth.a`: `target/<profile>/deps`, next to this
+/// test binary. (`cargo test` does not copy them up to `target/<profile>`; a copy there may be
+/// stale from an earlier `cargo build`, so it is never used.)
 fn lib_dir() -> PathBuf {
     let exe = std::env::current_exe().unwrap();
-    let dir = exe.parent().unwrap().parent().unwrap().to_path_buf();
-    assert!(
-        dir.join(shared_lib_name()).exists(),
-        "shared library missing in {}",
-        dir.display()
-    );
+    let dir = exe.parent().unwrap().to_path_buf();
+    assert!(dir.join(shared_lib_name()).exists(), "shared library missing in {}", dir.display());
+    assert!(dir.join("libhearth.a").exists(), "static library missing in {}", dir.display());
     dir
 }
 

@@ -352,3 +352,43 @@ fn kinematic_platform_carries_a_box() {
     let t = w.transform(p).unwrap();
     assert!((t.p - target.p).length() < 1e-3 && t.q.angle_between(target.q) < 1e-3);
 }
+
+#[test]
+fn rolling_sphere_and_capsule_keep_their_height_and_do_not_gain_energy() {
+    for capsule in [false, true] {
+        let mut w = scenes::world(false);
+        scenes::ground_plane(&mut w);
+        let r = 0.4;
+        let b = body_at(&mut w, BodyType::Dynamic, Vec3::new(0.0, r, 0.0), Quat::IDENTITY);
+        let g = if capsule {
+            // Axis along z: it rolls along x like a log.
+            Geometry::Capsule {
+                a: Vec3::new(0.0, 0.0, -0.5),
+                b: Vec3::new(0.0, 0.0, 0.5),
+                radius: r,
+            }
+        } else {
+            Geometry::Sphere {
+                center: Vec3::ZERO,
+                radius: r,
+            }
+        };
+        w.create_shape(b, &ShapeDef::default(), &g).unwrap();
+        w.set_linear_velocity(b, Vec3::new(2.7, 0.0, 0.0)).unwrap();
+        w.set_angular_velocity(b, Vec3::new(0.0, 0.0, -2.7 / r)).unwrap();
+        let e0 = w.body(b).unwrap().kinetic_energy();
+        let mut worst = 0.0f32;
+        for _ in 0..300 {
+            w.step(DT).unwrap();
+            worst = worst.max((w.transform(b).unwrap().p.y - r).abs());
+            assert!(
+                w.body(b).unwrap().kinetic_energy() <= e0 * 1.001,
+                "capsule {capsule}: rolling gained energy"
+            );
+        }
+        assert!(worst < 1e-3, "capsule {capsule}: height error {worst}");
+        assert!(w.linear_velocity(b).unwrap().y.abs() < 1e-3);
+        // Rolling without slipping keeps its speed (no rolling resistance modelled).
+        assert!((w.linear_velocity(b).unwrap().x - 2.7).abs() < 0.02 * 2.7);
+    }
+}

@@ -19,7 +19,7 @@ pub const HEARTH_INTEGRATOR_RK4: u32 = 1;
 pub struct HearthWorldDef {
     /// Gravity (m/s²). Default (0, -9.81, 0).
     pub gravity: HearthVec3,
-    /// Solver sub-steps per step, 1..=64. Default 4.
+    /// Solver sub-steps per step, 1..=64. Default 8.
     pub substeps: u32,
     /// `HEARTH_INTEGRATOR_*`. Default semi-implicit Euler.
     pub integrator: u32,
@@ -29,7 +29,7 @@ pub struct HearthWorldDef {
     pub sleep_threshold: f32,
     /// Seconds an island must stay still before it sleeps. Default 0.5.
     pub time_to_sleep: f32,
-    /// Contact stiffness (Hz). Default 30.
+    /// Contact stiffness (Hz), capped at a quarter of the sub-step rate. Default 120.
     pub contact_hertz: f32,
     /// Contact damping ratio. Default 10.
     pub contact_damping_ratio: f32,
@@ -39,7 +39,8 @@ pub struct HearthWorldDef {
     pub restitution_threshold: f32,
     /// Largest speed a body may reach (m/s). Default 400.
     pub max_linear_speed: f32,
-    /// Velocity sweeps over the contacts per sub-step, 1..=64. Default 3.
+    /// Soft velocity sweeps per sub-step (each sub-step also runs one rigid relax sweep),
+    /// 1..=64. Default 1: more sub-steps converge better than more sweeps.
     pub velocity_iterations: u32,
     /// Set by `hearth_world_def_default()`; do not change.
     pub internal_value: u32,
@@ -109,7 +110,7 @@ pub(crate) fn settings_from_def(def: &HearthWorldDef) -> Result<WorldSettings, F
     Ok(s)
 }
 
-/// The default world settings: gravity (0, -9.81, 0), 4 sub-steps, sleep on.
+/// The default world settings: gravity (0, -9.81, 0), 8 sub-steps of one sweep, sleep on.
 #[no_mangle]
 pub extern "C" fn hearth_world_def_default() -> HearthWorldDef {
     let s = WorldSettings::default();
