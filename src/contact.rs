@@ -78,15 +78,15 @@ impl Contact {
         let was_touching = self.touching;
         self.manifold = collide(&a.geometry, xf_a, &b.geometry, xf_b, speculative);
         self.touching = self.manifold.count > 0;
-        for i in 0..self.manifold.count {
-            let id = self.manifold.points[i].id;
-            self.impulses[i] = PointImpulse::default();
-            for j in 0..old.count {
-                if old.points[j].id == id {
-                    self.impulses[i] = old_impulses[j];
-                    break;
-                }
-            }
+        for (point, impulse) in self.manifold.points[..self.manifold.count]
+            .iter()
+            .zip(self.impulses.iter_mut())
+        {
+            *impulse = old.points[..old.count]
+                .iter()
+                .zip(&old_impulses)
+                .find(|(p, _)| p.id == point.id)
+                .map_or(PointImpulse::default(), |(_, i)| *i);
         }
         if !self.touching {
             self.friction = FrictionImpulse::default();

@@ -136,7 +136,6 @@ pub fn prepare(world: &mut World) {
             tangent_impulse: [f.tangent.dot(t1), f.tangent.dot(t2)],
             twist_impulse: f.twist,
             sliding: vt.length_squared() > STICK_SPEED * STICK_SPEED,
-            ..Default::default()
         };
         constraints.push(cc);
     }

@@ -261,6 +261,7 @@ fn safe_inverse(k: F4) -> F4 {
     F4::select(ok, F4::splat(1.0).div(F4::select(ok, k, F4::splat(1.0))), F4::zero())
 }
 
+#[allow(clippy::needless_range_loop)] // index notation mirrors the matrix algebra
 /// Inverts each lane's K (symmetric positive definite after regularisation, identity rows
 /// for missing points) by Cholesky: K = L Lᵀ, K⁻¹ = L⁻ᵀ L⁻¹.
 fn invert_spd(k: &[[F4; MAXP]; MAXP], n: usize, out: &mut [[F4; MAXP]; MAXP]) {
@@ -441,6 +442,7 @@ pub struct SoftSweep {
     pub slop: f32,
 }
 
+#[allow(clippy::needless_range_loop)] // index notation mirrors the matrix algebra
 /// One sweep: soft and biased (`Some`), or rigid without bias (`None`, the relax sweep).
 /// Speculative points (positive separation) may close their gap within the sub-step, no more.
 pub fn solve(vel: &mut [Velocity], batches: &mut [WideContact], inv_h: f32, forward: bool, bias: Option<&SoftSweep>) {

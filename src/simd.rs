@@ -12,6 +12,8 @@ mod imp {
     #[repr(transparent)]
     pub struct F4(pub __m128);
 
+    // The primitive lane operations; the operator traits below call them.
+    #[allow(clippy::should_implement_trait)]
     impl F4 {
         #[inline(always)]
         pub fn splat(x: f32) -> F4 {
@@ -117,6 +119,7 @@ mod imp {
 
     const TRUE: f32 = unsafe { std::mem::transmute::<u32, f32>(u32::MAX) };
 
+    #[allow(clippy::should_implement_trait)]
     impl F4 {
         pub fn splat(x: f32) -> F4 {
             F4([x; 4])

@@ -679,6 +679,6 @@ impl World {
     }
 
     pub fn tree_height(&self) -> u32 {
-        self.broad.tree.height() as u32
+        self.broad.tree.height()
     }
 }

@@ -202,7 +202,7 @@ pub unsafe extern "C" fn hearth_body_is_awake(
     body: HearthBodyId,
     out: *mut bool,
 ) -> HearthResult {
-    get(world, body, out, |w, h| Ok(w.is_awake(h)?))
+    get(world, body, out, |w, h| w.is_awake(h))
 }
 
 /// Reads the centre of mass in world space (m).
