@@ -10,32 +10,67 @@ pub const SPECULATIVE_DISTANCE: f32 = 0.02;
 
 impl World {
     /// Advances the world by `dt` seconds (`dt >= 0`; 0 does nothing).
+    ///
+    /// The stages run in three calls, `begin_step`, `collide_step` and `finish_step`. A
+    /// driver that runs host callbacks (the C layer, `capi/world.rs`) calls them itself and
+    /// runs external force generators after `begin_step` and external contact generators
+    /// after `collide_step`, with no borrow of the world alive while host code runs.
     pub fn step(&mut self, dt: f32) -> crate::error::Result<()> {
+        if self.begin_step(dt)? {
+            self.collide_step(dt);
+            self.finish_step(dt);
+        }
+        Ok(())
+    }
+
+    /// Validates `dt` and runs stages 1–2. Returns false when there is nothing to do
+    /// (`dt == 0`); the other stages must then not run.
+    pub fn begin_step(&mut self, dt: f32) -> crate::error::Result<bool> {
         if !dt.is_finite() || dt < 0.0 {
             return Err(crate::error::invalid(format!("dt must be finite and >= 0, got {dt}")));
         }
         if dt == 0.0 {
-            return Ok(());
+            return Ok(false);
         }
         self.step_index += 1;
         self.counters = Default::default();
-        // 1–2. Start of frame and forces: derived data is refreshed while the solver's body
-        //      arrays are built; applied forces already sit in each body's accumulators.
+        // 1. Start of frame: derived data is refreshed while the solver's body arrays are
+        //    built (in `solve`).
+        // 2. Forces: built-in force generators add to the accumulators of bodies and
+        //    particles, on top of forces the host applied since the last step
+        //    (generators/forces.rs). External (host) force generators run after this.
+        self.apply_force_generators(dt);
+        //    A body resting on particles gets its gravity in the particle stage (7).
+        self.defer_coupled_gravity();
+        Ok(true)
+    }
+
+    /// Stages 3–5: broad phase, narrow phase, built-in contact generators.
+    pub fn collide_step(&mut self, dt: f32) {
         // 3. Broad phase: new pairs from proxies whose fat boxes moved.
         self.update_pairs();
         // 4. Narrow phase: manifolds for every awake contact; wake sleepers that are touched.
         self.collide(dt);
-        // 5–6. Integration and contact resolution, sub-stepped (solver.rs).
+        // 5. Contact generators: rods and cables between bodies write generated contacts
+        //    (generators/links.rs). External (host) contact generators run after this.
+        self.generate_link_contacts(dt);
+    }
+
+    /// Stages 6–9: rigid solve, particles, bounds, sleep.
+    pub fn finish_step(&mut self, dt: f32) {
+        // 6. Integration and contact resolution, sub-stepped (solver.rs).
         crate::solver::solve(self, dt);
         self.generated_contacts.clear();
-        // 7. Bounds: refit moved proxies, sweeping them along the coming motion.
+        // 7. Particles: integration, contacts with shapes (two-way with dynamic bodies),
+        //    rods and cables, sleep, lifetimes (particles/solver.rs).
+        self.step_particles(dt);
+        // 8. Bounds: refit moved proxies, sweeping them along the coming motion.
         self.update_bounds(dt);
-        // 8. Sleep.
+        // 9. Sleep.
         crate::island::update_motion(self, dt);
         crate::island::sleep_islands(self);
         self.counters.awake_bodies = self.awake_bodies.len();
         self.counters.contacts = self.contacts.len();
-        Ok(())
     }
 
     fn update_pairs(&mut self) {

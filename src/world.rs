@@ -51,7 +51,7 @@ impl Default for WorldSettings {
     fn default() -> Self {
         WorldSettings {
             gravity: Vec3::new(0.0, -9.81, 0.0),
-            substeps: 8,
+            substeps: 6,
             velocity_iterations: 1,
             integrator: Integrator::SemiImplicitEuler,
             enable_sleep: true,
@@ -123,6 +123,11 @@ pub struct World {
     pub(crate) island_scratch: crate::island::IslandScratch,
     pub counters: StepCounters,
     pub(crate) step_index: u64,
+    /// Force and contact generators (issue 4, `generators/`).
+    pub generators: Pool<crate::generators::Generator>,
+    pub(crate) generator_scratch: crate::generators::forces::GeneratorScratch,
+    /// The particle world (issue 4, `particles/`).
+    pub particles: crate::particles::Particles,
 }
 
 impl World {
@@ -144,6 +149,9 @@ impl World {
             island_scratch: Default::default(),
             counters: StepCounters::default(),
             step_index: 0,
+            generators: Pool::new(tag),
+            generator_scratch: Default::default(),
+            particles: crate::particles::Particles::new(tag),
         })
     }
 
@@ -193,6 +201,8 @@ impl World {
         }
         self.remove_awake_body(index);
         self.bodies.remove(h);
+        // Generators (issue 4): the body leaves every attachment list and link.
+        self.detach_body_everywhere(h);
         Ok(())
     }
 

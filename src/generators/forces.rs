@@ -1,0 +1,403 @@
+//! The forces stage: at the start of a step every built-in force generator adds forces and
+//! torques to the accumulators of its bodies and particles (cleared after the step).
+//!
+//! Sleep: gravity, drag and buoyancy leave sleeping objects alone (like world gravity); a
+//! spring acts when either end is awake and then wakes the other; an explosion wakes what
+//! it pushes.
+
+use super::{End, Generator, GeneratorDef, Spring};
+use crate::body::Body;
+use crate::math::Vec3;
+use crate::particles::Particles;
+use crate::pool::{Handle, Pool};
+use crate::world::World;
+
+/// Reused storage of the generator stages.
+#[derive(Default)]
+pub struct GeneratorScratch {
+    pub(crate) order: Vec<Handle>,
+    pub(crate) wake: Vec<u32>,
+    pub(crate) slots: Vec<u32>,
+}
+
+/// Something a force acts on.
+#[derive(Clone, Copy, Debug)]
+enum Obj {
+    /// Body slot index and the attachment point in the body frame.
+    Body(u32, Vec3),
+    /// Particle dense index.
+    Particle(usize),
+    /// A fixed world point.
+    Fixed(Vec3),
+}
+
+/// Where an object is and how it moves at its attachment point.
+#[derive(Clone, Copy, Debug)]
+struct State {
+    point: Vec3,
+    velocity: Vec3,
+    /// Can receive forces (a dynamic body or a finite-mass particle).
+    movable: bool,
+    awake: bool,
+    /// kg; infinite when not movable.
+    mass: f32,
+}
+
+struct Ctx<'a> {
+    bodies: &'a mut Pool<Body>,
+    particles: &'a mut Particles,
+    wake: &'a mut Vec<u32>,
+    sleep_threshold: f32,
+}
+
+impl Ctx<'_> {
+    fn state(&self, o: Obj) -> State {
+        match o {
+            Obj::Body(b, local) => {
+                let body = self.bodies.at(b);
+                let point = body.xf.apply(local);
+                State {
+                    point,
+                    velocity: body.point_velocity(point),
+                    movable: body.is_dynamic(),
+                    awake: body.awake,
+                    mass: if body.is_dynamic() { body.mass } else { f32::INFINITY },
+                }
+            }
+            Obj::Particle(i) => {
+                let p = &*self.particles;
+                let movable = p.inv_mass[i] > 0.0;
+                State {
+                    point: p.pos[i],
+                    velocity: p.vel[i],
+                    movable,
+                    awake: p.is_awake(i),
+                    mass: if movable { 1.0 / p.inv_mass[i] } else { f32::INFINITY },
+                }
+            }
+            Obj::Fixed(point) => State {
+                point,
+                velocity: Vec3::ZERO,
+                movable: false,
+                awake: false,
+                mass: f32::INFINITY,
+            },
+        }
+    }
+
+    /// Adds force `f` at world point `p`, waking the object if asleep.
+    fn add(&mut self, o: Obj, f: Vec3, p: Vec3) {
+        match o {
+            Obj::Body(b, _) => {
+                let body = self.bodies.at_mut(b);
+                if !body.is_dynamic() {
+                    return;
+                }
+                body.force += f;
+                body.torque += (p - body.center).cross(f);
+                if !body.awake {
+                    self.wake.push(b);
+                }
+            }
+            Obj::Particle(i) => {
+                if self.particles.inv_mass[i] > 0.0 {
+                    if !self.particles.is_awake(i) {
+                        self.particles.wake(i, self.sleep_threshold);
+                    }
+                    self.particles.force[i] += f;
+                }
+            }
+            Obj::Fixed(_) => {}
+        }
+    }
+
+    fn end(&self, e: &End) -> Option<Obj> {
+        match *e {
+            End::World(p) => Some(Obj::Fixed(p)),
+            End::Body { body, local } => self.bodies.get(body).map(|_| Obj::Body(body.index, local)),
+            End::Particle(h) => self.particles.index(h).map(Obj::Particle),
+        }
+    }
+}
+
+/// Look-ahead `β` (in steps) at which spring-like forces are evaluated.
+///
+/// A force computed at the start of a step and held over `n` semi-implicit sub-steps gives
+/// `v' = v + dt a`, `x' = x + dt v + s dt² a` with `s = (n + 1) / 2n`. For a spring
+/// `a = -k x` that map has determinant `1 + (1 - s) k dt²`: it gains energy every step
+/// (only `s = 1`, one sub-step, is symplectic). Evaluating the spring at the extension
+/// predicted `β dt` ahead, `a = -k (x + β dt v)`, gives determinant
+/// `1 + (1 - s - β) k dt²`, so `β = 1 - s = (n - 1) / 2n` makes the step area-preserving
+/// again (the trace, and so the frequency, is that of symplectic Euler).
+pub fn spring_lookahead(substeps: u32) -> f32 {
+    let n = substeps.max(1) as f32;
+    (n - 1.0) / (2.0 * n)
+}
+
+/// Weights `(T, Δ)` of the exact step: the trace and determinant of the one-step transition
+/// matrix of `x'' = -k x - c x'` (per unit mass) over `dt`.
+fn exact_step_invariants(k: f32, c: f32, dt: f32) -> (f64, f64) {
+    let (k, c, dt) = (k as f64, c as f64, dt as f64);
+    let disc = c * c - 4.0 * k;
+    let decay = (-0.5 * c * dt).exp();
+    let trace = if disc < 0.0 {
+        2.0 * decay * (0.5 * (-disc).sqrt() * dt).cos()
+    } else {
+        2.0 * decay * (0.5 * disc.sqrt() * dt).cosh()
+    };
+    (trace, (-c * dt).exp())
+}
+
+/// Gains `(K, D)` of the stiff spring: an acceleration `-K x - D v`, held constant over a
+/// step integrated by semi-implicit Euler in `n` sub-steps, gives a one-step map whose
+/// eigenvalues are exactly `exp(λ dt)` of the damped oscillator `x'' = -k x - c x'`: the
+/// discrete motion has the continuous frequency and decay, for any stiffness.
+///
+/// With `a` constant, `v' = v + dt a` and `x' = x + dt v + s dt² a`, `s = (n + 1) / 2n`.
+/// Matching the trace `T` and determinant `Δ` of that map gives
+/// `K = (1 - T + Δ) / dt²` and `D = (2 - T - s (1 - T + Δ)) / dt`.
+pub fn stiff_spring_gains(k: f32, c: f32, dt: f32, substeps: u32) -> (f32, f32) {
+    let (t, det) = exact_step_invariants(k, c, dt);
+    let n = substeps.max(1) as f64;
+    let s = (n + 1.0) / (2.0 * n);
+    let dt = dt as f64;
+    let kk = (1.0 - t + det) / (dt * dt);
+    let dd = (2.0 - t - s * (1.0 - t + det)) / dt;
+    (kk as f32, dd as f32)
+}
+
+impl World {
+    /// Stage 2 of the step: built-in force generators add to the accumulators.
+    pub(crate) fn apply_force_generators(&mut self, dt: f32) {
+        self.prune_particle_attachments();
+        if self.generators.is_empty() {
+            return;
+        }
+        let mut scratch = std::mem::take(&mut self.generator_scratch);
+        scratch.order.clear();
+        scratch.order.extend(self.generators.iter().map(|(h, _)| h));
+        scratch.wake.clear();
+        let gravity = self.settings.gravity;
+        let substeps = self.settings.substeps;
+        {
+            let World {
+                generators,
+                bodies,
+                particles,
+                settings,
+                ..
+            } = self;
+            let mut ctx = Ctx {
+                bodies,
+                particles,
+                wake: &mut scratch.wake,
+                sleep_threshold: settings.sleep_threshold,
+            };
+            for &h in &scratch.order {
+                let g = generators.get_mut(h).expect("live generator");
+                if !g.broken {
+                    run(g, &mut ctx, &mut scratch.slots, gravity, substeps, dt);
+                }
+                g.elapsed += dt;
+            }
+        }
+        for k in 0..scratch.wake.len() {
+            self.wake_body(scratch.wake[k]);
+        }
+        self.generator_scratch = scratch;
+    }
+}
+
+/// Every live attached object, as `Obj`s with the generator's attachment point.
+fn for_each_attached(g: &Generator, ctx: &mut Ctx, local: Vec3, mut f: impl FnMut(&mut Ctx, Obj)) {
+    for &b in g.bodies.handles() {
+        if ctx.bodies.contains(b) {
+            f(ctx, Obj::Body(b.index, local));
+        }
+    }
+    for &p in g.particles.handles() {
+        if let Some(i) = ctx.particles.index(p) {
+            f(ctx, Obj::Particle(i));
+        }
+    }
+}
+
+fn run(g: &Generator, ctx: &mut Ctx, slots: &mut Vec<u32>, gravity: Vec3, substeps: u32, dt: f32) {
+    use GeneratorDef as G;
+    match g.def {
+        G::Gravity { acceleration } => for_each_attached(g, ctx, Vec3::ZERO, |ctx, o| {
+            let s = ctx.state(o);
+            if s.movable && s.awake {
+                ctx.add(o, acceleration * s.mass, s.point);
+            }
+        }),
+        G::Drag { k1, k2 } => for_each_attached(g, ctx, Vec3::ZERO, |ctx, o| {
+            let s = ctx.state(o);
+            let speed = s.velocity.length();
+            if s.movable && s.awake && speed > 0.0 {
+                let f = -(s.velocity / speed) * (k1 * speed + k2 * speed * speed);
+                ctx.add(o, f, s.point);
+            }
+        }),
+        G::Spring(sp) => spring(g, ctx, &sp, false, spring_lookahead(substeps) * dt),
+        G::Bungee(sp) => spring(g, ctx, &sp, true, spring_lookahead(substeps) * dt),
+        G::StiffSpring {
+            anchor,
+            local_point,
+            stiffness,
+            damping,
+        } => {
+            let Some(a) = ctx.end(&anchor) else { return };
+            for_each_attached(g, ctx, local_point, |ctx, o| {
+                let (s, sa) = (ctx.state(o), ctx.state(a));
+                if !s.movable || (!s.awake && !sa.awake) {
+                    return;
+                }
+                let (kk, dd) = stiff_spring_gains(stiffness / s.mass, damping / s.mass, dt, substeps);
+                let accel = -kk * (s.point - sa.point) - dd * (s.velocity - sa.velocity);
+                ctx.add(o, accel * s.mass, s.point);
+            })
+        }
+        G::Buoyancy {
+            normal,
+            surface,
+            max_depth,
+            volume,
+            liquid_density,
+            local_point,
+        } => {
+            let weight = liquid_density * volume * gravity.length();
+            // The partly submerged range is a spring: evaluated ahead (`spring_lookahead`).
+            let ahead = spring_lookahead(substeps) * dt;
+            for_each_attached(g, ctx, local_point, |ctx, o| {
+                let s = ctx.state(o);
+                if !s.movable || !s.awake {
+                    return;
+                }
+                let depth = surface - normal.dot(s.point + ahead * s.velocity);
+                let fraction = ((depth + max_depth) / (2.0 * max_depth)).clamp(0.0, 1.0);
+                if fraction > 0.0 {
+                    ctx.add(o, normal * (weight * fraction), s.point);
+                }
+            })
+        }
+        G::Explosion {
+            center,
+            blast_radius,
+            blast_impulse,
+            shock_speed,
+            shock_thickness,
+            shock_force,
+            max_radius,
+            affect_all,
+        } => {
+            let t = g.elapsed;
+            let blast = t == 0.0 && blast_radius > 0.0 && blast_impulse > 0.0;
+            let shell = shock_speed * t;
+            let half = 0.5 * shock_thickness;
+            let shock = shock_force > 0.0 && half > 0.0 && shell <= max_radius;
+            if !blast && !shock {
+                return;
+            }
+            let push = |ctx: &mut Ctx, o: Obj| {
+                let s = ctx.state(o);
+                if !s.movable {
+                    return;
+                }
+                let d = s.point - center;
+                let dist = d.length();
+                let dir = if dist > 1.0e-6 { d / dist } else { Vec3::Y };
+                let mut f = 0.0;
+                if blast && dist < blast_radius {
+                    f += blast_impulse * (1.0 - dist / blast_radius) / dt;
+                }
+                let off = (dist - shell).abs();
+                if shock && off < half {
+                    f += shock_force * (1.0 - off / half);
+                }
+                if f > 0.0 {
+                    ctx.add(o, dir * f, s.point);
+                }
+            };
+            if affect_all {
+                slots.clear();
+                slots.extend(ctx.bodies.iter().filter(|(_, b)| b.is_dynamic()).map(|(h, _)| h.index));
+                for &b in slots.iter() {
+                    let c = ctx.bodies.at(b).local_center;
+                    push(ctx, Obj::Body(b, c));
+                }
+                for i in 0..ctx.particles.len() {
+                    push(ctx, Obj::Particle(i));
+                }
+            } else {
+                for &b in g.bodies.handles() {
+                    if let Some(body) = ctx.bodies.get(b) {
+                        let c = body.local_center;
+                        push(ctx, Obj::Body(b.index, c));
+                    }
+                }
+                for &p in g.particles.handles() {
+                    if let Some(i) = ctx.particles.index(p) {
+                        push(ctx, Obj::Particle(i));
+                    }
+                }
+            }
+        }
+        // Links are contact generators; external generators are run by the step's driver.
+        G::Rod { .. } | G::Cable { .. } | G::ExternalForce { .. } | G::ExternalContact { .. } => {}
+    }
+}
+
+/// Hooke's law along the spring, evaluated `ahead` seconds ahead (see `spring_lookahead`).
+fn spring(g: &Generator, ctx: &mut Ctx, sp: &Spring, bungee: bool, ahead: f32) {
+    let Some(other) = ctx.end(&sp.other) else { return };
+    for_each_attached(g, ctx, sp.local_point, |ctx, o| {
+        let (s, so) = (ctx.state(o), ctx.state(other));
+        if !((s.awake && s.movable) || (so.awake && so.movable)) {
+            return;
+        }
+        let d = s.point - so.point;
+        let len = d.length();
+        if len < 1.0e-9 {
+            return;
+        }
+        let n = d / len;
+        let stretch = len - sp.rest_length;
+        if bungee && stretch <= 0.0 {
+            return;
+        }
+        let rate = (s.velocity - so.velocity).dot(n);
+        let mut magnitude = sp.stiffness * (stretch + ahead * rate) + sp.damping * rate;
+        if bungee {
+            magnitude = magnitude.max(0.0); // pulls only
+        }
+        let f = -magnitude * n;
+        ctx.add(o, f, s.point);
+        ctx.add(other, -f, so.point);
+    });
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The step map with the gains has the continuous eigenvalues.
+    #[test]
+    fn stiff_spring_gains_reproduce_the_exact_decay() {
+        for &(k, c, dt, n) in &[
+            (100.0f32, 1.0f32, 1.0 / 60.0, 4u32),
+            (1.0e4, 20.0, 1.0 / 60.0, 1),
+            (25.0, 30.0, 0.02, 8),
+        ] {
+            let (kk, dd) = stiff_spring_gains(k, c, dt, n);
+            let s = (n as f32 + 1.0) / (2.0 * n as f32);
+            // x' = (1 - s dt² K) x + (dt - s dt² D) v; v' = -dt K x + (1 - dt D) v
+            let (a, b) = (1.0 - s * dt * dt * kk, dt - s * dt * dt * dd);
+            let (cc, d) = (-dt * kk, 1.0 - dt * dd);
+            let det = a * d - b * cc;
+            assert!((det as f64 - (-(c as f64) * dt as f64).exp()).abs() < 1e-4, "det {det}");
+            let (t, _) = exact_step_invariants(k, c, dt);
+            assert!(((a + d) as f64 - t).abs() < 1e-4);
+        }
+    }
+}
