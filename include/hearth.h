@@ -272,7 +272,7 @@ typedef struct HearthWorldDef {
      */
     struct HearthVec3 gravity;
     /**
-     * Solver sub-steps per step, 1..=64. Default 8.
+     * Solver sub-steps per step, 1..=64. Default 6.
      */
     uint32_t substeps;
     /**
@@ -748,7 +748,7 @@ HearthResult hearth_shape_get_body(const struct HearthWorld *world,
                                    struct HearthBodyId *out_body);
 
 /**
- * The default world settings: gravity (0, -9.81, 0), 8 sub-steps of one sweep, sleep on.
+ * The default world settings: gravity (0, -9.81, 0), 6 sub-steps, sleep on.
  */
 struct HearthWorldDef hearth_world_def_default(void);
 

@@ -41,6 +41,60 @@ pub struct Contact {
     /// Position in the world's awake-contact list, or `NONE`.
     pub awake_index: u32,
     pub key: u64,
+    /// The manifold in the bodies' own frames, for reuse while they barely move relative to
+    /// each other.
+    pub cache: ManifoldCache,
+}
+
+/// Body-pair cache (after Jolt's): the relative pose of B in A's frame when the manifold was
+/// last computed, the normal in A's frame and each point's surface points in its body's frame.
+/// While the relative pose stays within a millimetre and about a degree, the manifold is
+/// reused and only the separations are recomputed — a resting stack skips the narrow phase.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct ManifoldCache {
+    pub valid: bool,
+    pub relative: Transform,
+    pub normal_a: Vec3,
+    pub local_a: [Vec3; MAX_MANIFOLD_POINTS],
+    pub local_b: [Vec3; MAX_MANIFOLD_POINTS],
+}
+
+/// Largest relative translation (m) and rotation (cos of half the angle) for reuse.
+const CACHE_MAX_TRANSLATION: f32 = 1.0e-3;
+const CACHE_MIN_COS_HALF_ANGLE: f32 = 0.999_962; // cos(0.5°): a turn of 1°
+
+impl ManifoldCache {
+    fn store(&mut self, m: &Manifold, xf_a: &Transform, xf_b: &Transform) {
+        self.valid = true;
+        self.relative = xf_a.inv_mul(xf_b);
+        self.normal_a = xf_a.q.conjugate() * m.normal;
+        for (i, p) in m.points().iter().enumerate() {
+            let half = 0.5 * p.separation * m.normal;
+            self.local_a[i] = xf_a.apply_inv(p.point - half);
+            self.local_b[i] = xf_b.apply_inv(p.point + half);
+        }
+    }
+
+    /// The cached manifold moved to the current poses, if they are close enough.
+    fn reuse(&self, old: &Manifold, xf_a: &Transform, xf_b: &Transform) -> Option<Manifold> {
+        if !self.valid {
+            return None;
+        }
+        let relative = xf_a.inv_mul(xf_b);
+        if (relative.p - self.relative.p).length_squared() > CACHE_MAX_TRANSLATION * CACHE_MAX_TRANSLATION
+            || relative.q.dot(self.relative.q).abs() < CACHE_MIN_COS_HALF_ANGLE
+        {
+            return None;
+        }
+        let mut m = *old;
+        m.normal = xf_a.q * self.normal_a;
+        for i in 0..m.count {
+            let (pa, pb) = (xf_a.apply(self.local_a[i]), xf_b.apply(self.local_b[i]));
+            m.points[i].point = 0.5 * (pa + pb);
+            m.points[i].separation = (pb - pa).dot(m.normal);
+        }
+        Some(m)
+    }
 }
 
 /// Friction combines as the geometric mean, restitution as the maximum (Box2D, Jolt).
@@ -67,16 +121,23 @@ impl Contact {
             touching: false,
             awake_index: crate::body::NONE,
             key,
+            cache: ManifoldCache::default(),
         }
     }
 
-    /// Recomputes the manifold and carries impulses over to points with the same feature id.
-    /// Returns true when the contact started touching in this update.
+    /// Recomputes the manifold (or moves the cached one, see `ManifoldCache`) and carries
+    /// impulses over to points with the same feature id. Returns true when the contact started
+    /// touching in this update.
     pub fn update(&mut self, a: &Shape, xf_a: &Transform, b: &Shape, xf_b: &Transform, speculative: f32) -> bool {
+        if let Some(m) = self.cache.reuse(&self.manifold, xf_a, xf_b) {
+            self.manifold = m;
+            return false;
+        }
         let old = self.manifold;
         let old_impulses = self.impulses;
         let was_touching = self.touching;
         self.manifold = collide(&a.geometry, xf_a, &b.geometry, xf_b, speculative);
+        self.cache.store(&self.manifold, xf_a, xf_b);
         self.touching = self.manifold.count > 0;
         for (point, impulse) in self.manifold.points[..self.manifold.count]
             .iter()

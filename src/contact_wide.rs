@@ -19,13 +19,13 @@
 use crate::collision::MAX_MANIFOLD_POINTS;
 use crate::contact_solver::ContactConstraint;
 use crate::math::Vec3;
-use crate::simd::{F4, M4, V4};
+use crate::simd::{self, load, transpose, F4, M4, V4};
 use crate::solver::{BodyState, Velocity};
 
 const MAXP: usize = MAX_MANIFOLD_POINTS;
 
 /// Colours tried before a constraint goes to a batch of its own.
-const COLORS: usize = 16;
+const COLORS: usize = 24;
 
 /// Inner iterations of the projected Gauss–Seidel fallback of the block solve.
 const BLOCK_ITERATIONS: usize = 4;
@@ -160,16 +160,22 @@ impl Batches {
 }
 
 fn pack(lanes: &[u32], constraints: &[ContactConstraint]) -> WideContact {
+    // Stage each field per lane (empty lanes stay zero), then load the lanes at once.
+    #[derive(Default)]
+    struct Stage {
+        f: [[f32; 4]; 10],
+        v: [[Vec3; 4]; 7],
+        pf: [[[f32; 4]; 4]; MAXP],
+        pv: [[[Vec3; 4]; 2]; MAXP],
+    }
+    let mut st = Stage::default();
     let mut w = WideContact {
         a: [0; 4],
         b: [0; 4],
         src: [EMPTY; 4],
         ..Default::default()
     };
-    let get = |i: usize| lanes.get(i).map(|&k| &constraints[k as usize]);
-    let lane_f = |f: &dyn Fn(&ContactConstraint) -> f32| F4::from_array([0, 1, 2, 3].map(|i| get(i).map_or(0.0, f)));
-    let lane_v =
-        |f: &dyn Fn(&ContactConstraint) -> Vec3| V4::from_lanes([0, 1, 2, 3].map(|i| get(i).map_or(Vec3::ZERO, f)));
+    let on = f32::from_bits(u32::MAX);
     for (i, &k) in lanes.iter().enumerate() {
         let c = &constraints[k as usize];
         w.a[i] = c.a;
@@ -177,81 +183,140 @@ fn pack(lanes: &[u32], constraints: &[ContactConstraint]) -> WideContact {
         w.src[i] = k;
         w.count = w.count.max(c.count);
         w.has_restitution |= c.restitution > 0.0;
-    }
-    w.ma = lane_f(&|c| c.ma);
-    w.mb = lane_f(&|c| c.mb);
-    w.normal = lane_v(&|c| c.normal);
-    w.oa = lane_v(&|c| c.normal * c.radius_a);
-    w.ob = lane_v(&|c| c.normal * -c.radius_b);
-    w.at_b = lane_f(&|c| match (c.radius_a > 0.0, c.radius_b > 0.0) {
-        (true, false) => 0.0,
-        (false, true) => 1.0,
-        _ => 0.5,
-    });
-    w.tangents = [lane_v(&|c| c.tangents[0]), lane_v(&|c| c.tangents[1])];
-    w.static_friction = lane_f(&|c| c.static_friction);
-    w.dynamic_friction = lane_f(&|c| c.dynamic_friction);
-    w.restitution = lane_f(&|c| c.restitution);
-    let on = f32::from_bits(u32::MAX);
-    for p in 0..w.count {
-        let has = |c: &ContactConstraint| p < c.count;
-        let wp = &mut w.points[p];
-        wp.ca0 = lane_v(&|c| {
-            if has(c) {
-                c.points[p].ra0 - c.normal * c.radius_a
-            } else {
-                Vec3::ZERO
+        let (oa, ob) = (c.normal * c.radius_a, c.normal * -c.radius_b);
+        let at_b = match (c.radius_a > 0.0, c.radius_b > 0.0) {
+            (true, false) => 0.0,
+            (false, true) => 1.0,
+            _ => 0.5,
+        };
+        let f = &c.friction;
+        for (slot, x) in st.f.iter_mut().zip([
+            c.ma,
+            c.mb,
+            at_b,
+            c.static_friction,
+            c.dynamic_friction,
+            c.restitution,
+            f.twist_radius,
+            f.tangent_impulse[0],
+            f.tangent_impulse[1],
+            f.twist_impulse,
+        ]) {
+            slot[i] = x;
+        }
+        for (slot, x) in
+            st.v.iter_mut()
+                .zip([c.normal, oa, ob, c.tangents[0], c.tangents[1], f.ra0 - oa, f.rb0 - ob])
+        {
+            slot[i] = x;
+        }
+        for (p, cp) in c.points[..c.count].iter().enumerate() {
+            for (slot, x) in st.pf[p]
+                .iter_mut()
+                .zip([cp.separation0, on, cp.normal_impulse, cp.relative_velocity])
+            {
+                slot[i] = x;
             }
-        });
-        wp.cb0 = lane_v(&|c| {
-            if has(c) {
-                c.points[p].rb0 + c.normal * c.radius_b
-            } else {
-                Vec3::ZERO
-            }
-        });
-        wp.separation0 = lane_f(&|c| if has(c) { c.points[p].separation0 } else { 0.0 });
-        wp.active = lane_f(&|c| if has(c) { on } else { 0.0 });
-        wp.impulse = lane_f(&|c| if has(c) { c.points[p].normal_impulse } else { 0.0 });
-        wp.relative_velocity = lane_f(&|c| if has(c) { c.points[p].relative_velocity } else { 0.0 });
+            st.pv[p][0][i] = cp.ra0 - oa;
+            st.pv[p][1][i] = cp.rb0 - ob;
+        }
+        if f.sliding {
+            w.friction.sliding = F4::from_array({
+                let mut m = w.friction.sliding.to_array();
+                m[i] = on;
+                m
+            });
+        }
     }
+    let [ma, mb, at_b, fs, fd, e, twist_radius, t0, t1, twist] = st.f.map(F4::from_array);
+    let [normal, oa, ob, tan0, tan1, fca0, fcb0] = st.v.map(V4::from_lanes);
+    (w.ma, w.mb, w.at_b, w.static_friction, w.dynamic_friction, w.restitution) = (ma, mb, at_b, fs, fd, e);
+    (w.normal, w.oa, w.ob, w.tangents) = (normal, oa, ob, [tan0, tan1]);
     let f = &mut w.friction;
-    f.ca0 = lane_v(&|c| c.friction.ra0 - c.normal * c.radius_a);
-    f.cb0 = lane_v(&|c| c.friction.rb0 + c.normal * c.radius_b);
-    f.twist_radius = lane_f(&|c| c.friction.twist_radius);
-    f.tangent_impulse = [
-        lane_f(&|c| c.friction.tangent_impulse[0]),
-        lane_f(&|c| c.friction.tangent_impulse[1]),
-    ];
-    f.twist_impulse = lane_f(&|c| c.friction.twist_impulse);
-    f.sliding = lane_f(&|c| if c.friction.sliding { on } else { 0.0 });
+    (f.ca0, f.cb0, f.twist_radius, f.tangent_impulse, f.twist_impulse) = (fca0, fcb0, twist_radius, [t0, t1], twist);
+    for p in 0..w.count {
+        let wp = &mut w.points[p];
+        let [sep0, active, impulse, rel] = st.pf[p].map(F4::from_array);
+        (wp.separation0, wp.active, wp.impulse, wp.relative_velocity) = (sep0, active, impulse, rel);
+        wp.ca0 = V4::from_lanes(st.pv[p][0]);
+        wp.cb0 = V4::from_lanes(st.pv[p][1]);
+    }
     w
 }
 
+/// Four bodies' motion so far into lanes: translation, rotation and world inverse inertia.
 #[inline(always)]
 fn gather_states(states: &[BodyState], idx: &[u32; 4]) -> (V4, M4, M4) {
-    let s = idx.map(|i| &states[i as usize]);
+    let rows = idx.map(|i| &states[i as usize].rows);
+    let lanes = |r: usize| {
+        let t = transpose([
+            load(&rows[0][r]),
+            load(&rows[1][r]),
+            load(&rows[2][r]),
+            load(&rows[3][r]),
+        ]);
+        V4 {
+            x: t[0],
+            y: t[1],
+            z: t[2],
+        }
+    };
     (
-        V4::from_lanes([s[0].dp, s[1].dp, s[2].dp, s[3].dp]),
-        M4::from_lanes([&s[0].rot, &s[1].rot, &s[2].rot, &s[3].rot]),
-        M4::from_lanes([&s[0].inv_i, &s[1].inv_i, &s[2].inv_i, &s[3].inv_i]),
+        lanes(0),
+        M4 {
+            c0: lanes(1),
+            c1: lanes(2),
+            c2: lanes(3),
+        },
+        M4 {
+            c0: lanes(4),
+            c1: lanes(5),
+            c2: lanes(6),
+        },
     )
 }
 
 #[inline(always)]
 fn gather(vel: &[Velocity], idx: &[u32; 4]) -> (V4, V4) {
-    let u = idx.map(|i| vel[i as usize]);
-    (V4::from_lanes(u.map(|u| u.v)), V4::from_lanes(u.map(|u| u.w)))
+    let rows = idx.map(|i| vel[i as usize].rows());
+    let v = transpose([
+        load(&rows[0][0]),
+        load(&rows[1][0]),
+        load(&rows[2][0]),
+        load(&rows[3][0]),
+    ]);
+    let w = transpose([
+        load(&rows[0][1]),
+        load(&rows[1][1]),
+        load(&rows[2][1]),
+        load(&rows[3][1]),
+    ]);
+    (
+        V4 {
+            x: v[0],
+            y: v[1],
+            z: v[2],
+        },
+        V4 {
+            x: w[0],
+            y: w[1],
+            z: w[2],
+        },
+    )
 }
 
-/// Writes lanes back, except static (index 0) and massless (kinematic) bodies.
+/// Writes the lanes back. Lanes of static (index 0) and kinematic bodies carry exactly the
+/// velocity they gathered (their inverse mass and inertia are zero), and the colouring keeps
+/// the dynamic bodies of a batch distinct, so writing every lane is safe.
 #[inline(always)]
-fn scatter(vel: &mut [Velocity], idx: &[u32; 4], m: F4, v: V4, w: V4) {
-    let (v, w, m) = (v.lanes(), w.lanes(), m.to_array());
+fn scatter(vel: &mut [Velocity], idx: &[u32; 4], v: V4, w: V4) {
+    let zero = F4::zero();
+    let vr = transpose([v.x, v.y, v.z, zero]);
+    let wr = transpose([w.x, w.y, w.z, zero]);
     for i in 0..4 {
-        if idx[i] != 0 && m[i] > 0.0 {
-            vel[idx[i] as usize] = Velocity { v: v[i], w: w[i] };
-        }
+        let rows = vel[idx[i] as usize].rows_mut();
+        simd::store(vr[i], &mut rows[0]);
+        simd::store(wr[i], &mut rows[1]);
     }
 }
 
@@ -331,8 +396,9 @@ fn arms(ca0: V4, cb0: V4, g: &Geometry4, dpa: V4, dpb: V4, rot_a: &M4, rot_b: &M
     )
 }
 
-/// Recomputes arms, Jacobians, effective masses, K and K⁻¹, and separations.
-pub fn refresh(states: &[BodyState], batches: &mut [WideContact]) {
+/// Recomputes arms, Jacobians, effective masses and separations from the motion so far;
+/// with `block`, also K and K⁻¹ (once per step: they change little within it).
+pub fn refresh(states: &[BodyState], batches: &mut [WideContact], block: bool) {
     for w in batches.iter_mut() {
         let (dpa, rot_a, ia) = gather_states(states, &w.a);
         let (dpb, rot_b, ib) = gather_states(states, &w.b);
@@ -353,7 +419,7 @@ pub fn refresh(states: &[BodyState], batches: &mut [WideContact]) {
             let k = m + p.rna.dot(p.ia) + p.rnb.dot(p.ib);
             p.normal_mass = F4::select(p.active, safe_inverse(k), F4::zero());
         }
-        if w.count > 1 {
+        if block && w.count > 1 {
             let one = F4::splat(1.0);
             for i in 0..w.count {
                 for j in i..w.count {
@@ -418,8 +484,8 @@ pub fn warm_start(vel: &mut [Velocity], batches: &[WideContact]) {
         wa = wa - ang_a;
         vb = vb.add_scaled(lin, w.mb);
         wb = wb + ang_b;
-        scatter(vel, &w.a, w.ma, va, wa);
-        scatter(vel, &w.b, w.mb, vb, wb);
+        scatter(vel, &w.a, va, wa);
+        scatter(vel, &w.b, vb, wb);
     }
 }
 
@@ -488,36 +554,45 @@ pub fn solve(vel: &mut [Velocity], batches: &mut [WideContact], inv_h: f32, forw
             let new = (p.impulse - msp[0] * p.normal_mass * rhs[0] - isp[0] * p.impulse).max(zero);
             delta[0] = new - p.impulse;
         } else {
+            // Lanes touching without load and not approaching (side faces of neighbours) need
+            // nothing: every impulse is zero and stays zero.
+            let mut idle = F4::splat(f32::from_bits(u32::MAX));
+            for (p, r) in w.points[..count].iter().zip(&rhs) {
+                idle = idle.and(p.impulse.le(zero)).and(r.ge(zero));
+            }
+            // Exact solution with every point pushing: K e = −rhs, Δλ = ms·e − is·λ. (A clamped
+            // exact solution is no good start: K of four coplanar points is nearly singular and
+            // its exact solution may hold large self-cancelling parts.)
             let mut ok = F4::splat(f32::from_bits(u32::MAX));
+            let mut lower = [zero; MAXP];
             for i in 0..count {
                 let mut d = zero;
                 for j in 0..count {
                     d = d - w.k_inv[i][j] * rhs[j];
                 }
                 let p = &w.points[i];
-                delta[i] = msp[i] * d - isp[i] * p.impulse;
-                ok = ok.and((p.impulse + delta[i]).ge(zero));
+                // e may not go below this, or the point would pull.
+                lower[i] = -((one - isp[i]) * p.impulse / msp[i]);
+                let e = F4::select(idle, zero, d);
+                ok = ok.and(e.ge(lower[i]));
+                delta[i] = msp[i] * e - isp[i] * p.impulse;
             }
             if ok.bits() != 0b1111 {
                 // Some lane has a point that would pull: projected Gauss–Seidel on K there.
-                let mut pgs = [zero; MAXP];
-                let lower: [F4; MAXP] = std::array::from_fn(|i| {
-                    let p = &w.points[i];
-                    -((one - isp[i]) * p.impulse / msp[i])
-                });
+                let mut e = [zero; MAXP];
                 for it in 0..BLOCK_ITERATIONS {
                     for s in 0..count {
                         let i = if forward ^ (it % 2 == 1) { s } else { count - 1 - s };
                         let mut r = rhs[i];
                         for j in 0..count {
-                            r = r + w.k[i][j] * pgs[j];
+                            r = r + w.k[i][j] * e[j];
                         }
                         let p = &w.points[i];
-                        pgs[i] = F4::select(p.active, (pgs[i] - p.normal_mass * r).max(lower[i]), zero);
+                        e[i] = F4::select(p.active, (e[i] - p.normal_mass * r).max(lower[i]), zero);
                     }
                 }
                 for i in 0..count {
-                    let soft = msp[i] * pgs[i] - isp[i] * w.points[i].impulse;
+                    let soft = msp[i] * e[i] - isp[i] * w.points[i].impulse;
                     delta[i] = F4::select(ok, delta[i], soft);
                 }
             }
@@ -577,8 +652,8 @@ pub fn solve(vel: &mut [Velocity], batches: &mut [WideContact], inv_h: f32, forw
         wa = wa - ang_a;
         vb = vb.add_scaled(lin, w.mb);
         wb = wb + ang_b;
-        scatter(vel, &w.a, w.ma, va, wa);
-        scatter(vel, &w.b, w.mb, vb, wb);
+        scatter(vel, &w.a, va, wa);
+        scatter(vel, &w.b, vb, wb);
     }
 }
 
@@ -608,8 +683,8 @@ pub fn restitution(vel: &mut [Velocity], batches: &mut [WideContact], threshold:
             vb = vb.add_scaled(n, w.mb * d);
             wb = wb.add_scaled(p.ib, d);
         }
-        scatter(vel, &w.a, w.ma, va, wa);
-        scatter(vel, &w.b, w.mb, vb, wb);
+        scatter(vel, &w.a, va, wa);
+        scatter(vel, &w.b, vb, wb);
     }
 }
 

@@ -67,6 +67,10 @@ mod imp {
             unsafe { F4(_mm_cmpge_ps(self.0, o.0)) }
         }
         #[inline(always)]
+        pub fn le(self, o: F4) -> F4 {
+            unsafe { F4(_mm_cmple_ps(self.0, o.0)) }
+        }
+        #[inline(always)]
         pub fn and(self, o: F4) -> F4 {
             unsafe { F4(_mm_and_ps(self.0, o.0)) }
         }
@@ -84,6 +88,33 @@ mod imp {
         pub fn bits(self) -> u32 {
             unsafe { _mm_movemask_ps(self.0) as u32 }
         }
+    }
+
+    /// Four rows of four floats in, four columns out (a 4×4 transpose).
+    #[inline(always)]
+    pub fn transpose(r: [F4; 4]) -> [F4; 4] {
+        unsafe {
+            let t0 = _mm_unpacklo_ps(r[0].0, r[1].0);
+            let t1 = _mm_unpacklo_ps(r[2].0, r[3].0);
+            let t2 = _mm_unpackhi_ps(r[0].0, r[1].0);
+            let t3 = _mm_unpackhi_ps(r[2].0, r[3].0);
+            [
+                F4(_mm_movelh_ps(t0, t1)),
+                F4(_mm_movehl_ps(t1, t0)),
+                F4(_mm_movelh_ps(t2, t3)),
+                F4(_mm_movehl_ps(t3, t2)),
+            ]
+        }
+    }
+
+    #[inline(always)]
+    pub fn load(a: &[f32; 4]) -> F4 {
+        unsafe { F4(_mm_loadu_ps(a.as_ptr())) }
+    }
+
+    #[inline(always)]
+    pub fn store(v: F4, a: &mut [f32; 4]) {
+        unsafe { _mm_storeu_ps(a.as_mut_ptr(), v.0) }
     }
 }
 
@@ -171,9 +202,21 @@ mod imp {
             (0..4).fold(0, |acc, i| acc | (((self.0[i].to_bits() >> 31) & 1) << i))
         }
     }
+
+    pub fn transpose(r: [F4; 4]) -> [F4; 4] {
+        [0, 1, 2, 3].map(|c| F4([r[0].0[c], r[1].0[c], r[2].0[c], r[3].0[c]]))
+    }
+
+    pub fn load(a: &[f32; 4]) -> F4 {
+        F4(*a)
+    }
+
+    pub fn store(v: F4, a: &mut [f32; 4]) {
+        *a = v.0;
+    }
 }
 
-pub use imp::F4;
+pub use imp::{load, store, transpose, F4};
 
 impl F4 {
     pub const ZERO_ARRAY: [f32; 4] = [0.0; 4];

@@ -12,33 +12,105 @@ use crate::math::{integrate_rotation, Mat3, Quat, Vec3};
 use crate::world::{Integrator, World};
 
 /// Linear and angular velocity of one awake body: the only data the velocity sweeps touch.
+/// Padded to two rows of four floats so four bodies load and transpose into SIMD lanes.
 #[derive(Clone, Copy, Debug, Default)]
+#[repr(C, align(16))]
 pub struct Velocity {
     pub v: Vec3,
+    pad_v: f32,
     pub w: Vec3,
+    pad_w: f32,
+}
+
+impl Velocity {
+    #[inline]
+    pub fn new(v: Vec3, w: Vec3) -> Velocity {
+        Velocity {
+            v,
+            pad_v: 0.0,
+            w,
+            pad_w: 0.0,
+        }
+    }
+
+    /// The two rows: `[v.x, v.y, v.z, 0]` and `[w.x, w.y, w.z, 0]`.
+    #[inline(always)]
+    pub fn rows(&self) -> &[[f32; 4]; 2] {
+        // SAFETY: `#[repr(C)]` of four-byte floats with no padding between fields (glam's
+        // `Vec3` is three `f32`), 32 bytes in all, 16-byte aligned.
+        unsafe { &*(self as *const Velocity as *const [[f32; 4]; 2]) }
+    }
+
+    #[inline(always)]
+    pub fn rows_mut(&mut self) -> &mut [[f32; 4]; 2] {
+        // SAFETY: as `rows`; every bit pattern is a valid float.
+        unsafe { &mut *(self as *mut Velocity as *mut [[f32; 4]; 2]) }
+    }
 }
 
 /// Motion of one awake body since the start of the step, and its inverse mass. Index 0 of
 /// every solver array is a shared static dummy with infinite mass that is never written.
 #[derive(Clone, Copy, Debug)]
 pub struct BodyState {
-    /// Translation of the centre of mass since the start of the step.
-    pub dp: Vec3,
-    /// Rotation since the start of the step, and the same as a matrix.
+    /// Rotation since the start of the step.
     pub dq: Quat,
-    pub rot: Mat3,
     pub inv_mass: f32,
     pub inv_i: Mat3,
+    /// The contact passes' view, as rows of four floats so four bodies load into lanes with
+    /// transposes: translation since the start of the step, then the columns of the rotation
+    /// since the start of the step, then the columns of the world inverse inertia.
+    pub rows: [[f32; 4]; 7],
 }
 
 impl BodyState {
     pub const STATIC: BodyState = BodyState {
-        dp: Vec3::ZERO,
         dq: Quat::IDENTITY,
-        rot: Mat3::IDENTITY,
         inv_mass: 0.0,
         inv_i: Mat3::ZERO,
+        rows: [
+            [0.0; 4],
+            [1.0, 0.0, 0.0, 0.0],
+            [0.0, 1.0, 0.0, 0.0],
+            [0.0, 0.0, 1.0, 0.0],
+            [0.0; 4],
+            [0.0; 4],
+            [0.0; 4],
+        ],
     };
+
+    fn new(inv_mass: f32, inv_i: Mat3) -> BodyState {
+        let mut s = BodyState {
+            inv_mass,
+            ..BodyState::STATIC
+        };
+        s.set_inv_i(inv_i);
+        s
+    }
+
+    #[inline]
+    pub fn dp(&self) -> Vec3 {
+        Vec3::from_slice(&self.rows[0][..3])
+    }
+
+    #[inline]
+    fn set_dp(&mut self, dp: Vec3) {
+        self.rows[0] = dp.extend(0.0).to_array();
+    }
+
+    #[inline]
+    fn set_rot(&mut self, r: Mat3) {
+        for (row, col) in self.rows[1..4].iter_mut().zip([r.x_axis, r.y_axis, r.z_axis]) {
+            *row = col.extend(0.0).to_array();
+        }
+    }
+
+    #[inline]
+    fn set_inv_i(&mut self, m: Mat3) {
+        self.inv_i = m;
+        for (row, col) in self.rows[4..7].iter_mut().zip([m.x_axis, m.y_axis, m.z_axis]) {
+            *row = col.extend(0.0).to_array();
+        }
+    }
 }
 
 /// Per-body data the integrator needs each sub-step, fixed for the step.
@@ -177,14 +249,10 @@ pub fn prepare_bodies(world: &mut World, dt: f32) {
             }
         }
         body.update_world_inertia();
-        scratch.states.push(BodyState {
-            dp: Vec3::ZERO,
-            dq: Quat::IDENTITY,
-            rot: Mat3::IDENTITY,
-            inv_mass: body.inv_mass,
-            inv_i: body.inv_inertia_world,
-        });
-        scratch.vel.push(Velocity { v: body.v, w: body.w });
+        scratch
+            .states
+            .push(BodyState::new(body.inv_mass, body.inv_inertia_world));
+        scratch.vel.push(Velocity::new(body.v, body.w));
         scratch.sims.push(BodySim {
             body: bi,
             lin_accel: if dynamic {
@@ -232,14 +300,15 @@ fn integrate_positions(vel: &mut [Velocity], states: &mut [BodyState], sims: &[B
         if sim.rk4 {
             rk4_step(u, s, sim, h);
         } else {
-            s.dp += h * u.v;
+            s.set_dp(s.dp() + h * u.v);
             s.dq = integrate_rotation(s.dq, u.w, h);
         }
-        s.rot = Mat3::from_quat(s.dq);
+        let rot = Mat3::from_quat(s.dq);
+        s.set_rot(rot);
         if sim.gyroscopic {
             // Anisotropic inertia turns with the body: keep the world inverse current.
-            let r = s.rot * Mat3::from_quat(sim.q0);
-            s.inv_i = r * sim.inv_inertia * r.transpose();
+            let r = rot * Mat3::from_quat(sim.q0);
+            s.set_inv_i(r * sim.inv_inertia * r.transpose());
         }
     }
 }
@@ -283,7 +352,7 @@ fn rk4_step(u: &mut Velocity, s: &mut BodyState, sim: &BodySim, h: f32) {
     let q_start = (s.dq * sim.q0).as_dquat().normalize();
     let r = DMat3::from_quat(q_start);
     let y0 = Y {
-        p: s.dp.as_dvec3(),
+        p: s.dp().as_dvec3(),
         q: DVec4::from(q_start),
         v: u.v.as_dvec3(),
         l: r * (inertia * (r.transpose() * u.w.as_dvec3())),
@@ -299,7 +368,7 @@ fn rk4_step(u: &mut Velocity, s: &mut BodyState, sim: &BodySim, h: f32) {
         l: y0.l + (k1.l + 2.0 * k2.l + 2.0 * k3.l + k4.l) * (h / 6.0),
     };
     let q = DQuat::from_vec4(y.q).normalize();
-    s.dp = y.p.as_vec3();
+    s.set_dp(y.p.as_vec3());
     u.v = y.v.as_vec3();
     u.w = omega(y.q, y.l).as_vec3();
     s.dq = (q * sim.q0.as_dquat().conjugate()).normalize().as_quat();
@@ -339,7 +408,7 @@ pub fn solve(world: &mut World, dt: f32) {
     };
     for sub in 0..substeps {
         integrate_velocities(vel, states, sims, h, settings.max_linear_speed);
-        contact_wide::refresh(states, batches);
+        contact_wide::refresh(states, batches, sub == 0);
         contact_wide::warm_start(vel, batches);
         // Soft, biased sweeps push overlap out and damp; positions move; a rigid relax sweep
         // removes the push velocity. Sweeps alternate direction through each manifold's points.
@@ -350,7 +419,7 @@ pub fn solve(world: &mut World, dt: f32) {
         contact_wide::solve(vel, batches, inv_h, sub % 2 == 1, None);
     }
     if scratch.constraints.iter().any(|c| c.restitution > 0.0) {
-        contact_wide::refresh(states, batches);
+        contact_wide::refresh(states, batches, false);
         contact_wide::restitution(vel, batches, settings.restitution_threshold);
     }
     contact_wide::store(batches, &mut scratch.constraints);
@@ -366,7 +435,7 @@ fn finalize_bodies(world: &mut World) {
         body.v = u.v;
         body.w = u.w;
         let q = (s.dq * sim.q0).normalize();
-        body.set_center_rotation(body.center + s.dp, q);
+        body.set_center_rotation(body.center + s.dp(), q);
         body.update_world_inertia();
         body.force = Vec3::ZERO;
         body.torque = Vec3::ZERO;

@@ -18,8 +18,16 @@ fn root() -> PathBuf {
 fn lib_dir() -> PathBuf {
     let exe = std::env::current_exe().unwrap();
     let dir = exe.parent().unwrap().to_path_buf();
-    assert!(dir.join(shared_lib_name()).exists(), "shared library missing in {}", dir.display());
-    assert!(dir.join("libhearth.a").exists(), "static library missing in {}", dir.display());
+    assert!(
+        dir.join(shared_lib_name()).exists(),
+        "shared library missing in {}",
+        dir.display()
+    );
+    assert!(
+        dir.join("libhearth.a").exists(),
+        "static library missing in {}",
+        dir.display()
+    );
     dir
 }
 

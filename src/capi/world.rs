@@ -19,7 +19,7 @@ pub const HEARTH_INTEGRATOR_RK4: u32 = 1;
 pub struct HearthWorldDef {
     /// Gravity (m/s²). Default (0, -9.81, 0).
     pub gravity: HearthVec3,
-    /// Solver sub-steps per step, 1..=64. Default 8.
+    /// Solver sub-steps per step, 1..=64. Default 6.
     pub substeps: u32,
     /// `HEARTH_INTEGRATOR_*`. Default semi-implicit Euler.
     pub integrator: u32,
@@ -110,7 +110,7 @@ pub(crate) fn settings_from_def(def: &HearthWorldDef) -> Result<WorldSettings, F
     Ok(s)
 }
 
-/// The default world settings: gravity (0, -9.81, 0), 8 sub-steps of one sweep, sleep on.
+/// The default world settings: gravity (0, -9.81, 0), 6 sub-steps, sleep on.
 #[no_mangle]
 pub extern "C" fn hearth_world_def_default() -> HearthWorldDef {
     let s = WorldSettings::default();
