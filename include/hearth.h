@@ -41,6 +41,61 @@
 #define HEARTH_BODY_DYNAMIC 2
 
 /**
+ * Extra gravity (`hearth_generator_get_type`).
+ */
+#define HEARTH_GENERATOR_GRAVITY 0
+
+/**
+ * Drag.
+ */
+#define HEARTH_GENERATOR_DRAG 1
+
+/**
+ * Spring.
+ */
+#define HEARTH_GENERATOR_SPRING 2
+
+/**
+ * Bungee (a spring that only pulls).
+ */
+#define HEARTH_GENERATOR_BUNGEE 3
+
+/**
+ * Stiff spring (exact damped harmonic step).
+ */
+#define HEARTH_GENERATOR_STIFF_SPRING 4
+
+/**
+ * Buoyancy.
+ */
+#define HEARTH_GENERATOR_BUOYANCY 5
+
+/**
+ * Explosion.
+ */
+#define HEARTH_GENERATOR_EXPLOSION 6
+
+/**
+ * Rod (contact generator).
+ */
+#define HEARTH_GENERATOR_ROD 7
+
+/**
+ * Cable (contact generator).
+ */
+#define HEARTH_GENERATOR_CABLE 8
+
+/**
+ * User force generator (C callback).
+ */
+#define HEARTH_GENERATOR_USER_FORCE 9
+
+/**
+ * User contact generator (C callback).
+ */
+#define HEARTH_GENERATOR_USER_CONTACT 10
+
+/**
  * Semi-implicit (symplectic) Euler integration (default).
  */
 #define HEARTH_INTEGRATOR_SEMI_IMPLICIT_EULER 0
@@ -95,6 +150,12 @@ enum HearthResult
 #ifndef __cplusplus
 typedef int32_t HearthResult;
 #endif // __cplusplus
+
+/**
+ * The contacts of one user contact generator call, filled by `hearth_contact_sink_add`.
+ * Valid only during the callback.
+ */
+typedef struct HearthContactSink HearthContactSink;
 
 /**
  * The world handle: opaque to C. Owns everything in the world. One thread at a time.
@@ -186,6 +247,564 @@ typedef struct HearthBodyId {
     uint32_t index;
     uint32_t generation;
 } HearthBodyId;
+
+/**
+ * Extra gravity on every attached body and particle, on top of world gravity.
+ */
+typedef struct HearthGravityGeneratorDef {
+    /**
+     * Acceleration (m/s²). Default (0, -9.81, 0).
+     */
+    struct HearthVec3 acceleration;
+    /**
+     * Set by `hearth_gravity_generator_def_default()`; do not change.
+     */
+    uint32_t internal_value;
+} HearthGravityGeneratorDef;
+
+/**
+ * Id of a generator inside its world. All-zero is the null id; a destroyed generator's id is
+ * stale (`HEARTH_ERROR_INVALID_ID`).
+ */
+typedef struct HearthGeneratorId {
+    /**
+     * Slot of the generator.
+     */
+    uint32_t index;
+    /**
+     * Generation of the slot (0 only in the null id).
+     */
+    uint32_t generation;
+} HearthGeneratorId;
+
+/**
+ * Drag `-v̂ (k1 |v| + k2 |v|²)` on every attached body (at its centre of mass) and particle.
+ */
+typedef struct HearthDragGeneratorDef {
+    /**
+     * Linear coefficient (N·s/m, >= 0). Default 0.1.
+     */
+    float k1;
+    /**
+     * Quadratic coefficient (N·s²/m², >= 0). Default 0.01.
+     */
+    float k2;
+    /**
+     * Set by `hearth_drag_generator_def_default()`; do not change.
+     */
+    uint32_t internal_value;
+} HearthDragGeneratorDef;
+
+/**
+ * Id of a particle inside its world. All-zero is the null id. A particle that expired or
+ * was destroyed leaves a stale id: `HEARTH_ERROR_INVALID_ID`.
+ */
+typedef struct HearthParticleId {
+    /**
+     * Slot of the particle.
+     */
+    uint32_t index;
+    /**
+     * Generation of the slot (0 only in the null id).
+     */
+    uint32_t generation;
+} HearthParticleId;
+
+/**
+ * One end of a spring, rod or cable: a point on a body (`body` set, `point` in the body
+ * frame), a particle (`particle` set, `point` ignored), or a fixed point in the world (both
+ * ids null, `point` in world space). Setting both ids is an error.
+ */
+typedef struct HearthLinkEnd {
+    /**
+     * A body, or the null id.
+     */
+    struct HearthBodyId body;
+    /**
+     * A particle, or the null id.
+     */
+    struct HearthParticleId particle;
+    /**
+     * Body-frame attachment point, or the world anchor point (m).
+     */
+    struct HearthVec3 point;
+} HearthLinkEnd;
+
+/**
+ * A spring from each attached body or particle to `other`. With `other` a world point it is
+ * an anchored spring; with `other` a dynamic body or a particle that end feels the equal
+ * and opposite force (a spring between two objects: attach one, name the other).
+ */
+typedef struct HearthSpringGeneratorDef {
+    /**
+     * The other end. Default: the world origin.
+     */
+    struct HearthLinkEnd other;
+    /**
+     * Attachment point on each attached body, body frame (m). Default (0, 0, 0).
+     */
+    struct HearthVec3 local_point;
+    /**
+     * Rest length (m, >= 0). Default 1.
+     */
+    float rest_length;
+    /**
+     * Stiffness (N/m, >= 0). Default 100.
+     */
+    float stiffness;
+    /**
+     * Damping along the spring (N·s/m, >= 0). Default 0.
+     */
+    float damping;
+    /**
+     * Set by `hearth_spring_generator_def_default()`; do not change.
+     */
+    uint32_t internal_value;
+} HearthSpringGeneratorDef;
+
+/**
+ * A stiff damped spring (rest length 0) from each attached object to `anchor`, whose force
+ * makes the step reproduce the exact damped harmonic motion: the discrete motion has the
+ * continuous system's frequency and decay for any stiffness, where an explicit spring
+ * would explode. The anchor end is followed but feels no reaction.
+ */
+typedef struct HearthStiffSpringGeneratorDef {
+    /**
+     * The anchor. Default: the world origin.
+     */
+    struct HearthLinkEnd anchor;
+    /**
+     * Attachment point on each attached body, body frame (m). Default (0, 0, 0).
+     */
+    struct HearthVec3 local_point;
+    /**
+     * Stiffness (N/m, > 0). Default 1000.
+     */
+    float stiffness;
+    /**
+     * Damping (N·s/m, >= 0). Default 10.
+     */
+    float damping;
+    /**
+     * Set by `hearth_stiff_spring_generator_def_default()`; do not change.
+     */
+    uint32_t internal_value;
+} HearthStiffSpringGeneratorDef;
+
+/**
+ * Buoyancy of a liquid below the plane `dot(surface_normal, p) = surface_offset`: a force
+ * `liquid_density · volume · |g| · f` along the normal, where `f`, the submerged fraction,
+ * rises linearly from 0 when the centre of buoyancy is `max_depth` above the surface to 1
+ * when it is `max_depth` below. At rest `f = mass / (liquid_density · volume)`
+ * (Archimedes).
+ */
+typedef struct HearthBuoyancyGeneratorDef {
+    /**
+     * Up out of the liquid (need not be unit length, must not be zero). Default +Y.
+     */
+    struct HearthVec3 surface_normal;
+    /**
+     * Height of the surface along the normal (m). Default 0.
+     */
+    float surface_offset;
+    /**
+     * Half the depth over which an object goes from dry to submerged (m, > 0). Default 0.5.
+     */
+    float max_depth;
+    /**
+     * Displaced volume when submerged (m³, >= 0). Default 0.001.
+     */
+    float volume;
+    /**
+     * Density of the liquid (kg/m³, >= 0). Default 1000 (water).
+     */
+    float liquid_density;
+    /**
+     * Centre of buoyancy on attached bodies, body frame (m). Default (0, 0, 0).
+     */
+    struct HearthVec3 local_point;
+    /**
+     * Set by `hearth_buoyancy_generator_def_default()`; do not change.
+     */
+    uint32_t internal_value;
+} HearthBuoyancyGeneratorDef;
+
+/**
+ * An explosion at `center`. In the first step after creation, objects within
+ * `blast_radius` get an impulse `blast_impulse · (1 - d / blast_radius)` away from the
+ * centre; then a shock wave, a shell `shock_thickness` thick expanding at `shock_speed` up
+ * to `max_radius`, pushes objects inside it with up to `shock_force` (falling off linearly
+ * across the shell). Forces act at centres of mass.
+ */
+typedef struct HearthExplosionGeneratorDef {
+    /**
+     * Where it goes off (m).
+     */
+    struct HearthVec3 center;
+    /**
+     * Reach of the blast (m, >= 0). Default 5.
+     */
+    float blast_radius;
+    /**
+     * Impulse at the centre (N·s, >= 0). Default 50.
+     */
+    float blast_impulse;
+    /**
+     * Speed of the shock wave (m/s, >= 0). Default 20.
+     */
+    float shock_speed;
+    /**
+     * Thickness of the shell (m, >= 0). Default 1.
+     */
+    float shock_thickness;
+    /**
+     * Peak force of the shock wave (N, >= 0). Default 100.
+     */
+    float shock_force;
+    /**
+     * The wave stops at this radius (m, >= 0). Default 20.
+     */
+    float max_radius;
+    /**
+     * 1 (default): acts on every body and particle in range; 0: only on attached ones.
+     */
+    uint8_t affect_all;
+    /**
+     * Set by `hearth_explosion_generator_def_default()`; do not change.
+     */
+    uint32_t internal_value;
+} HearthExplosionGeneratorDef;
+
+/**
+ * A rod: ends `a` and `b` stay `length` apart (it pushes and pulls). Between bodies (or a
+ * body and the world) the rigid solver resolves it with the collision contacts; with a
+ * particle end it is solved in the particle stage, exactly together with the other rods.
+ */
+typedef struct HearthRodGeneratorDef {
+    /**
+     * First end. Default: the world origin.
+     */
+    struct HearthLinkEnd a;
+    /**
+     * Second end. Default: the world origin.
+     */
+    struct HearthLinkEnd b;
+    /**
+     * Length (m, >= 0). Default 1.
+     */
+    float length;
+    /**
+     * Set by `hearth_rod_generator_def_default()`; do not change.
+     */
+    uint32_t internal_value;
+} HearthRodGeneratorDef;
+
+/**
+ * A cable: ends `a` and `b` stay at most `max_length` apart (it only pulls, and goes slack
+ * when they come closer); a cable snapping taut bounces with `restitution`.
+ */
+typedef struct HearthCableGeneratorDef {
+    /**
+     * First end. Default: the world origin.
+     */
+    struct HearthLinkEnd a;
+    /**
+     * Second end. Default: the world origin.
+     */
+    struct HearthLinkEnd b;
+    /**
+     * Maximum length (m, >= 0). Default 1.
+     */
+    float max_length;
+    /**
+     * Bounce when it snaps taut (>= 0). Default 0.
+     */
+    float restitution;
+    /**
+     * Set by `hearth_cable_generator_def_default()`; do not change.
+     */
+    uint32_t internal_value;
+} HearthCableGeneratorDef;
+
+/**
+ * What a user generator callback is told. The arrays are owned by the world and valid only
+ * during the call.
+ */
+typedef struct HearthGeneratorContext {
+    /**
+     * The generator being run.
+     */
+    struct HearthGeneratorId generator;
+    /**
+     * The step's duration (s).
+     */
+    float dt;
+    /**
+     * The live bodies attached to the generator, in attachment order.
+     */
+    const struct HearthBodyId *bodies;
+    /**
+     * Number of entries in `bodies`.
+     */
+    size_t body_count;
+    /**
+     * The live particles attached to the generator, in attachment order.
+     */
+    const struct HearthParticleId *particles;
+    /**
+     * Number of entries in `particles`.
+     */
+    size_t particle_count;
+} HearthGeneratorContext;
+
+/**
+ * A force generator callback, run once per step (in creation order with the other user
+ * force generators, after the built-in ones) on the thread that called
+ * `hearth_world_step`. It may read anything and apply forces and torques
+ * (`hearth_body_apply_force`, `hearth_body_apply_torque`, `hearth_body_apply_force_at_point`,
+ * `hearth_particle_apply_force`); other changes return `HEARTH_ERROR_WORLD_LOCKED`.
+ */
+typedef void (*HearthForceCallback)(void *user_data,
+                                    struct HearthWorld *world,
+                                    const struct HearthGeneratorContext *context);
+
+/**
+ * A force generator written in C.
+ */
+typedef struct HearthUserForceGeneratorDef {
+    /**
+     * Called once per step (must not be NULL). Default NULL.
+     */
+    HearthForceCallback callback;
+    /**
+     * Passed to the callback as is. Default NULL.
+     */
+    void *user_data;
+    /**
+     * Set by `hearth_user_force_generator_def_default()`; do not change.
+     */
+    uint32_t internal_value;
+} HearthUserForceGeneratorDef;
+
+/**
+ * A contact generator callback, run once per step after the narrow phase and before the
+ * solver (in creation order). It writes contacts with `hearth_contact_sink_add` (up to the
+ * generator's capacity) and may read anything; changes to the world return
+ * `HEARTH_ERROR_WORLD_LOCKED`.
+ */
+typedef void (*HearthContactCallback)(void *user_data,
+                                      struct HearthWorld *world,
+                                      const struct HearthGeneratorContext *context,
+                                      struct HearthContactSink *sink);
+
+/**
+ * A contact generator written in C.
+ */
+typedef struct HearthUserContactGeneratorDef {
+    /**
+     * Called once per step (must not be NULL). Default NULL.
+     */
+    HearthContactCallback callback;
+    /**
+     * Passed to the callback as is. Default NULL.
+     */
+    void *user_data;
+    /**
+     * Most contacts one call may add (0..=1048576). Default 16.
+     */
+    uint32_t capacity;
+    /**
+     * Set by `hearth_user_contact_generator_def_default()`; do not change.
+     */
+    uint32_t internal_value;
+} HearthUserContactGeneratorDef;
+
+/**
+ * A contact for `hearth_contact_sink_add`. Each side is a body, a particle, or the world
+ * (both ids null); at least one side must be an object and the two must differ. Between
+ * bodies (or a body and the world) the rigid solver resolves it with collision contacts;
+ * with a particle, the particle stage does.
+ */
+typedef struct HearthGeneratedContact {
+    /**
+     * Side A: a body, or the null id.
+     */
+    struct HearthBodyId body_a;
+    /**
+     * Side A: a particle, or the null id.
+     */
+    struct HearthParticleId particle_a;
+    /**
+     * Side B: a body, or the null id.
+     */
+    struct HearthBodyId body_b;
+    /**
+     * Side B: a particle, or the null id.
+     */
+    struct HearthParticleId particle_b;
+    /**
+     * World point where the two touch (m).
+     */
+    struct HearthVec3 point;
+    /**
+     * From A to B: B is pushed along it, A the other way (need not be unit length, must
+     * not be zero).
+     */
+    struct HearthVec3 normal;
+    /**
+     * Overlap along the normal (m): > 0 violated, < 0 a gap that may close this step.
+     */
+    float penetration;
+    /**
+     * Bounce (>= 0).
+     */
+    float restitution;
+    /**
+     * Coulomb friction (>= 0).
+     */
+    float friction;
+} HearthGeneratedContact;
+
+/**
+ * How to create a particle. Get one from `hearth_particle_def_default()`, then edit it.
+ */
+typedef struct HearthParticleDef {
+    /**
+     * Position (m).
+     */
+    struct HearthVec3 position;
+    /**
+     * Velocity (m/s).
+     */
+    struct HearthVec3 velocity;
+    /**
+     * Constant acceleration of this particle (m/s²), on top of world gravity. Default 0.
+     */
+    struct HearthVec3 acceleration;
+    /**
+     * Inverse mass (1/kg, >= 0); 0 is an infinite mass (a pinned particle, moved only by
+     * its velocity). Default 1 (1 kg).
+     */
+    float inverse_mass;
+    /**
+     * Radius of the small sphere it collides as (m, >= 0). Default 0.05.
+     */
+    float radius;
+    /**
+     * Linear damping (1/s, >= 0): `v /= 1 + h·damping` per sub-step. Default 0.
+     */
+    float damping;
+    /**
+     * Multiplier of world gravity. Default 1.
+     */
+    float gravity_scale;
+    /**
+     * Bounciness against shapes (>= 0; the pair uses the larger of the particle's and the
+     * shape's). Default 0.
+     */
+    float restitution;
+    /**
+     * Coulomb friction against shapes (>= 0; the pair uses the geometric mean with the
+     * shape's static friction). Default 0.5.
+     */
+    float friction;
+    /**
+     * Seconds until the particle expires (> 0; `INFINITY`, the default, lives forever).
+     * Expired particles are removed and reported by `hearth_world_get_expired_particles`.
+     */
+    float lifetime;
+    /**
+     * 1 (default) collides with shapes; 0 passes through everything.
+     */
+    uint8_t collide;
+    /**
+     * 1 (default) lets the particle sleep when still; 0 keeps it awake.
+     */
+    uint8_t allow_sleep;
+    /**
+     * Host data, returned by `hearth_particle_get_user_data` and in the expired report.
+     */
+    uint64_t user_data;
+    /**
+     * Set by `hearth_particle_def_default()`; do not change.
+     */
+    uint32_t internal_value;
+} HearthParticleDef;
+
+/**
+ * A burst of particles from one point. Get one from `hearth_burst_def_default()`, then
+ * edit it. The same def (same seed) always gives the same burst.
+ */
+typedef struct HearthBurstDef {
+    /**
+     * Where every particle starts (m).
+     */
+    struct HearthVec3 position;
+    /**
+     * Axis of the cone (need not be unit length, must not be zero). Default +Y.
+     */
+    struct HearthVec3 direction;
+    /**
+     * Half-angle of the cone (radians, 0..=π; π is every direction). Directions are
+     * uniform over the cone's solid angle. Default 0.5.
+     */
+    float cone_half_angle;
+    /**
+     * Particles to emit (0..=1048576). Default 16.
+     */
+    uint32_t count;
+    /**
+     * Slowest speed (m/s, >= 0); speeds are uniform in [min, max]. Default 5.
+     */
+    float speed_min;
+    /**
+     * Fastest speed (m/s, >= speed_min). Default 10.
+     */
+    float speed_max;
+    /**
+     * Shortest lifetime (s, > 0); lifetimes are uniform in [min, max]. Default 1.
+     */
+    float lifetime_min;
+    /**
+     * Longest lifetime (s, >= lifetime_min; `INFINITY` lives forever). Default 2.
+     */
+    float lifetime_max;
+    /**
+     * Seed of the random sequence. Default 1.
+     */
+    uint64_t seed;
+    /**
+     * Every other property of the particles, from `hearth_particle_def_default()`; its
+     * position, lifetime and (added to each particle's own) velocity are per burst.
+     */
+    struct HearthParticleDef particle;
+    /**
+     * Set by `hearth_burst_def_default()`; do not change.
+     */
+    uint32_t internal_value;
+} HearthBurstDef;
+
+/**
+ * A particle that expired (its lifetime ran out) in the last step. Its id is stale.
+ */
+typedef struct HearthExpiredParticle {
+    /**
+     * Its (now stale) id.
+     */
+    struct HearthParticleId id;
+    /**
+     * Where it was when it expired (m).
+     */
+    struct HearthVec3 position;
+    /**
+     * Its velocity then (m/s).
+     */
+    struct HearthVec3 velocity;
+    /**
+     * The particle's `user_data`.
+     */
+    uint64_t user_data;
+} HearthExpiredParticle;
 
 /**
  * Material of a shape. Get one from `hearth_shape_def_default()`, then edit it. Where two
@@ -558,11 +1177,13 @@ HearthResult hearth_body_set_angular_velocity(struct HearthWorld *world,
                                               struct HearthVec3 value);
 
 /**
- * Adds a force (N) at the centre of mass for the next step. Wakes the body. No effect
- * on static and kinematic bodies.
+ * Adds a force (N) at the centre of mass for the next step (from a force generator
+ * callback: for the current step). Wakes the body. No effect on static and kinematic
+ * bodies. Allowed inside user force generator callbacks.
  *
  * Errors: `HEARTH_ERROR_NULL_POINTER`, `HEARTH_ERROR_INVALID_ID`,
- * `HEARTH_ERROR_INVALID_ARGUMENT` (NaN or infinite), `HEARTH_ERROR_WORLD_LOCKED`.
+ * `HEARTH_ERROR_INVALID_ARGUMENT` (NaN or infinite), `HEARTH_ERROR_WORLD_LOCKED` (from a
+ * callback other than a force generator's).
  *
  * # Safety
  * `world` must be NULL or a live world.
@@ -572,10 +1193,12 @@ HearthResult hearth_body_apply_force(struct HearthWorld *world,
                                      struct HearthVec3 value);
 
 /**
- * Adds a torque (N·m, world frame) for the next step. Wakes the body.
+ * Adds a torque (N·m, world frame) for the next step (from a force generator callback: for
+ * the current step). Wakes the body. Allowed inside user force generator callbacks.
  *
  * Errors: `HEARTH_ERROR_NULL_POINTER`, `HEARTH_ERROR_INVALID_ID`,
- * `HEARTH_ERROR_INVALID_ARGUMENT` (NaN or infinite), `HEARTH_ERROR_WORLD_LOCKED`.
+ * `HEARTH_ERROR_INVALID_ARGUMENT` (NaN or infinite), `HEARTH_ERROR_WORLD_LOCKED` (from a
+ * callback other than a force generator's).
  *
  * # Safety
  * `world` must be NULL or a live world.
@@ -613,7 +1236,8 @@ HearthResult hearth_body_apply_angular_impulse(struct HearthWorld *world,
 
 /**
  * Adds a force (N) at a world point (m) for the next step: a force plus the torque of its
- * lever arm about the centre of mass. Wakes the body.
+ * lever arm about the centre of mass. Wakes the body. Allowed inside user force generator
+ * callbacks.
  *
  * Errors: as `hearth_body_apply_force`.
  *
@@ -664,6 +1288,583 @@ HearthResult hearth_body_set_damping(struct HearthWorld *world,
                                      struct HearthBodyId body,
                                      float linear_damping,
                                      float angular_damping);
+
+/**
+ * Defaults: (0, -9.81, 0).
+ */
+struct HearthGravityGeneratorDef hearth_gravity_generator_def_default(void);
+
+/**
+ * Creates an extra-gravity force generator; attach bodies and particles to it.
+ *
+ * Errors: `HEARTH_ERROR_NULL_POINTER`, `HEARTH_ERROR_INVALID_ARGUMENT` (def not from its
+ * default, NaN/infinite), `HEARTH_ERROR_WORLD_LOCKED`.
+ *
+ * # Safety
+ * Pointers must be NULL or valid.
+ */
+HearthResult hearth_generator_create_gravity(struct HearthWorld *world,
+                                             const struct HearthGravityGeneratorDef *def,
+                                             struct HearthGeneratorId *out_generator);
+
+/**
+ * Defaults: k1 = 0.1, k2 = 0.01.
+ */
+struct HearthDragGeneratorDef hearth_drag_generator_def_default(void);
+
+/**
+ * Creates a drag force generator; attach bodies and particles to it.
+ *
+ * Errors: `HEARTH_ERROR_NULL_POINTER`, `HEARTH_ERROR_INVALID_ARGUMENT` (def not from its
+ * default, negative or NaN coefficients), `HEARTH_ERROR_WORLD_LOCKED`.
+ *
+ * # Safety
+ * Pointers must be NULL or valid.
+ */
+HearthResult hearth_generator_create_drag(struct HearthWorld *world,
+                                          const struct HearthDragGeneratorDef *def,
+                                          struct HearthGeneratorId *out_generator);
+
+/**
+ * Defaults: anchored at the world origin, rest length 1 m, 100 N/m, no damping.
+ */
+struct HearthSpringGeneratorDef hearth_spring_generator_def_default(void);
+
+/**
+ * Creates a spring (pushes and pulls); attach the bodies and particles it acts on.
+ *
+ * Errors: `HEARTH_ERROR_NULL_POINTER`, `HEARTH_ERROR_INVALID_ID` (the other end is not a live
+ * body or particle), `HEARTH_ERROR_INVALID_ARGUMENT` (def not from its default, negative or
+ * NaN numbers, both ids set in `other`), `HEARTH_ERROR_WORLD_LOCKED`.
+ *
+ * # Safety
+ * Pointers must be NULL or valid.
+ */
+HearthResult hearth_generator_create_spring(struct HearthWorld *world,
+                                            const struct HearthSpringGeneratorDef *def,
+                                            struct HearthGeneratorId *out_generator);
+
+/**
+ * Creates a bungee: a spring that only pulls, when longer than its rest length (no force,
+ * no damping, while slack). Takes a `HearthSpringGeneratorDef`.
+ *
+ * Errors: as `hearth_generator_create_spring`.
+ *
+ * # Safety
+ * Pointers must be NULL or valid.
+ */
+HearthResult hearth_generator_create_bungee(struct HearthWorld *world,
+                                            const struct HearthSpringGeneratorDef *def,
+                                            struct HearthGeneratorId *out_generator);
+
+/**
+ * Defaults: anchored at the world origin, 1000 N/m, 10 N·s/m.
+ */
+struct HearthStiffSpringGeneratorDef hearth_stiff_spring_generator_def_default(void);
+
+/**
+ * Creates a stiff spring; attach the bodies and particles it acts on.
+ *
+ * Errors: `HEARTH_ERROR_NULL_POINTER`, `HEARTH_ERROR_INVALID_ID` (anchor),
+ * `HEARTH_ERROR_INVALID_ARGUMENT` (def not from its default, stiffness <= 0, negative or NaN
+ * numbers), `HEARTH_ERROR_WORLD_LOCKED`.
+ *
+ * # Safety
+ * Pointers must be NULL or valid.
+ */
+HearthResult hearth_generator_create_stiff_spring(struct HearthWorld *world,
+                                                  const struct HearthStiffSpringGeneratorDef *def,
+                                                  struct HearthGeneratorId *out_generator);
+
+/**
+ * Defaults: water (1000 kg/m³) below y = 0, max depth 0.5 m, volume 1 litre.
+ */
+struct HearthBuoyancyGeneratorDef hearth_buoyancy_generator_def_default(void);
+
+/**
+ * Creates a buoyancy force generator; attach bodies and particles to it.
+ *
+ * Errors: `HEARTH_ERROR_NULL_POINTER`, `HEARTH_ERROR_INVALID_ARGUMENT` (def not from its
+ * default, zero normal, max_depth <= 0, negative or NaN numbers), `HEARTH_ERROR_WORLD_LOCKED`.
+ *
+ * # Safety
+ * Pointers must be NULL or valid.
+ */
+HearthResult hearth_generator_create_buoyancy(struct HearthWorld *world,
+                                              const struct HearthBuoyancyGeneratorDef *def,
+                                              struct HearthGeneratorId *out_generator);
+
+/**
+ * Defaults: at the origin, blast 50 N·s within 5 m, a 1 m shock wave at 20 m/s with 100 N
+ * out to 20 m, acting on everything in range.
+ */
+struct HearthExplosionGeneratorDef hearth_explosion_generator_def_default(void);
+
+/**
+ * Creates an explosion. It is spent once its wave passes `max_radius`; destroy it then.
+ *
+ * Errors: `HEARTH_ERROR_NULL_POINTER`, `HEARTH_ERROR_INVALID_ARGUMENT` (def not from its
+ * default, negative or NaN numbers, flag not 0/1), `HEARTH_ERROR_WORLD_LOCKED`.
+ *
+ * # Safety
+ * Pointers must be NULL or valid.
+ */
+HearthResult hearth_generator_create_explosion(struct HearthWorld *world,
+                                               const struct HearthExplosionGeneratorDef *def,
+                                               struct HearthGeneratorId *out_generator);
+
+/**
+ * Defaults: both ends at the world origin (set at least one), length 1 m.
+ */
+struct HearthRodGeneratorDef hearth_rod_generator_def_default(void);
+
+/**
+ * Creates a rod. Rods and cables act on their ends and take no attachments.
+ *
+ * Errors: `HEARTH_ERROR_NULL_POINTER`, `HEARTH_ERROR_INVALID_ID` (an end is not a live body
+ * or particle), `HEARTH_ERROR_INVALID_ARGUMENT` (def not from its default, negative or NaN
+ * length, both ids set in an end, two world ends, the same end twice),
+ * `HEARTH_ERROR_WORLD_LOCKED`.
+ *
+ * # Safety
+ * Pointers must be NULL or valid.
+ */
+HearthResult hearth_generator_create_rod(struct HearthWorld *world,
+                                         const struct HearthRodGeneratorDef *def,
+                                         struct HearthGeneratorId *out_generator);
+
+/**
+ * Defaults: both ends at the world origin (set at least one), 1 m, no bounce.
+ */
+struct HearthCableGeneratorDef hearth_cable_generator_def_default(void);
+
+/**
+ * Creates a cable.
+ *
+ * Errors: as `hearth_generator_create_rod`, and negative restitution.
+ *
+ * # Safety
+ * Pointers must be NULL or valid.
+ */
+HearthResult hearth_generator_create_cable(struct HearthWorld *world,
+                                           const struct HearthCableGeneratorDef *def,
+                                           struct HearthGeneratorId *out_generator);
+
+/**
+ * Defaults: no callback (set one), NULL user data.
+ */
+struct HearthUserForceGeneratorDef hearth_user_force_generator_def_default(void);
+
+/**
+ * Creates a user force generator; attach the bodies and particles its callback is told
+ * about.
+ *
+ * Errors: `HEARTH_ERROR_NULL_POINTER` (also a NULL callback), `HEARTH_ERROR_INVALID_ARGUMENT`
+ * (def not from its default), `HEARTH_ERROR_WORLD_LOCKED`.
+ *
+ * # Safety
+ * Pointers must be NULL or valid; the callback must stay callable while the generator
+ * lives, and `user_data` valid for it.
+ */
+HearthResult hearth_generator_create_user_force(struct HearthWorld *world,
+                                                const struct HearthUserForceGeneratorDef *def,
+                                                struct HearthGeneratorId *out_generator);
+
+/**
+ * Defaults: no callback (set one), NULL user data, capacity 16.
+ */
+struct HearthUserContactGeneratorDef hearth_user_contact_generator_def_default(void);
+
+/**
+ * Creates a user contact generator.
+ *
+ * Errors: `HEARTH_ERROR_NULL_POINTER` (also a NULL callback), `HEARTH_ERROR_INVALID_ARGUMENT`
+ * (def not from its default, capacity too large), `HEARTH_ERROR_WORLD_LOCKED`.
+ *
+ * # Safety
+ * Pointers must be NULL or valid; the callback must stay callable while the generator
+ * lives, and `user_data` valid for it.
+ */
+HearthResult hearth_generator_create_user_contact(struct HearthWorld *world,
+                                                  const struct HearthUserContactGeneratorDef *def,
+                                                  struct HearthGeneratorId *out_generator);
+
+/**
+ * Adds a contact from inside a user contact generator callback.
+ *
+ * Errors: `HEARTH_ERROR_NULL_POINTER`, `HEARTH_ERROR_INVALID_ID` (a dead id),
+ * `HEARTH_ERROR_INVALID_ARGUMENT` (NaN/infinite numbers, zero normal, negative restitution
+ * or friction, both ids set on a side, no object, the same object twice, or the sink used
+ * outside its callback), `HEARTH_ERROR_BUFFER_TOO_SMALL` (the generator's capacity is used
+ * up). Nothing is added on error.
+ *
+ * # Safety
+ * `sink` must be the pointer passed to the running callback; `contact` NULL or valid.
+ */
+HearthResult hearth_contact_sink_add(struct HearthContactSink *sink,
+                                     const struct HearthGeneratedContact *contact);
+
+/**
+ * Reads how many contacts the running callback has added and how many it may add.
+ *
+ * Errors: `HEARTH_ERROR_NULL_POINTER`.
+ *
+ * # Safety
+ * `sink` must be the pointer passed to the running callback; outputs NULL or writable.
+ */
+HearthResult hearth_contact_sink_get_count(const struct HearthContactSink *sink,
+                                           uint32_t *out_count,
+                                           uint32_t *out_capacity);
+
+/**
+ * Destroys a generator; its id becomes stale.
+ *
+ * Errors: `HEARTH_ERROR_NULL_POINTER`, `HEARTH_ERROR_INVALID_ID`, `HEARTH_ERROR_WORLD_LOCKED`.
+ *
+ * # Safety
+ * `world` must be NULL or a live world.
+ */
+HearthResult hearth_generator_destroy(struct HearthWorld *world,
+                                      struct HearthGeneratorId generator);
+
+/**
+ * Makes a force or user generator act on a body. Destroying the body detaches it.
+ *
+ * Errors: `HEARTH_ERROR_NULL_POINTER`, `HEARTH_ERROR_INVALID_ID` (generator or body),
+ * `HEARTH_ERROR_INVALID_ARGUMENT` (already attached; rods and cables take no attachments),
+ * `HEARTH_ERROR_WORLD_LOCKED`.
+ *
+ * # Safety
+ * `world` must be NULL or a live world.
+ */
+HearthResult hearth_generator_attach_body(struct HearthWorld *world,
+                                          struct HearthGeneratorId generator,
+                                          struct HearthBodyId body);
+
+/**
+ * Stops a generator acting on a body.
+ *
+ * Errors: `HEARTH_ERROR_NULL_POINTER`, `HEARTH_ERROR_INVALID_ID` (generator, or a body not
+ * attached to it), `HEARTH_ERROR_INVALID_ARGUMENT` (rods and cables),
+ * `HEARTH_ERROR_WORLD_LOCKED`.
+ *
+ * # Safety
+ * `world` must be NULL or a live world.
+ */
+HearthResult hearth_generator_detach_body(struct HearthWorld *world,
+                                          struct HearthGeneratorId generator,
+                                          struct HearthBodyId body);
+
+/**
+ * Makes a force or user generator act on a particle. A particle that expires or is
+ * destroyed is detached.
+ *
+ * Errors: as `hearth_generator_attach_body`.
+ *
+ * # Safety
+ * `world` must be NULL or a live world.
+ */
+HearthResult hearth_generator_attach_particle(struct HearthWorld *world,
+                                              struct HearthGeneratorId generator,
+                                              struct HearthParticleId particle);
+
+/**
+ * Attaches `count` particles at once: all or nothing (every id is checked first).
+ * `count == 0` succeeds and may pass NULL.
+ *
+ * Errors: as `hearth_generator_attach_body`; `HEARTH_ERROR_INVALID_ARGUMENT` also for an id
+ * given twice.
+ *
+ * # Safety
+ * `particles` must hold `count` ids.
+ */
+HearthResult hearth_generator_attach_particles(struct HearthWorld *world,
+                                               struct HearthGeneratorId generator,
+                                               const struct HearthParticleId *particles,
+                                               size_t count);
+
+/**
+ * Stops a generator acting on a particle.
+ *
+ * Errors: as `hearth_generator_detach_body`.
+ *
+ * # Safety
+ * `world` must be NULL or a live world.
+ */
+HearthResult hearth_generator_detach_particle(struct HearthWorld *world,
+                                              struct HearthGeneratorId generator,
+                                              struct HearthParticleId particle);
+
+/**
+ * Reads how many live bodies and particles are attached to a generator.
+ *
+ * Errors: `HEARTH_ERROR_NULL_POINTER`, `HEARTH_ERROR_INVALID_ID`.
+ *
+ * # Safety
+ * `world` must be NULL or a live world; outputs NULL or writable.
+ */
+HearthResult hearth_generator_get_attachment_count(const struct HearthWorld *world,
+                                                   struct HearthGeneratorId generator,
+                                                   uint32_t *out_body_count,
+                                                   uint32_t *out_particle_count);
+
+/**
+ * Reads a generator's type (`HEARTH_GENERATOR_*`).
+ *
+ * Errors: `HEARTH_ERROR_NULL_POINTER`, `HEARTH_ERROR_INVALID_ID`.
+ *
+ * # Safety
+ * `world` must be NULL or a live world; `out_type` NULL or writable.
+ */
+HearthResult hearth_generator_get_type(const struct HearthWorld *world,
+                                       struct HearthGeneratorId generator,
+                                       uint32_t *out_type);
+
+/**
+ * Defaults: at the origin, at rest, 1 kg, radius 0.05 m, no damping, full gravity, no
+ * bounce, friction 0.5, lives forever, collides, may sleep.
+ */
+struct HearthParticleDef hearth_particle_def_default(void);
+
+/**
+ * Creates a particle.
+ *
+ * Errors: `HEARTH_ERROR_NULL_POINTER`, `HEARTH_ERROR_INVALID_ARGUMENT` (def not from
+ * `hearth_particle_def_default()`, NaN/infinite numbers, negative inverse mass, radius,
+ * damping, restitution or friction, lifetime <= 0, flag not 0/1),
+ * `HEARTH_ERROR_WORLD_LOCKED`.
+ *
+ * # Safety
+ * Pointers must be NULL or valid.
+ */
+HearthResult hearth_particle_create(struct HearthWorld *world,
+                                    const struct HearthParticleDef *def,
+                                    struct HearthParticleId *out_particle);
+
+/**
+ * Destroys a particle: its id becomes stale and it leaves every generator (links with it as
+ * an end stop acting). Destroyed particles are not in the expired report.
+ *
+ * Errors: `HEARTH_ERROR_NULL_POINTER`, `HEARTH_ERROR_INVALID_ID`, `HEARTH_ERROR_WORLD_LOCKED`.
+ *
+ * # Safety
+ * `world` must be NULL or a live world.
+ */
+HearthResult hearth_particle_destroy(struct HearthWorld *world, struct HearthParticleId particle);
+
+/**
+ * Reads a particle's position (m).
+ *
+ * Errors: `HEARTH_ERROR_NULL_POINTER`, `HEARTH_ERROR_INVALID_ID`.
+ *
+ * # Safety
+ * `world` must be NULL or a live world; `out` NULL or writable.
+ */
+HearthResult hearth_particle_get_position(const struct HearthWorld *world,
+                                          struct HearthParticleId particle,
+                                          struct HearthVec3 *out);
+
+/**
+ * Reads a particle's velocity (m/s).
+ *
+ * Errors: `HEARTH_ERROR_NULL_POINTER`, `HEARTH_ERROR_INVALID_ID`.
+ *
+ * # Safety
+ * `world` must be NULL or a live world; `out` NULL or writable.
+ */
+HearthResult hearth_particle_get_velocity(const struct HearthWorld *world,
+                                          struct HearthParticleId particle,
+                                          struct HearthVec3 *out);
+
+/**
+ * Reads whether a particle is awake.
+ *
+ * Errors: `HEARTH_ERROR_NULL_POINTER`, `HEARTH_ERROR_INVALID_ID`.
+ *
+ * # Safety
+ * `world` must be NULL or a live world; `out` NULL or writable.
+ */
+HearthResult hearth_particle_is_awake(const struct HearthWorld *world,
+                                      struct HearthParticleId particle,
+                                      bool *out);
+
+/**
+ * Reads the `user_data` given at creation.
+ *
+ * Errors: `HEARTH_ERROR_NULL_POINTER`, `HEARTH_ERROR_INVALID_ID`.
+ *
+ * # Safety
+ * `world` must be NULL or a live world; `out` NULL or writable.
+ */
+HearthResult hearth_particle_get_user_data(const struct HearthWorld *world,
+                                           struct HearthParticleId particle,
+                                           uint64_t *out);
+
+/**
+ * Teleports a particle (m) and wakes it.
+ *
+ * Errors: `HEARTH_ERROR_NULL_POINTER`, `HEARTH_ERROR_INVALID_ID`,
+ * `HEARTH_ERROR_INVALID_ARGUMENT` (NaN or infinite), `HEARTH_ERROR_WORLD_LOCKED`.
+ *
+ * # Safety
+ * `world` must be NULL or a live world.
+ */
+HearthResult hearth_particle_set_position(struct HearthWorld *world,
+                                          struct HearthParticleId particle,
+                                          struct HearthVec3 position);
+
+/**
+ * Sets a particle's velocity (m/s); a non-zero value wakes it.
+ *
+ * Errors: `HEARTH_ERROR_NULL_POINTER`, `HEARTH_ERROR_INVALID_ID`,
+ * `HEARTH_ERROR_INVALID_ARGUMENT` (NaN or infinite), `HEARTH_ERROR_WORLD_LOCKED`.
+ *
+ * # Safety
+ * `world` must be NULL or a live world.
+ */
+HearthResult hearth_particle_set_velocity(struct HearthWorld *world,
+                                          struct HearthParticleId particle,
+                                          struct HearthVec3 velocity);
+
+/**
+ * Adds a force (N) to a particle for the next step (or, from a force generator callback,
+ * for the current step) and wakes it. Allowed inside user force generator callbacks.
+ *
+ * Errors: `HEARTH_ERROR_NULL_POINTER`, `HEARTH_ERROR_INVALID_ID`,
+ * `HEARTH_ERROR_INVALID_ARGUMENT` (NaN or infinite), `HEARTH_ERROR_WORLD_LOCKED` (from a
+ * callback other than a force generator's).
+ *
+ * # Safety
+ * `world` must be NULL or a live world.
+ */
+HearthResult hearth_particle_apply_force(struct HearthWorld *world,
+                                         struct HearthParticleId particle,
+                                         struct HearthVec3 force);
+
+/**
+ * Applies an impulse (N·s) to a particle: changes its velocity at once. Wakes it.
+ *
+ * Errors: `HEARTH_ERROR_NULL_POINTER`, `HEARTH_ERROR_INVALID_ID`,
+ * `HEARTH_ERROR_INVALID_ARGUMENT` (NaN or infinite), `HEARTH_ERROR_WORLD_LOCKED`.
+ *
+ * # Safety
+ * `world` must be NULL or a live world.
+ */
+HearthResult hearth_particle_apply_impulse(struct HearthWorld *world,
+                                           struct HearthParticleId particle,
+                                           struct HearthVec3 impulse);
+
+/**
+ * Wakes a particle (`awake` = 1; its linked group follows) or puts it to sleep (0).
+ *
+ * Errors: `HEARTH_ERROR_NULL_POINTER`, `HEARTH_ERROR_INVALID_ID`,
+ * `HEARTH_ERROR_INVALID_ARGUMENT` (flag not 0/1), `HEARTH_ERROR_WORLD_LOCKED`.
+ *
+ * # Safety
+ * `world` must be NULL or a live world.
+ */
+HearthResult hearth_particle_set_awake(struct HearthWorld *world,
+                                       struct HearthParticleId particle,
+                                       uint8_t awake);
+
+/**
+ * Defaults: 16 particles from the origin up a cone of half-angle 0.5 rad at 5..10 m/s,
+ * living 1..2 s, seed 1, particles as `hearth_particle_def_default()`.
+ */
+struct HearthBurstDef hearth_burst_def_default(void);
+
+/**
+ * Emits a burst. When `out_ids` is not NULL the new ids are written to it (it must hold
+ * `capacity` ids); `*out_count` (if not NULL) receives the number emitted.
+ *
+ * Errors: `HEARTH_ERROR_NULL_POINTER` (world, def), `HEARTH_ERROR_INVALID_ARGUMENT` (def or
+ * its `particle` not from their `*_default()`, zero direction, angle outside [0, π],
+ * speed or lifetime range reversed or negative, count too large),
+ * `HEARTH_ERROR_BUFFER_TOO_SMALL` (`out_ids` given and `capacity < count`),
+ * `HEARTH_ERROR_WORLD_LOCKED`. Nothing is emitted on error.
+ *
+ * # Safety
+ * `out_ids` must be NULL or hold `capacity` ids; other pointers NULL or valid.
+ */
+HearthResult hearth_particle_emit_burst(struct HearthWorld *world,
+                                        const struct HearthBurstDef *def,
+                                        struct HearthParticleId *out_ids,
+                                        size_t capacity,
+                                        size_t *out_count);
+
+/**
+ * Reads the number of live particles.
+ *
+ * Errors: `HEARTH_ERROR_NULL_POINTER`.
+ *
+ * # Safety
+ * `world` must be NULL or a live world; `out_count` NULL or writable.
+ */
+HearthResult hearth_world_get_particle_count(const struct HearthWorld *world, size_t *out_count);
+
+/**
+ * Reads every live particle into caller-owned arrays, one call per frame: ids, positions
+ * and velocities, each array optional (NULL skips it), all in the same order (unspecified,
+ * but the same for all three). `*out_count` receives the number written.
+ *
+ * Errors: `HEARTH_ERROR_NULL_POINTER` (world, out_count), `HEARTH_ERROR_BUFFER_TOO_SMALL`
+ * (`capacity` below `hearth_world_get_particle_count`; nothing is written).
+ *
+ * # Safety
+ * Each non-NULL array must hold `capacity` elements.
+ */
+HearthResult hearth_world_get_particles(const struct HearthWorld *world,
+                                        struct HearthParticleId *out_ids,
+                                        struct HearthVec3 *out_positions,
+                                        struct HearthVec3 *out_velocities,
+                                        size_t capacity,
+                                        size_t *out_count);
+
+/**
+ * Reads the positions of `count` particles given by id into the caller-owned
+ * `out_positions`. Every id is checked first; on any error nothing is written. `count == 0`
+ * succeeds and may pass NULL arrays.
+ *
+ * Errors: `HEARTH_ERROR_NULL_POINTER`, `HEARTH_ERROR_INVALID_ID` (the message names the
+ * first bad index).
+ *
+ * # Safety
+ * `particles` must hold `count` ids and `out_positions` room for `count` vectors.
+ */
+HearthResult hearth_world_get_particle_positions(const struct HearthWorld *world,
+                                                 const struct HearthParticleId *particles,
+                                                 size_t count,
+                                                 struct HearthVec3 *out_positions);
+
+/**
+ * Gives the particles that expired in the last `hearth_world_step`: `*out_array` points to
+ * `*out_count` entries the world owns, valid until the next `hearth_world_step` (or
+ * `hearth_world_destroy`); other calls do not change it. Chain effects (a firework that
+ * bursts when it expires) read it after each step and emit.
+ *
+ * Errors: `HEARTH_ERROR_NULL_POINTER`.
+ *
+ * # Safety
+ * `world` must be NULL or a live world; the outputs NULL or writable.
+ */
+HearthResult hearth_world_get_expired_particles(const struct HearthWorld *world,
+                                                const struct HearthExpiredParticle **out_array,
+                                                size_t *out_count);
+
+/**
+ * Sets the iteration counts of the particle stage: velocity sweeps and position
+ * projections per sub-step (each 1..=64; defaults 8 and 4). Rods are solved exactly
+ * whatever the counts; the sweeps matter for contacts and cables.
+ *
+ * Errors: `HEARTH_ERROR_NULL_POINTER`, `HEARTH_ERROR_INVALID_ARGUMENT`,
+ * `HEARTH_ERROR_WORLD_LOCKED`.
+ *
+ * # Safety
+ * `world` must be NULL or a live world.
+ */
+HearthResult hearth_world_set_particle_iterations(struct HearthWorld *world,
+                                                  uint32_t velocity_iterations,
+                                                  uint32_t position_iterations);
 
 /**
  * Defaults: density 1000 kg/m³, friction 0.6 (static and dynamic), no bounce.
@@ -774,7 +1975,9 @@ HearthResult hearth_world_create(const struct HearthWorldDef *def, struct Hearth
 void hearth_world_destroy(struct HearthWorld *world);
 
 /**
- * Advances the world by `dt` seconds (finite, >= 0; 0 does nothing).
+ * Advances the world by `dt` seconds (finite, >= 0; 0 does nothing). User generators run
+ * inside it, on this thread: force generators after the built-in ones at the start of the
+ * step, contact generators after the narrow phase (see their callback types).
  *
  * Errors: `HEARTH_ERROR_NULL_POINTER`, `HEARTH_ERROR_INVALID_ARGUMENT` (bad dt),
  * `HEARTH_ERROR_WORLD_LOCKED` (called from a callback), `HEARTH_ERROR_PANIC` (an internal

@@ -3,7 +3,7 @@
 use super::error::*;
 use super::types::*;
 use super::validate::{self, DEF_COOKIE};
-use super::world::{world_mut, world_ref, HearthWorld};
+use super::world::{world_mut, world_mut_in_phase, world_ref, HearthWorld, PHASE_FORCES};
 use crate::body::{BodyDef, BodyType};
 use crate::math::Transform;
 
@@ -353,11 +353,13 @@ pub unsafe extern "C" fn hearth_body_set_angular_velocity(
     set_vec(world, body, value, |w, h, v| w.set_angular_velocity(h, v))
 }
 
-/// Adds a force (N) at the centre of mass for the next step. Wakes the body. No effect
-/// on static and kinematic bodies.
+/// Adds a force (N) at the centre of mass for the next step (from a force generator
+/// callback: for the current step). Wakes the body. No effect on static and kinematic
+/// bodies. Allowed inside user force generator callbacks.
 ///
 /// Errors: `HEARTH_ERROR_NULL_POINTER`, `HEARTH_ERROR_INVALID_ID`,
-/// `HEARTH_ERROR_INVALID_ARGUMENT` (NaN or infinite), `HEARTH_ERROR_WORLD_LOCKED`.
+/// `HEARTH_ERROR_INVALID_ARGUMENT` (NaN or infinite), `HEARTH_ERROR_WORLD_LOCKED` (from a
+/// callback other than a force generator's).
 ///
 /// # Safety
 /// `world` must be NULL or a live world.
@@ -367,13 +369,15 @@ pub unsafe extern "C" fn hearth_body_apply_force(
     body: HearthBodyId,
     value: HearthVec3,
 ) -> HearthResult {
-    set_vec(world, body, value, |w, h, v| w.apply_force(h, v, true))
+    guard(|| Ok(world_mut_in_phase(world, PHASE_FORCES)?.apply_force(body.into(), value.into(), true)?))
 }
 
-/// Adds a torque (N·m, world frame) for the next step. Wakes the body.
+/// Adds a torque (N·m, world frame) for the next step (from a force generator callback: for
+/// the current step). Wakes the body. Allowed inside user force generator callbacks.
 ///
 /// Errors: `HEARTH_ERROR_NULL_POINTER`, `HEARTH_ERROR_INVALID_ID`,
-/// `HEARTH_ERROR_INVALID_ARGUMENT` (NaN or infinite), `HEARTH_ERROR_WORLD_LOCKED`.
+/// `HEARTH_ERROR_INVALID_ARGUMENT` (NaN or infinite), `HEARTH_ERROR_WORLD_LOCKED` (from a
+/// callback other than a force generator's).
 ///
 /// # Safety
 /// `world` must be NULL or a live world.
@@ -383,7 +387,7 @@ pub unsafe extern "C" fn hearth_body_apply_torque(
     body: HearthBodyId,
     value: HearthVec3,
 ) -> HearthResult {
-    set_vec(world, body, value, |w, h, v| w.apply_torque(h, v, true))
+    guard(|| Ok(world_mut_in_phase(world, PHASE_FORCES)?.apply_torque(body.into(), value.into(), true)?))
 }
 
 /// Applies an impulse (N·s) at the centre of mass: changes the velocity at once. Wakes
@@ -423,7 +427,8 @@ pub unsafe extern "C" fn hearth_body_apply_angular_impulse(
 }
 
 /// Adds a force (N) at a world point (m) for the next step: a force plus the torque of its
-/// lever arm about the centre of mass. Wakes the body.
+/// lever arm about the centre of mass. Wakes the body. Allowed inside user force generator
+/// callbacks.
 ///
 /// Errors: as `hearth_body_apply_force`.
 ///
@@ -436,7 +441,10 @@ pub unsafe extern "C" fn hearth_body_apply_force_at_point(
     force: HearthVec3,
     point: HearthVec3,
 ) -> HearthResult {
-    guard(|| Ok(world_mut(world)?.apply_force_at_point(body.into(), force.into(), point.into(), true)?))
+    guard(|| {
+        let w = world_mut_in_phase(world, PHASE_FORCES)?;
+        Ok(w.apply_force_at_point(body.into(), force.into(), point.into(), true)?)
+    })
 }
 
 /// Applies an impulse (N·s) at a world point (m). Wakes the body.

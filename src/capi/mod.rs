@@ -3,6 +3,8 @@
 
 pub mod body;
 pub mod error;
+pub mod generator;
+pub mod particle;
 pub mod shape;
 pub mod types;
 pub mod validate;

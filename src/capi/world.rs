@@ -1,4 +1,29 @@
-//! World exports: defaults, create, destroy, step, settings, bulk read-back.
+//! World exports: defaults, create, destroy, step, settings, bulk read-back; and the lock
+//! that makes host callbacks sound.
+//!
+//! # Callbacks and the world lock
+//!
+//! User force and contact generators are C functions called during `hearth_world_step`,
+//! with the world's own `HearthWorld *`, through which they read state and apply forces.
+//! Rust must then never hold a `&mut World` while C code runs, or the C code's reads
+//! (`&World`) and forces (`&mut World`) would alias it. So the core's step is split into
+//! stages (`World::begin_step`, `collide_step`, `finish_step`) and `hearth_world_step` drives
+//! them itself: each stage borrows the world mutably for its own duration only, and the
+//! callbacks run between stages while the driver holds nothing but the raw pointer
+//! (`capi/generator.rs`, `run_force_callbacks` / `run_contact_callbacks`). Every export a
+//! callback calls forms its own short borrow from that pointer, so at any moment there is at
+//! most one `&mut World`, or only `&World`s. The arrays a callback is given live in
+//! C-layer storage outside `World` (`CallbackScratch`, the contact sink).
+//!
+//! While a step runs the world is `locked` and in a `phase`:
+//! * reads (`hearth_*_get_*`, `hearth_world_get_*`) work in every phase;
+//! * in the force phase (`PHASE_FORCES`, user force generators) `hearth_body_apply_force`,
+//!   `hearth_body_apply_torque`, `hearth_body_apply_force_at_point` and
+//!   `hearth_particle_apply_force` work too;
+//! * in the contact phase (`PHASE_CONTACTS`) `hearth_contact_sink_add` works;
+//! * every other mutation (create, destroy, set, attach, step) returns
+//!   `HEARTH_ERROR_WORLD_LOCKED` before any `&mut` to the world is formed, and
+//!   `hearth_world_destroy` is ignored.
 
 use std::cell::{Cell, UnsafeCell};
 use std::panic::{catch_unwind, AssertUnwindSafe};
@@ -51,10 +76,25 @@ pub struct HearthWorld {
     /// Set while a step runs; mutations from callbacks see it and fail with
     /// `HEARTH_ERROR_WORLD_LOCKED` before any `&mut` to the world is formed.
     pub(crate) locked: Cell<bool>,
+    /// Which callbacks are running (`PHASE_*`), so each may do its phase's own operations.
+    pub(crate) phase: Cell<u8>,
     /// Set when a step panicked: the state may be broken, so no more steps.
     pub(crate) poisoned: Cell<bool>,
     pub(crate) world: UnsafeCell<World>,
+    /// C-layer storage for callback contexts and the expired report (outside `World`).
+    pub(crate) scratch: UnsafeCell<super::generator::CallbackScratch>,
+    /// The contact sink handed to user contact generators.
+    pub(crate) sink: UnsafeCell<super::generator::HearthContactSink>,
 }
+
+/// Not stepping.
+pub(crate) const PHASE_IDLE: u8 = 0;
+/// Inside the core's stages: no host code runs.
+pub(crate) const PHASE_CORE: u8 = 1;
+/// User force generators run: forces may be applied.
+pub(crate) const PHASE_FORCES: u8 = 2;
+/// User contact generators run: contacts may be added to the sink.
+pub(crate) const PHASE_CONTACTS: u8 = 3;
 
 /// Shared access for reads.
 ///
@@ -75,6 +115,23 @@ pub(crate) unsafe fn world_mut<'a>(ptr: *mut HearthWorld) -> Result<&'a mut Worl
         return Err(Failure::new(
             HEARTH_ERROR_WORLD_LOCKED,
             "the world is locked: it is stepping (called from a callback)",
+        ));
+    }
+    Ok(&mut *w.world.get())
+}
+
+/// Exclusive access for the operations of one phase: allowed when the world is not
+/// stepping, or when it is in `phase` (a callback doing its phase's own work). No other
+/// reference to the world is alive then: the step driver holds none while callbacks run.
+///
+/// # Safety
+/// `ptr` must be NULL or a live world from `hearth_world_create`.
+pub(crate) unsafe fn world_mut_in_phase<'a>(ptr: *mut HearthWorld, phase: u8) -> Result<&'a mut World, Failure> {
+    let w = ptr.as_ref().ok_or_else(|| Failure::null("world"))?;
+    if w.locked.get() && w.phase.get() != phase {
+        return Err(Failure::new(
+            HEARTH_ERROR_WORLD_LOCKED,
+            "the world is locked: it is stepping, and this call is not allowed in the running callback",
         ));
     }
     Ok(&mut *w.world.get())
@@ -151,8 +208,11 @@ pub unsafe extern "C" fn hearth_world_create(
         let world = World::new(settings)?;
         let boxed = Box::new(HearthWorld {
             locked: Cell::new(false),
+            phase: Cell::new(PHASE_IDLE),
             poisoned: Cell::new(false),
             world: UnsafeCell::new(world),
+            scratch: UnsafeCell::new(Default::default()),
+            sink: UnsafeCell::new(Default::default()),
         });
         *out = Box::into_raw(boxed);
         Ok(())
@@ -174,7 +234,9 @@ pub unsafe extern "C" fn hearth_world_destroy(world: *mut HearthWorld) {
     })
 }
 
-/// Advances the world by `dt` seconds (finite, >= 0; 0 does nothing).
+/// Advances the world by `dt` seconds (finite, >= 0; 0 does nothing). User generators run
+/// inside it, on this thread: force generators after the built-in ones at the start of the
+/// step, contact generators after the narrow phase (see their callback types).
 ///
 /// Errors: `HEARTH_ERROR_NULL_POINTER`, `HEARTH_ERROR_INVALID_ARGUMENT` (bad dt),
 /// `HEARTH_ERROR_WORLD_LOCKED` (called from a callback), `HEARTH_ERROR_PANIC` (an internal
@@ -192,21 +254,51 @@ pub unsafe extern "C" fn hearth_world_step(world: *mut HearthWorld, dt: f32) -> 
                 "the world panicked in an earlier step and cannot step again",
             ));
         }
-        let w = world_mut(world)?;
+        if handle.locked.get() {
+            return Err(Failure::new(
+                HEARTH_ERROR_WORLD_LOCKED,
+                "the world is locked: it is stepping (called from a callback)",
+            ));
+        }
         if !dt.is_finite() || dt < 0.0 {
             return Err(Failure::invalid(format!("dt must be finite and >= 0, got {dt}")));
         }
         handle.locked.set(true);
-        let r = catch_unwind(AssertUnwindSafe(|| w.step(dt)));
+        handle.phase.set(PHASE_CORE);
+        let r = catch_unwind(AssertUnwindSafe(|| drive_step(world, dt)));
+        handle.phase.set(PHASE_IDLE);
         handle.locked.set(false);
         match r {
-            Ok(r) => r.map_err(Failure::from),
+            Ok(r) => r,
             Err(p) => {
                 handle.poisoned.set(true);
                 std::panic::resume_unwind(p)
             }
         }
     })
+}
+
+/// Runs the core's stages with the user generators between them. Each `(*core).stage(dt)`
+/// borrows the world for that call only; while callbacks run only the raw pointer is held.
+///
+/// # Safety
+/// `world` must be a live, locked world.
+unsafe fn drive_step(world: *mut HearthWorld, dt: f32) -> Result<(), Failure> {
+    let handle = &*world;
+    let core: *mut World = handle.world.get();
+    if !(*core).begin_step(dt)? {
+        return Ok(());
+    }
+    handle.phase.set(PHASE_FORCES);
+    super::generator::run_force_callbacks(world, dt);
+    handle.phase.set(PHASE_CORE);
+    (*core).collide_step(dt);
+    handle.phase.set(PHASE_CONTACTS);
+    super::generator::run_contact_callbacks(world, dt);
+    handle.phase.set(PHASE_CORE);
+    (*core).finish_step(dt);
+    super::particle::publish_expired(&*core, &mut (*handle.scratch.get()).expired);
+    Ok(())
 }
 
 /// Sets gravity (m/s², finite) and wakes every dynamic body.

@@ -130,3 +130,115 @@ impl World {
         self.generator_scratch = scratch;
     }
 }
+
+/// One side of a contact written by a host contact generator.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum ContactObject {
+    World,
+    Body(crate::pool::Handle),
+    Particle(crate::pool::Handle),
+}
+
+/// A contact written by a host contact generator: B is pushed along `normal` (from A to B),
+/// A the other way; `penetration > 0` when violated, < 0 a speculative gap.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct UserContact {
+    pub a: ContactObject,
+    pub b: ContactObject,
+    pub point: Vec3,
+    pub normal: Vec3,
+    pub penetration: f32,
+    pub restitution: f32,
+    pub friction: f32,
+}
+
+impl World {
+    /// Checks a host contact without adding it: finite numbers, a normal that is not zero,
+    /// non-negative restitution and friction, live and distinct objects (at least one).
+    pub fn validate_user_contact(&self, c: &UserContact) -> crate::error::Result<()> {
+        use crate::error::{check_finite, check_non_negative, check_vec, invalid};
+        check_vec("point", c.point)?;
+        check_vec("normal", c.normal)?;
+        let l = c.normal.length();
+        if !l.is_finite() || l <= 1.0e-6 {
+            return Err(invalid("normal must not be zero"));
+        }
+        check_finite("penetration", c.penetration)?;
+        check_non_negative("restitution", c.restitution)?;
+        check_non_negative("friction", c.friction)?;
+        for o in [&c.a, &c.b] {
+            match *o {
+                ContactObject::World => {}
+                ContactObject::Body(h) => {
+                    self.body(h)?;
+                }
+                ContactObject::Particle(h) => {
+                    self.particle_index(h)?;
+                }
+            }
+        }
+        if c.a == ContactObject::World && c.b == ContactObject::World {
+            return Err(invalid("a contact needs at least one body or particle"));
+        }
+        if c.a == c.b {
+            return Err(invalid("a contact needs two different objects"));
+        }
+        Ok(())
+    }
+
+    /// Adds a host contact for this step: between bodies (or a body and the world) it joins
+    /// the generated contacts of the rigid solver; with a particle it is resolved in the
+    /// particle stage. Wakes what it touches. Call between the contact generators and the
+    /// rigid solve (`collide_step` and `finish_step`).
+    pub fn add_user_contact(&mut self, c: &UserContact) -> crate::error::Result<()> {
+        use crate::particles::{ContactOther, UserParticleContact};
+        self.validate_user_contact(c)?;
+        let normal = c.normal.normalize();
+        let slot = |o: &ContactObject| match *o {
+            ContactObject::Body(h) => h.index,
+            _ => NONE,
+        };
+        let other = |o: &ContactObject| match *o {
+            ContactObject::World => ContactOther::World,
+            ContactObject::Body(h) => ContactOther::Body(h.index),
+            ContactObject::Particle(h) => ContactOther::Particle(h),
+        };
+        match (c.a, c.b) {
+            (ContactObject::Particle(p), b) => self.add_user_particle_contact(UserParticleContact {
+                particle: p,
+                other: other(&b),
+                point: c.point,
+                normal: -normal,
+                penetration: c.penetration,
+                restitution: c.restitution,
+                friction: c.friction,
+            }),
+            (a, ContactObject::Particle(p)) => self.add_user_particle_contact(UserParticleContact {
+                particle: p,
+                other: other(&a),
+                point: c.point,
+                normal,
+                penetration: c.penetration,
+                restitution: c.restitution,
+                friction: c.friction,
+            }),
+            (a, b) => {
+                for s in [slot(&a), slot(&b)] {
+                    if s != NONE {
+                        self.wake_body(s);
+                    }
+                }
+                self.generated_contacts.push(GeneratedContact {
+                    body_a: slot(&a),
+                    body_b: slot(&b),
+                    point: c.point,
+                    normal,
+                    penetration: c.penetration,
+                    restitution: c.restitution,
+                    friction: c.friction,
+                });
+                Ok(())
+            }
+        }
+    }
+}

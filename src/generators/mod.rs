@@ -514,53 +514,67 @@ impl World {
     }
 
     /// Called by `destroy_body`: the body leaves every generator, and springs and links
-    /// with it as an end stop acting.
+    /// with it as an end stop acting (waking what they held).
     pub(crate) fn detach_body_everywhere(&mut self, b: Handle) {
-        self.generator_scratch.order.clear();
-        self.generator_scratch
-            .order
-            .extend(self.generators.iter().map(|(h, _)| h));
-        for k in 0..self.generator_scratch.order.len() {
-            let g = self
-                .generators
-                .get_mut(self.generator_scratch.order[k])
-                .expect("live generator");
-            g.bodies.remove(b);
-            if g.ends()
-                .iter()
-                .flatten()
-                .any(|e| matches!(*e, End::Body { body, .. } if body == b))
-            {
-                g.broken = true;
-            }
-        }
+        self.break_links(
+            |g, _| {
+                g.bodies.remove(b);
+            },
+            |e, _| matches!(*e, End::Body { body, .. } if body == b),
+        );
     }
 
-    /// Drops destroyed particles from every generator and breaks links that lost an end.
-    /// Run lazily at the start of a step after particles were removed.
+    /// Drops destroyed particles from every generator and breaks links that lost an end
+    /// (waking what they held). Run lazily at the start of a step after particles were
+    /// removed.
     pub(crate) fn prune_particle_attachments(&mut self) {
         if !self.particles.removed_since_prune {
             return;
         }
         self.particles.removed_since_prune = false;
-        self.generator_scratch.order.clear();
-        self.generator_scratch
-            .order
-            .extend(self.generators.iter().map(|(h, _)| h));
-        let ids = &self.particles.ids;
-        for k in 0..self.generator_scratch.order.len() {
-            let g = self
-                .generators
-                .get_mut(self.generator_scratch.order[k])
-                .expect("live generator");
-            g.particles.retain(|p| ids.contains(p));
-            if g.ends()
-                .iter()
-                .flatten()
-                .any(|e| matches!(*e, End::Particle(p) if !ids.contains(p)))
-            {
-                g.broken = true;
+        self.break_links(
+            |g, ids| g.particles.retain(|p| ids.contains(p)),
+            |e, ids| matches!(*e, End::Particle(p) if !ids.contains(p)),
+        );
+    }
+
+    /// For every generator: `update` its attachments, and mark it broken when one of its
+    /// ends is `gone`; the surviving ends of a newly broken one are woken.
+    fn break_links(
+        &mut self,
+        mut update: impl FnMut(&mut Generator, &crate::pool::Pool<u32>),
+        gone: impl Fn(&End, &crate::pool::Pool<u32>) -> bool,
+    ) {
+        let mut scratch = std::mem::take(&mut self.generator_scratch);
+        scratch.order.clear();
+        scratch.order.extend(self.generators.iter().map(|(h, _)| h));
+        scratch.wake.clear();
+        for &h in &scratch.order {
+            let g = self.generators.get_mut(h).expect("live generator");
+            update(g, &self.particles.ids);
+            let ends = g.ends();
+            if g.broken || !ends.iter().flatten().any(|e| gone(e, &self.particles.ids)) {
+                continue;
+            }
+            g.broken = true;
+            for e in ends.into_iter().flatten() {
+                if gone(&e, &self.particles.ids) {
+                    continue;
+                }
+                match e {
+                    End::Body { body, .. } if self.bodies.contains(body) => scratch.wake.push(body.index),
+                    End::Particle(p) => {
+                        if let Some(i) = self.particles.index(p) {
+                            self.particles.wake(i, self.settings.sleep_threshold);
+                        }
+                    }
+                    _ => {}
+                }
             }
         }
+        for k in 0..scratch.wake.len() {
+            self.wake_body(scratch.wake[k]);
+        }
+        self.generator_scratch = scratch;
     }
 }

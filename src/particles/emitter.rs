@@ -136,6 +136,11 @@ impl World {
     /// Emits a burst; pushes the new ids to `out` (which is not cleared). Nothing is
     /// created when the def is invalid.
     pub fn emit_burst(&mut self, def: &BurstDef, out: &mut Vec<ParticleHandle>) -> Result<()> {
+        self.emit_burst_with(def, |h| out.push(h))
+    }
+
+    /// Emits a burst, calling `each` with every new id in order.
+    pub fn emit_burst_with(&mut self, def: &BurstDef, mut each: impl FnMut(ParticleHandle)) -> Result<()> {
         def.validate()?;
         let axis = def.direction.normalize();
         let (t1, t2) = orthonormal_basis(axis);
@@ -156,7 +161,7 @@ impl World {
                 lifetime,
                 ..def.particle
             };
-            out.push(self.particles.insert(&p, threshold));
+            each(self.particles.insert(&p, threshold));
         }
         Ok(())
     }
