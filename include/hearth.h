@@ -249,20 +249,6 @@ typedef struct HearthBodyId {
 } HearthBodyId;
 
 /**
- * Extra gravity on every attached body and particle, on top of world gravity.
- */
-typedef struct HearthGravityGeneratorDef {
-    /**
-     * Acceleration (m/s²). Default (0, -9.81, 0).
-     */
-    struct HearthVec3 acceleration;
-    /**
-     * Set by `hearth_gravity_generator_def_default()`; do not change.
-     */
-    uint32_t internal_value;
-} HearthGravityGeneratorDef;
-
-/**
  * Id of a generator inside its world. All-zero is the null id; a destroyed generator's id is
  * stale (`HEARTH_ERROR_INVALID_ID`).
  */
@@ -276,6 +262,174 @@ typedef struct HearthGeneratorId {
      */
     uint32_t generation;
 } HearthGeneratorId;
+
+/**
+ * Id of a particle inside its world. All-zero is the null id. A particle that expired or
+ * was destroyed leaves a stale id: `HEARTH_ERROR_INVALID_ID`.
+ */
+typedef struct HearthParticleId {
+    /**
+     * Slot of the particle.
+     */
+    uint32_t index;
+    /**
+     * Generation of the slot (0 only in the null id).
+     */
+    uint32_t generation;
+} HearthParticleId;
+
+/**
+ * What a user generator callback is told. The arrays are owned by the world and valid only
+ * during the call.
+ */
+typedef struct HearthGeneratorContext {
+    /**
+     * The generator being run.
+     */
+    struct HearthGeneratorId generator;
+    /**
+     * The step's duration (s).
+     */
+    float dt;
+    /**
+     * The live bodies attached to the generator, in attachment order.
+     */
+    const struct HearthBodyId *bodies;
+    /**
+     * Number of entries in `bodies`.
+     */
+    size_t body_count;
+    /**
+     * The live particles attached to the generator, in attachment order.
+     */
+    const struct HearthParticleId *particles;
+    /**
+     * Number of entries in `particles`.
+     */
+    size_t particle_count;
+} HearthGeneratorContext;
+
+/**
+ * A force generator callback, run once per step (in creation order with the other user
+ * force generators, after the built-in ones) on the thread that called
+ * `hearth_world_step`. It may read anything and apply forces and torques
+ * (`hearth_body_apply_force`, `hearth_body_apply_torque`, `hearth_body_apply_force_at_point`,
+ * `hearth_particle_apply_force`); other changes return `HEARTH_ERROR_WORLD_LOCKED`.
+ */
+typedef void (*HearthForceCallback)(void *user_data,
+                                    struct HearthWorld *world,
+                                    const struct HearthGeneratorContext *context);
+
+/**
+ * A force generator written in C.
+ */
+typedef struct HearthUserForceGeneratorDef {
+    /**
+     * Called once per step (must not be NULL). Default NULL.
+     */
+    HearthForceCallback callback;
+    /**
+     * Passed to the callback as is. Default NULL.
+     */
+    void *user_data;
+    /**
+     * Set by `hearth_user_force_generator_def_default()`; do not change.
+     */
+    uint32_t internal_value;
+} HearthUserForceGeneratorDef;
+
+/**
+ * A contact generator callback, run once per step after the narrow phase and before the
+ * solver (in creation order). It writes contacts with `hearth_contact_sink_add` (up to the
+ * generator's capacity) and may read anything; changes to the world return
+ * `HEARTH_ERROR_WORLD_LOCKED`.
+ */
+typedef void (*HearthContactCallback)(void *user_data,
+                                      struct HearthWorld *world,
+                                      const struct HearthGeneratorContext *context,
+                                      struct HearthContactSink *sink);
+
+/**
+ * A contact generator written in C.
+ */
+typedef struct HearthUserContactGeneratorDef {
+    /**
+     * Called once per step (must not be NULL). Default NULL.
+     */
+    HearthContactCallback callback;
+    /**
+     * Passed to the callback as is. Default NULL.
+     */
+    void *user_data;
+    /**
+     * Most contacts one call may add (0..=1048576). Default 16.
+     */
+    uint32_t capacity;
+    /**
+     * Set by `hearth_user_contact_generator_def_default()`; do not change.
+     */
+    uint32_t internal_value;
+} HearthUserContactGeneratorDef;
+
+/**
+ * A contact for `hearth_contact_sink_add`. Each side is a body, a particle, or the world
+ * (both ids null); at least one side must be an object and the two must differ. Between
+ * bodies (or a body and the world) the rigid solver resolves it with collision contacts;
+ * with a particle, the particle stage does.
+ */
+typedef struct HearthGeneratedContact {
+    /**
+     * Side A: a body, or the null id.
+     */
+    struct HearthBodyId body_a;
+    /**
+     * Side A: a particle, or the null id.
+     */
+    struct HearthParticleId particle_a;
+    /**
+     * Side B: a body, or the null id.
+     */
+    struct HearthBodyId body_b;
+    /**
+     * Side B: a particle, or the null id.
+     */
+    struct HearthParticleId particle_b;
+    /**
+     * World point where the two touch (m).
+     */
+    struct HearthVec3 point;
+    /**
+     * From A to B: B is pushed along it, A the other way (need not be unit length, must
+     * not be zero).
+     */
+    struct HearthVec3 normal;
+    /**
+     * Overlap along the normal (m): > 0 violated, < 0 a gap that may close this step.
+     */
+    float penetration;
+    /**
+     * Bounce (>= 0).
+     */
+    float restitution;
+    /**
+     * Coulomb friction (>= 0).
+     */
+    float friction;
+} HearthGeneratedContact;
+
+/**
+ * Extra gravity on every attached body and particle, on top of world gravity.
+ */
+typedef struct HearthGravityGeneratorDef {
+    /**
+     * Acceleration (m/s²). Default (0, -9.81, 0).
+     */
+    struct HearthVec3 acceleration;
+    /**
+     * Set by `hearth_gravity_generator_def_default()`; do not change.
+     */
+    uint32_t internal_value;
+} HearthGravityGeneratorDef;
 
 /**
  * Drag `-v̂ (k1 |v| + k2 |v|²)` on every attached body (at its centre of mass) and particle.
@@ -294,21 +448,6 @@ typedef struct HearthDragGeneratorDef {
      */
     uint32_t internal_value;
 } HearthDragGeneratorDef;
-
-/**
- * Id of a particle inside its world. All-zero is the null id. A particle that expired or
- * was destroyed leaves a stale id: `HEARTH_ERROR_INVALID_ID`.
- */
-typedef struct HearthParticleId {
-    /**
-     * Slot of the particle.
-     */
-    uint32_t index;
-    /**
-     * Generation of the slot (0 only in the null id).
-     */
-    uint32_t generation;
-} HearthParticleId;
 
 /**
  * One end of a spring, rod or cable: a point on a body (`body` set, `point` in the body
@@ -525,145 +664,6 @@ typedef struct HearthCableGeneratorDef {
      */
     uint32_t internal_value;
 } HearthCableGeneratorDef;
-
-/**
- * What a user generator callback is told. The arrays are owned by the world and valid only
- * during the call.
- */
-typedef struct HearthGeneratorContext {
-    /**
-     * The generator being run.
-     */
-    struct HearthGeneratorId generator;
-    /**
-     * The step's duration (s).
-     */
-    float dt;
-    /**
-     * The live bodies attached to the generator, in attachment order.
-     */
-    const struct HearthBodyId *bodies;
-    /**
-     * Number of entries in `bodies`.
-     */
-    size_t body_count;
-    /**
-     * The live particles attached to the generator, in attachment order.
-     */
-    const struct HearthParticleId *particles;
-    /**
-     * Number of entries in `particles`.
-     */
-    size_t particle_count;
-} HearthGeneratorContext;
-
-/**
- * A force generator callback, run once per step (in creation order with the other user
- * force generators, after the built-in ones) on the thread that called
- * `hearth_world_step`. It may read anything and apply forces and torques
- * (`hearth_body_apply_force`, `hearth_body_apply_torque`, `hearth_body_apply_force_at_point`,
- * `hearth_particle_apply_force`); other changes return `HEARTH_ERROR_WORLD_LOCKED`.
- */
-typedef void (*HearthForceCallback)(void *user_data,
-                                    struct HearthWorld *world,
-                                    const struct HearthGeneratorContext *context);
-
-/**
- * A force generator written in C.
- */
-typedef struct HearthUserForceGeneratorDef {
-    /**
-     * Called once per step (must not be NULL). Default NULL.
-     */
-    HearthForceCallback callback;
-    /**
-     * Passed to the callback as is. Default NULL.
-     */
-    void *user_data;
-    /**
-     * Set by `hearth_user_force_generator_def_default()`; do not change.
-     */
-    uint32_t internal_value;
-} HearthUserForceGeneratorDef;
-
-/**
- * A contact generator callback, run once per step after the narrow phase and before the
- * solver (in creation order). It writes contacts with `hearth_contact_sink_add` (up to the
- * generator's capacity) and may read anything; changes to the world return
- * `HEARTH_ERROR_WORLD_LOCKED`.
- */
-typedef void (*HearthContactCallback)(void *user_data,
-                                      struct HearthWorld *world,
-                                      const struct HearthGeneratorContext *context,
-                                      struct HearthContactSink *sink);
-
-/**
- * A contact generator written in C.
- */
-typedef struct HearthUserContactGeneratorDef {
-    /**
-     * Called once per step (must not be NULL). Default NULL.
-     */
-    HearthContactCallback callback;
-    /**
-     * Passed to the callback as is. Default NULL.
-     */
-    void *user_data;
-    /**
-     * Most contacts one call may add (0..=1048576). Default 16.
-     */
-    uint32_t capacity;
-    /**
-     * Set by `hearth_user_contact_generator_def_default()`; do not change.
-     */
-    uint32_t internal_value;
-} HearthUserContactGeneratorDef;
-
-/**
- * A contact for `hearth_contact_sink_add`. Each side is a body, a particle, or the world
- * (both ids null); at least one side must be an object and the two must differ. Between
- * bodies (or a body and the world) the rigid solver resolves it with collision contacts;
- * with a particle, the particle stage does.
- */
-typedef struct HearthGeneratedContact {
-    /**
-     * Side A: a body, or the null id.
-     */
-    struct HearthBodyId body_a;
-    /**
-     * Side A: a particle, or the null id.
-     */
-    struct HearthParticleId particle_a;
-    /**
-     * Side B: a body, or the null id.
-     */
-    struct HearthBodyId body_b;
-    /**
-     * Side B: a particle, or the null id.
-     */
-    struct HearthParticleId particle_b;
-    /**
-     * World point where the two touch (m).
-     */
-    struct HearthVec3 point;
-    /**
-     * From A to B: B is pushed along it, A the other way (need not be unit length, must
-     * not be zero).
-     */
-    struct HearthVec3 normal;
-    /**
-     * Overlap along the normal (m): > 0 violated, < 0 a gap that may close this step.
-     */
-    float penetration;
-    /**
-     * Bounce (>= 0).
-     */
-    float restitution;
-    /**
-     * Coulomb friction (>= 0).
-     */
-    float friction;
-} HearthGeneratedContact;
 
 /**
  * How to create a particle. Get one from `hearth_particle_def_default()`, then edit it.
@@ -1290,6 +1290,72 @@ HearthResult hearth_body_set_damping(struct HearthWorld *world,
                                      float angular_damping);
 
 /**
+ * Defaults: no callback (set one), NULL user data.
+ */
+struct HearthUserForceGeneratorDef hearth_user_force_generator_def_default(void);
+
+/**
+ * Creates a user force generator; attach the bodies and particles its callback is told
+ * about.
+ *
+ * Errors: `HEARTH_ERROR_NULL_POINTER` (also a NULL callback), `HEARTH_ERROR_INVALID_ARGUMENT`
+ * (def not from its default), `HEARTH_ERROR_WORLD_LOCKED`.
+ *
+ * # Safety
+ * Pointers must be NULL or valid; the callback must stay callable while the generator
+ * lives, and `user_data` valid for it.
+ */
+HearthResult hearth_generator_create_user_force(struct HearthWorld *world,
+                                                const struct HearthUserForceGeneratorDef *def,
+                                                struct HearthGeneratorId *out_generator);
+
+/**
+ * Defaults: no callback (set one), NULL user data, capacity 16.
+ */
+struct HearthUserContactGeneratorDef hearth_user_contact_generator_def_default(void);
+
+/**
+ * Creates a user contact generator.
+ *
+ * Errors: `HEARTH_ERROR_NULL_POINTER` (also a NULL callback), `HEARTH_ERROR_INVALID_ARGUMENT`
+ * (def not from its default, capacity too large), `HEARTH_ERROR_WORLD_LOCKED`.
+ *
+ * # Safety
+ * Pointers must be NULL or valid; the callback must stay callable while the generator
+ * lives, and `user_data` valid for it.
+ */
+HearthResult hearth_generator_create_user_contact(struct HearthWorld *world,
+                                                  const struct HearthUserContactGeneratorDef *def,
+                                                  struct HearthGeneratorId *out_generator);
+
+/**
+ * Adds a contact from inside a user contact generator callback.
+ *
+ * Errors: `HEARTH_ERROR_NULL_POINTER`, `HEARTH_ERROR_INVALID_ID` (a dead id),
+ * `HEARTH_ERROR_INVALID_ARGUMENT` (NaN/infinite numbers, zero normal, negative restitution
+ * or friction, both ids set on a side, no object, the same object twice, or the sink used
+ * outside its callback), `HEARTH_ERROR_BUFFER_TOO_SMALL` (the generator's capacity is used
+ * up). Nothing is added on error.
+ *
+ * # Safety
+ * `sink` must be the pointer passed to the running callback; `contact` NULL or valid.
+ */
+HearthResult hearth_contact_sink_add(struct HearthContactSink *sink,
+                                     const struct HearthGeneratedContact *contact);
+
+/**
+ * Reads how many contacts the running callback has added and how many it may add.
+ *
+ * Errors: `HEARTH_ERROR_NULL_POINTER`.
+ *
+ * # Safety
+ * `sink` must be the pointer passed to the running callback; outputs NULL or writable.
+ */
+HearthResult hearth_contact_sink_get_count(const struct HearthContactSink *sink,
+                                           uint32_t *out_count,
+                                           uint32_t *out_capacity);
+
+/**
  * Defaults: (0, -9.81, 0).
  */
 struct HearthGravityGeneratorDef hearth_gravity_generator_def_default(void);
@@ -1449,72 +1515,6 @@ struct HearthCableGeneratorDef hearth_cable_generator_def_default(void);
 HearthResult hearth_generator_create_cable(struct HearthWorld *world,
                                            const struct HearthCableGeneratorDef *def,
                                            struct HearthGeneratorId *out_generator);
-
-/**
- * Defaults: no callback (set one), NULL user data.
- */
-struct HearthUserForceGeneratorDef hearth_user_force_generator_def_default(void);
-
-/**
- * Creates a user force generator; attach the bodies and particles its callback is told
- * about.
- *
- * Errors: `HEARTH_ERROR_NULL_POINTER` (also a NULL callback), `HEARTH_ERROR_INVALID_ARGUMENT`
- * (def not from its default), `HEARTH_ERROR_WORLD_LOCKED`.
- *
- * # Safety
- * Pointers must be NULL or valid; the callback must stay callable while the generator
- * lives, and `user_data` valid for it.
- */
-HearthResult hearth_generator_create_user_force(struct HearthWorld *world,
-                                                const struct HearthUserForceGeneratorDef *def,
-                                                struct HearthGeneratorId *out_generator);
-
-/**
- * Defaults: no callback (set one), NULL user data, capacity 16.
- */
-struct HearthUserContactGeneratorDef hearth_user_contact_generator_def_default(void);
-
-/**
- * Creates a user contact generator.
- *
- * Errors: `HEARTH_ERROR_NULL_POINTER` (also a NULL callback), `HEARTH_ERROR_INVALID_ARGUMENT`
- * (def not from its default, capacity too large), `HEARTH_ERROR_WORLD_LOCKED`.
- *
- * # Safety
- * Pointers must be NULL or valid; the callback must stay callable while the generator
- * lives, and `user_data` valid for it.
- */
-HearthResult hearth_generator_create_user_contact(struct HearthWorld *world,
-                                                  const struct HearthUserContactGeneratorDef *def,
-                                                  struct HearthGeneratorId *out_generator);
-
-/**
- * Adds a contact from inside a user contact generator callback.
- *
- * Errors: `HEARTH_ERROR_NULL_POINTER`, `HEARTH_ERROR_INVALID_ID` (a dead id),
- * `HEARTH_ERROR_INVALID_ARGUMENT` (NaN/infinite numbers, zero normal, negative restitution
- * or friction, both ids set on a side, no object, the same object twice, or the sink used
- * outside its callback), `HEARTH_ERROR_BUFFER_TOO_SMALL` (the generator's capacity is used
- * up). Nothing is added on error.
- *
- * # Safety
- * `sink` must be the pointer passed to the running callback; `contact` NULL or valid.
- */
-HearthResult hearth_contact_sink_add(struct HearthContactSink *sink,
-                                     const struct HearthGeneratedContact *contact);
-
-/**
- * Reads how many contacts the running callback has added and how many it may add.
- *
- * Errors: `HEARTH_ERROR_NULL_POINTER`.
- *
- * # Safety
- * `sink` must be the pointer passed to the running callback; outputs NULL or writable.
- */
-HearthResult hearth_contact_sink_get_count(const struct HearthContactSink *sink,
-                                           uint32_t *out_count,
-                                           uint32_t *out_capacity);
 
 /**
  * Destroys a generator; its id becomes stale.

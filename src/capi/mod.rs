@@ -2,6 +2,7 @@
 //! and maps errors; the engine core knows nothing of C. See `include/hearth.h`.
 
 pub mod body;
+pub mod callback;
 pub mod error;
 pub mod generator;
 pub mod particle;

@@ -10,7 +10,7 @@
 //! stages (`World::begin_step`, `collide_step`, `finish_step`) and `hearth_world_step` drives
 //! them itself: each stage borrows the world mutably for its own duration only, and the
 //! callbacks run between stages while the driver holds nothing but the raw pointer
-//! (`capi/generator.rs`, `run_force_callbacks` / `run_contact_callbacks`). Every export a
+//! (`capi/callback.rs`, `run_force_callbacks` / `run_contact_callbacks`). Every export a
 //! callback calls forms its own short borrow from that pointer, so at any moment there is at
 //! most one `&mut World`, or only `&World`s. The arrays a callback is given live in
 //! C-layer storage outside `World` (`CallbackScratch`, the contact sink).
@@ -82,9 +82,9 @@ pub struct HearthWorld {
     pub(crate) poisoned: Cell<bool>,
     pub(crate) world: UnsafeCell<World>,
     /// C-layer storage for callback contexts and the expired report (outside `World`).
-    pub(crate) scratch: UnsafeCell<super::generator::CallbackScratch>,
+    pub(crate) scratch: UnsafeCell<super::callback::CallbackScratch>,
     /// The contact sink handed to user contact generators.
-    pub(crate) sink: UnsafeCell<super::generator::HearthContactSink>,
+    pub(crate) sink: UnsafeCell<super::callback::HearthContactSink>,
 }
 
 /// Not stepping.
@@ -290,11 +290,11 @@ unsafe fn drive_step(world: *mut HearthWorld, dt: f32) -> Result<(), Failure> {
         return Ok(());
     }
     handle.phase.set(PHASE_FORCES);
-    super::generator::run_force_callbacks(world, dt);
+    super::callback::run_force_callbacks(world, dt);
     handle.phase.set(PHASE_CORE);
     (*core).collide_step(dt);
     handle.phase.set(PHASE_CONTACTS);
-    super::generator::run_contact_callbacks(world, dt);
+    super::callback::run_contact_callbacks(world, dt);
     handle.phase.set(PHASE_CORE);
     (*core).finish_step(dt);
     super::particle::publish_expired(&*core, &mut (*handle.scratch.get()).expired);
