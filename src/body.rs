@@ -87,6 +87,8 @@ pub struct Body {
     /// Inertia about the centre of mass in the body frame.
     pub inertia_local: Mat3,
     pub inv_inertia_local: Mat3,
+    /// The inertia is a multiple of the identity: it looks the same in every orientation.
+    pub isotropic: bool,
     /// World-space inverse inertia, refreshed at the start of every step.
     pub inv_inertia_world: Mat3,
     pub linear_damping: f32,
@@ -135,6 +137,7 @@ impl Body {
             inv_mass: 0.0,
             inertia_local: Mat3::ZERO,
             inv_inertia_local: Mat3::ZERO,
+            isotropic: true,
             inv_inertia_world: Mat3::ZERO,
             linear_damping: def.linear_damping,
             angular_damping: def.angular_damping,
@@ -195,13 +198,24 @@ impl Body {
                 Mat3::ZERO
             };
         }
+        let i = self.inertia_local;
+        let d = i.x_axis.x;
+        let tol = 1e-6 * d.abs().max(f32::MIN_POSITIVE);
+        let off = [i.x_axis.y, i.x_axis.z, i.y_axis.x, i.y_axis.z, i.z_axis.x, i.z_axis.y];
+        self.isotropic =
+            (i.y_axis.y - d).abs() <= tol && (i.z_axis.z - d).abs() <= tol && off.iter().all(|x| x.abs() <= tol);
         self.center = self.xf.apply(self.local_center);
         self.update_world_inertia();
     }
 
-    /// Refreshes the world-space inverse inertia `R · I⁻¹ · Rᵀ`.
+    /// Refreshes the world-space inverse inertia `R · I⁻¹ · Rᵀ` (unchanged by rotation when
+    /// the inertia is isotropic: spheres, cubes).
     #[inline]
     pub fn update_world_inertia(&mut self) {
+        if self.isotropic {
+            self.inv_inertia_world = self.inv_inertia_local;
+            return;
+        }
         let r = Mat3::from_quat(self.xf.q);
         self.inv_inertia_world = r * self.inv_inertia_local * r.transpose();
     }

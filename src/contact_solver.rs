@@ -61,6 +61,45 @@ pub struct ContactConstraint {
     pub count: usize,
     pub points: [ConstraintPoint; MAX_MANIFOLD_POINTS],
     pub friction: PatchFriction,
+    /// A and B were exchanged so that a static body is always B (see `static_to_b`).
+    pub swapped: bool,
+}
+
+impl ContactConstraint {
+    /// Puts a static body (solver index 0) on side B, so batches whose B sides are all static
+    /// skip B's half of the work. The normal and the friction impulse flip with the sides; the
+    /// normal and twist impulses keep their values.
+    fn static_to_b(&mut self) {
+        if self.a != 0 || self.b == 0 {
+            return;
+        }
+        let friction_world =
+            self.tangents[0] * self.friction.tangent_impulse[0] + self.tangents[1] * self.friction.tangent_impulse[1];
+        std::mem::swap(&mut self.a, &mut self.b);
+        std::mem::swap(&mut self.ma, &mut self.mb);
+        std::mem::swap(&mut self.radius_a, &mut self.radius_b);
+        self.normal = -self.normal;
+        let (t1, t2) = orthonormal_basis(self.normal);
+        self.tangents = [t1, t2];
+        for p in &mut self.points[..self.count] {
+            std::mem::swap(&mut p.ra0, &mut p.rb0);
+        }
+        let f = &mut self.friction;
+        std::mem::swap(&mut f.ra0, &mut f.rb0);
+        f.tangent_impulse = [-friction_world.dot(t1), -friction_world.dot(t2)];
+        self.swapped = true;
+    }
+
+    /// The friction impulse on the original body B, as a world vector.
+    fn friction_world(&self) -> Vec3 {
+        let t =
+            self.tangents[0] * self.friction.tangent_impulse[0] + self.tangents[1] * self.friction.tangent_impulse[1];
+        if self.swapped {
+            -t
+        } else {
+            t
+        }
+    }
 }
 
 /// Builds constraints for every awake contact with manifold points.
@@ -100,6 +139,7 @@ pub fn prepare(world: &mut World) {
             count: c.manifold.count,
             points: [ConstraintPoint::default(); MAX_MANIFOLD_POINTS],
             friction: PatchFriction::default(),
+            swapped: false,
         };
         let mut centroid = Vec3::ZERO;
         for i in 0..c.manifold.count {
@@ -137,6 +177,7 @@ pub fn prepare(world: &mut World) {
             twist_impulse: f.twist,
             sliding: vt.length_squared() > STICK_SPEED * STICK_SPEED,
         };
+        cc.static_to_b();
         constraints.push(cc);
     }
     prepare_generated(world);
@@ -182,6 +223,7 @@ fn prepare_generated(world: &mut World) {
             count: 1,
             points: [ConstraintPoint::default(); MAX_MANIFOLD_POINTS],
             friction: PatchFriction::default(),
+            swapped: false,
         };
         cc.points[0] = ConstraintPoint {
             ra0: ra,
@@ -196,6 +238,7 @@ fn prepare_generated(world: &mut World) {
             sliding: (dv - n * dv.dot(n)).length_squared() > STICK_SPEED * STICK_SPEED,
             ..Default::default()
         };
+        cc.static_to_b();
         constraints.push(cc);
     }
 }
@@ -215,9 +258,8 @@ pub fn store_impulses(world: &mut World) {
             imp.normal = p.normal_impulse;
             imp.max_normal = p.max_normal_impulse;
         }
-        let f = &c.friction;
-        contact.friction.tangent = c.tangents[0] * f.tangent_impulse[0] + c.tangents[1] * f.tangent_impulse[1];
-        contact.friction.twist = f.twist_impulse;
-        contact.friction.sliding = f.sliding;
+        contact.friction.tangent = c.friction_world();
+        contact.friction.twist = c.friction.twist_impulse;
+        contact.friction.sliding = c.friction.sliding;
     }
 }

@@ -81,8 +81,10 @@ pub struct WideContact {
     b: [u32; 4],
     /// Index of each lane's scalar constraint, or `EMPTY`.
     src: [u32; 4],
-    /// Largest point count of the lanes.
+    /// Largest point count of the lanes: 1, or 4 (missing points inactive).
     count: usize,
+    /// Every lane's body B is the static dummy: B's half of the work is skipped.
+    b_static: bool,
     ma: F4,
     mb: F4,
     normal: V4,
@@ -144,22 +146,40 @@ impl Batches {
             }
             self.singles.push(ci as u32);
         }
-        self.batches.clear();
+        // Batches are packed in place over last step's storage: no zeroing, no copies.
+        let mut used = 0;
         for color in 0..COLORS {
             let members = &mut self.color_members[color];
-            // Like with like: lanes of a batch then share their point count.
-            members.sort_by_key(|&i| constraints[i as usize].count);
+            // Like with like: lanes of a batch then share their point count and whether B is
+            // static.
+            members.sort_by_key(|&i| {
+                let c = &constraints[i as usize];
+                (c.count > 1, c.b != 0)
+            });
             for chunk in members.chunks(4) {
-                self.batches.push(pack(chunk, constraints));
+                next_slot(&mut self.batches, used);
+                pack(&mut self.batches[used], chunk, constraints);
+                used += 1;
             }
         }
         for &i in &self.singles {
-            self.batches.push(pack(&[i], constraints));
+            next_slot(&mut self.batches, used);
+            pack(&mut self.batches[used], &[i], constraints);
+            used += 1;
         }
+        self.batches.truncate(used);
     }
 }
 
-fn pack(lanes: &[u32], constraints: &[ContactConstraint]) -> WideContact {
+fn next_slot(batches: &mut Vec<WideContact>, used: usize) {
+    if batches.len() == used {
+        batches.push(WideContact::default());
+    }
+}
+
+/// Packs up to four constraints into `w`, setting every field the passes read before they
+/// write it (the storage is reused from earlier steps).
+fn pack(w: &mut WideContact, lanes: &[u32], constraints: &[ContactConstraint]) {
     // Stage each field per lane (empty lanes stay zero), then load the lanes at once.
     #[derive(Default)]
     struct Stage {
@@ -169,12 +189,8 @@ fn pack(lanes: &[u32], constraints: &[ContactConstraint]) -> WideContact {
         pv: [[[Vec3; 4]; 2]; MAXP],
     }
     let mut st = Stage::default();
-    let mut w = WideContact {
-        a: [0; 4],
-        b: [0; 4],
-        src: [EMPTY; 4],
-        ..Default::default()
-    };
+    (w.a, w.b, w.src, w.count, w.has_restitution) = ([0; 4], [0; 4], [EMPTY; 4], 0, false);
+    let mut sliding = [0.0f32; 4];
     let on = f32::from_bits(u32::MAX);
     for (i, &k) in lanes.iter().enumerate() {
         let c = &constraints[k as usize];
@@ -221,27 +237,27 @@ fn pack(lanes: &[u32], constraints: &[ContactConstraint]) -> WideContact {
             st.pv[p][1][i] = cp.rb0 - ob;
         }
         if f.sliding {
-            w.friction.sliding = F4::from_array({
-                let mut m = w.friction.sliding.to_array();
-                m[i] = on;
-                m
-            });
+            sliding[i] = on;
         }
     }
+    // Batches run as one-point or four-point manifolds (missing points are inactive).
+    w.count = if w.count <= 1 { 1 } else { MAXP };
+    w.b_static = w.b.iter().all(|&b| b == 0);
     let [ma, mb, at_b, fs, fd, e, twist_radius, t0, t1, twist] = st.f.map(F4::from_array);
     let [normal, oa, ob, tan0, tan1, fca0, fcb0] = st.v.map(V4::from_lanes);
     (w.ma, w.mb, w.at_b, w.static_friction, w.dynamic_friction, w.restitution) = (ma, mb, at_b, fs, fd, e);
     (w.normal, w.oa, w.ob, w.tangents) = (normal, oa, ob, [tan0, tan1]);
     let f = &mut w.friction;
     (f.ca0, f.cb0, f.twist_radius, f.tangent_impulse, f.twist_impulse) = (fca0, fcb0, twist_radius, [t0, t1], twist);
+    f.sliding = F4::from_array(sliding);
     for p in 0..w.count {
         let wp = &mut w.points[p];
         let [sep0, active, impulse, rel] = st.pf[p].map(F4::from_array);
         (wp.separation0, wp.active, wp.impulse, wp.relative_velocity) = (sep0, active, impulse, rel);
+        wp.max_impulse = F4::zero();
         wp.ca0 = V4::from_lanes(st.pv[p][0]);
         wp.cb0 = V4::from_lanes(st.pv[p][1]);
     }
-    w
 }
 
 /// Four bodies' motion so far into lanes: translation, rotation and world inverse inertia.
@@ -396,102 +412,211 @@ fn arms(ca0: V4, cb0: V4, g: &Geometry4, dpa: V4, dpb: V4, rot_a: &M4, rot_b: &M
     )
 }
 
-/// Recomputes arms, Jacobians, effective masses and separations from the motion so far;
-/// with `block`, also K and K⁻¹ (once per step: they change little within it).
-pub fn refresh(states: &[BodyState], batches: &mut [WideContact], block: bool) {
+/// Relative motion (m; rad counts as m of arm) since the start of the step below which a
+/// batch keeps the arms of its last full refresh and updates separations to first order.
+const LIGHT_REFRESH_MOTION: f32 = 1.0e-3;
+
+/// Brings the constraints up to date with the motion so far. On the first sub-step (`first`):
+/// arms, Jacobians, effective masses, K and K⁻¹, separations. Later, a batch whose bodies
+/// moved less than `LIGHT_REFRESH_MOTION` relative to each other only updates separations
+/// (`s₀ + n·Δp + θ_B·(r_B×n) − θ_A·(r_A×n)`, exact to first order); others recompute their
+/// arms, so fast contacts keep impulses at one point and angular momentum exact.
+pub fn refresh(states: &[BodyState], batches: &mut [WideContact], first: bool) {
     for w in batches.iter_mut() {
-        let (dpa, rot_a, ia) = gather_states(states, &w.a);
-        let (dpb, rot_b, ib) = gather_states(states, &w.b);
-        let n = w.normal;
-        let m = w.ma + w.mb;
-        let g = Geometry4 {
-            oa: w.oa,
-            ob: w.ob,
-            at_b: w.at_b,
-        };
-        for p in w.points[..w.count].iter_mut() {
-            let (ra, rb, gap) = arms(p.ca0, p.cb0, &g, dpa, dpb, &rot_a, &rot_b);
-            p.separation = p.separation0 + gap.dot(n);
-            p.rna = ra.cross(n);
-            p.rnb = rb.cross(n);
-            p.ia = ia.mul_vec(p.rna);
-            p.ib = ib.mul_vec(p.rnb);
-            let k = m + p.rna.dot(p.ia) + p.rnb.dot(p.ib);
-            p.normal_mass = F4::select(p.active, safe_inverse(k), F4::zero());
+        match (w.count == 1, w.b_static) {
+            (true, true) => refresh_batch::<1, true>(states, w, first),
+            (true, false) => refresh_batch::<1, false>(states, w, first),
+            (false, true) => refresh_batch::<MAXP, true>(states, w, first),
+            (false, false) => refresh_batch::<MAXP, false>(states, w, first),
         }
-        if block && w.count > 1 {
-            let one = F4::splat(1.0);
-            for i in 0..w.count {
-                for j in i..w.count {
-                    let (pi, pj) = (&w.points[i], &w.points[j]);
-                    let both = pi.active.and(pj.active);
-                    let kij = m + pi.rna.dot(pj.ia) + pi.rnb.dot(pj.ib);
-                    if i == j {
-                        w.k[i][i] = F4::select(both, kij, one);
-                    } else {
-                        let v = F4::select(both, kij, F4::zero());
-                        w.k[i][j] = v;
-                        w.k[j][i] = v;
-                    }
+    }
+}
+
+/// First-order separation update for a batch whose bodies barely moved relative to each
+/// other; false (and nothing changed) when some lane moved too much.
+#[inline(always)]
+fn light_refresh<const N: usize, const SB: bool>(states: &[BodyState], w: &mut WideContact) -> bool {
+    let motion = |idx: &[u32; 4]| {
+        let rows = idx.map(|i| &states[i as usize].rows);
+        let lanes = |r: usize| {
+            let t = transpose([
+                load(&rows[0][r]),
+                load(&rows[1][r]),
+                load(&rows[2][r]),
+                load(&rows[3][r]),
+            ]);
+            V4 {
+                x: t[0],
+                y: t[1],
+                z: t[2],
+            }
+        };
+        (lanes(0), lanes(7))
+    };
+    let (dpa, tha) = motion(&w.a);
+    let (dpb, thb) = if SB { (V4::zero(), V4::zero()) } else { motion(&w.b) };
+    let d = dpb - dpa;
+    let tol2 = F4::splat(LIGHT_REFRESH_MOTION * LIGHT_REFRESH_MOTION);
+    if d.length_squared()
+        .gt(tol2)
+        .or((tha.length_squared() + thb.length_squared()).gt(tol2))
+        .bits()
+        != 0
+    {
+        return false;
+    }
+    let nd = w.normal.dot(d);
+    for p in w.points[..N].iter_mut() {
+        let mut s = p.separation0 + nd - tha.dot(p.rna);
+        if !SB {
+            s = s + thb.dot(p.rnb);
+        }
+        p.separation = s;
+    }
+    true
+}
+
+/// `refresh` for one batch of `N`-point manifolds (1, or 4 with missing points inactive).
+#[inline(always)]
+fn refresh_batch<const N: usize, const SB: bool>(states: &[BodyState], w: &mut WideContact, block: bool) {
+    if !block && light_refresh::<N, SB>(states, w) {
+        return;
+    }
+    let (dpa, rot_a, ia) = gather_states(states, &w.a);
+    let (dpb, rot_b, ib) = if SB {
+        (V4::zero(), M4::IDENTITY, M4::default())
+    } else {
+        gather_states(states, &w.b)
+    };
+    let n = w.normal;
+    let m = w.ma + w.mb;
+    let g = Geometry4 {
+        oa: w.oa,
+        ob: w.ob,
+        at_b: w.at_b,
+    };
+    for p in w.points[..N].iter_mut() {
+        let (ra, rb, gap) = arms(p.ca0, p.cb0, &g, dpa, dpb, &rot_a, &rot_b);
+        p.separation = p.separation0 + gap.dot(n);
+        p.rna = ra.cross(n);
+        p.ia = ia.mul_vec(p.rna);
+        let mut k = m + p.rna.dot(p.ia);
+        if !SB {
+            p.rnb = rb.cross(n);
+            p.ib = ib.mul_vec(p.rnb);
+            k = k + p.rnb.dot(p.ib);
+        }
+        p.normal_mass = F4::select(p.active, safe_inverse(k), F4::zero());
+    }
+    if block && N > 1 {
+        let one = F4::splat(1.0);
+        for i in 0..N {
+            for j in i..N {
+                let (pi, pj) = (&w.points[i], &w.points[j]);
+                let both = pi.active.and(pj.active);
+                let mut kij = m + pi.rna.dot(pj.ia);
+                if !SB {
+                    kij = kij + pi.rnb.dot(pj.ib);
+                }
+                if i == j {
+                    w.k[i][i] = F4::select(both, kij, one);
+                } else {
+                    let v = F4::select(both, kij, F4::zero());
+                    w.k[i][j] = v;
+                    w.k[j][i] = v;
                 }
             }
-            let mut reg = w.k;
-            for (i, row) in reg.iter_mut().enumerate().take(w.count) {
-                row[i] = row[i] * F4::splat(1.0 + BLOCK_REGULARIZATION);
-            }
-            invert_spd(&reg, w.count, &mut w.k_inv);
         }
-        let f = &mut w.friction;
-        let (ra, rb, _) = arms(f.ca0, f.cb0, &g, dpa, dpb, &rot_a, &rot_b);
-        for k in 0..2 {
-            let t = w.tangents[k];
-            f.rta[k] = ra.cross(t);
+        let mut reg = w.k;
+        for (i, row) in reg.iter_mut().enumerate().take(N) {
+            row[i] = row[i] * F4::splat(1.0 + BLOCK_REGULARIZATION);
+        }
+        invert_spd(&reg, N, &mut w.k_inv);
+    }
+    let f = &mut w.friction;
+    let (ra, rb, _) = arms(f.ca0, f.cb0, &g, dpa, dpb, &rot_a, &rot_b);
+    for k in 0..2 {
+        let t = w.tangents[k];
+        f.rta[k] = ra.cross(t);
+        f.ita[k] = ia.mul_vec(f.rta[k]);
+        let mut km = m + f.rta[k].dot(f.ita[k]);
+        if !SB {
             f.rtb[k] = rb.cross(t);
-            f.ita[k] = ia.mul_vec(f.rta[k]);
             f.itb[k] = ib.mul_vec(f.rtb[k]);
-            f.tangent_mass[k] = safe_inverse(m + f.rta[k].dot(f.ita[k]) + f.rtb[k].dot(f.itb[k]));
+            km = km + f.rtb[k].dot(f.itb[k]);
         }
+        f.tangent_mass[k] = safe_inverse(km);
+    }
+    // One-point manifolds have no twist lever (the radius is zero).
+    if N > 1 {
         f.ina = ia.mul_vec(n);
-        f.inb = ib.mul_vec(n);
-        f.twist_mass = safe_inverse(n.dot(f.ina) + n.dot(f.inb));
+        let mut kt = n.dot(f.ina);
+        if !SB {
+            f.inb = ib.mul_vec(n);
+            kt = kt + n.dot(f.inb);
+        }
+        f.twist_mass = safe_inverse(kt);
     }
 }
 
 /// Relative velocity along `d` with angular Jacobians `ja`, `jb`.
 #[inline(always)]
-fn rel(va: V4, wa: V4, vb: V4, wb: V4, d: V4, ja: V4, jb: V4) -> F4 {
-    d.dot(vb - va) + wb.dot(jb) - wa.dot(ja)
+fn rel<const SB: bool>(va: V4, wa: V4, vb: V4, wb: V4, d: V4, ja: V4, jb: V4) -> F4 {
+    if SB {
+        -(d.dot(va) + wa.dot(ja))
+    } else {
+        d.dot(vb - va) + wb.dot(jb) - wa.dot(ja)
+    }
 }
 
 pub fn warm_start(vel: &mut [Velocity], batches: &[WideContact]) {
     for w in batches {
-        let (mut va, mut wa) = gather(vel, &w.a);
-        let (mut vb, mut wb) = gather(vel, &w.b);
-        let mut lin = w.normal.scale(sum_impulses(w));
-        let f = &w.friction;
-        let mut ang_a = f.ina.scale(f.twist_impulse);
-        let mut ang_b = f.inb.scale(f.twist_impulse);
-        for p in &w.points[..w.count] {
-            ang_a = ang_a.add_scaled(p.ia, p.impulse);
+        match (w.count == 1, w.b_static) {
+            (true, true) => warm_start_batch::<1, true>(vel, w),
+            (true, false) => warm_start_batch::<1, false>(vel, w),
+            (false, true) => warm_start_batch::<MAXP, true>(vel, w),
+            (false, false) => warm_start_batch::<MAXP, false>(vel, w),
+        }
+    }
+}
+
+#[inline(always)]
+fn warm_start_batch<const N: usize, const SB: bool>(vel: &mut [Velocity], w: &WideContact) {
+    let (mut va, mut wa) = gather(vel, &w.a);
+    let mut lin = w.normal.scale(sum_impulses::<N>(w));
+    let f = &w.friction;
+    let (mut ang_a, mut ang_b) = if N > 1 {
+        (f.ina.scale(f.twist_impulse), f.inb.scale(f.twist_impulse))
+    } else {
+        (V4::zero(), V4::zero())
+    };
+    for p in &w.points[..N] {
+        ang_a = ang_a.add_scaled(p.ia, p.impulse);
+        if !SB {
             ang_b = ang_b.add_scaled(p.ib, p.impulse);
         }
-        for k in 0..2 {
-            lin = lin.add_scaled(w.tangents[k], f.tangent_impulse[k]);
-            ang_a = ang_a.add_scaled(f.ita[k], f.tangent_impulse[k]);
+    }
+    for k in 0..2 {
+        lin = lin.add_scaled(w.tangents[k], f.tangent_impulse[k]);
+        ang_a = ang_a.add_scaled(f.ita[k], f.tangent_impulse[k]);
+        if !SB {
             ang_b = ang_b.add_scaled(f.itb[k], f.tangent_impulse[k]);
         }
-        va = va.add_scaled(lin, -w.ma);
-        wa = wa - ang_a;
+    }
+    va = va.add_scaled(lin, -w.ma);
+    wa = wa - ang_a;
+    scatter(vel, &w.a, va, wa);
+    if !SB {
+        let (mut vb, mut wb) = gather(vel, &w.b);
         vb = vb.add_scaled(lin, w.mb);
         wb = wb + ang_b;
-        scatter(vel, &w.a, va, wa);
         scatter(vel, &w.b, vb, wb);
     }
 }
 
 #[inline(always)]
-fn sum_impulses(w: &WideContact) -> F4 {
-    w.points[..w.count].iter().fold(F4::zero(), |s, p| s + p.impulse)
+fn sum_impulses<const N: usize>(w: &WideContact) -> F4 {
+    w.points[..N].iter().fold(F4::zero(), |s, p| s + p.impulse)
 }
 
 /// One sweep over real velocities: block-solved normal impulses (speculative points may close
@@ -512,147 +637,183 @@ pub struct SoftSweep {
 /// One sweep: soft and biased (`Some`), or rigid without bias (`None`, the relax sweep).
 /// Speculative points (positive separation) may close their gap within the sub-step, no more.
 pub fn solve(vel: &mut [Velocity], batches: &mut [WideContact], inv_h: f32, forward: bool, bias: Option<&SoftSweep>) {
+    for w in batches.iter_mut() {
+        match (w.count == 1, w.b_static) {
+            (true, true) => solve_batch::<1, true>(vel, w, inv_h, forward, bias),
+            (true, false) => solve_batch::<1, false>(vel, w, inv_h, forward, bias),
+            (false, true) => solve_batch::<MAXP, true>(vel, w, inv_h, forward, bias),
+            (false, false) => solve_batch::<MAXP, false>(vel, w, inv_h, forward, bias),
+        }
+    }
+}
+
+#[allow(clippy::needless_range_loop)] // index notation mirrors the matrix algebra
+#[inline(always)]
+fn solve_batch<const N: usize, const SB: bool>(
+    vel: &mut [Velocity],
+    w: &mut WideContact,
+    inv_h: f32,
+    forward: bool,
+    bias: Option<&SoftSweep>,
+) {
     let zero = F4::zero();
     let one = F4::splat(1.0);
     let inv_h = F4::splat(inv_h);
-    for w in batches.iter_mut() {
-        let (mut va, mut wa) = gather(vel, &w.a);
-        let (mut vb, mut wb) = gather(vel, &w.b);
-        let n = w.normal;
-        let count = w.count;
-        // Per lane: rigid (relax), or soft with the dynamic or the static coefficients.
-        let (rate, ms, is) = match bias {
-            None => (zero, one, zero),
-            Some(b) => {
-                let stat = w.ma.gt(zero).and(w.mb.gt(zero));
-                let pick = |d: f32, s: f32| F4::select(stat, F4::splat(d), F4::splat(s));
-                (
-                    pick(b.soft.bias_rate, b.soft_static.bias_rate),
-                    pick(b.soft.mass_scale, b.soft_static.mass_scale),
-                    pick(b.soft.impulse_scale, b.soft_static.impulse_scale),
-                )
+    let (mut va, mut wa) = gather(vel, &w.a);
+    // A static B has no velocity and never moves.
+    let (mut vb, mut wb) = if SB {
+        (V4::zero(), V4::zero())
+    } else {
+        gather(vel, &w.b)
+    };
+    let n = w.normal;
+    // Per lane: rigid (relax), or soft with the dynamic or the static coefficients.
+    let (rate, ms, is) = match bias {
+        None => (zero, one, zero),
+        Some(b) => {
+            let stat = w.ma.gt(zero).and(w.mb.gt(zero));
+            let pick = |d: f32, s: f32| F4::select(stat, F4::splat(d), F4::splat(s));
+            (
+                pick(b.soft.bias_rate, b.soft_static.bias_rate),
+                pick(b.soft.mass_scale, b.soft_static.mass_scale),
+                pick(b.soft.impulse_scale, b.soft_static.impulse_scale),
+            )
+        }
+    };
+    let (max_push, slop) = bias.map_or((zero, zero), |b| (F4::splat(-b.max_push), F4::splat(b.slop)));
+    let mut rhs = [zero; MAXP];
+    let mut msp = [one; MAXP];
+    let mut isp = [zero; MAXP];
+    for i in 0..N {
+        let p = &w.points[i];
+        let spec = p.separation.gt(zero);
+        let push = (rate * (p.separation + slop).min(zero)).max(max_push);
+        let b = F4::select(spec, p.separation * inv_h, push);
+        msp[i] = F4::select(spec, one, ms);
+        isp[i] = F4::select(spec, zero, is);
+        let v = rel::<SB>(va, wa, vb, wb, n, p.rna, p.rnb) + b;
+        rhs[i] = F4::select(p.active, v, zero);
+    }
+    // Solve K e = −rhs for e ≥ −(1 − is)λ/ms, then Δλ = ms·e − is·λ (soft update).
+    let mut delta = [zero; MAXP];
+    if N == 1 {
+        let p = &w.points[0];
+        let new = (p.impulse - msp[0] * p.normal_mass * rhs[0] - isp[0] * p.impulse).max(zero);
+        delta[0] = new - p.impulse;
+    } else {
+        // Lanes touching without load and not approaching (side faces of neighbours) need
+        // nothing: every impulse is zero and stays zero.
+        let mut idle = F4::splat(f32::from_bits(u32::MAX));
+        for (p, r) in w.points[..N].iter().zip(&rhs) {
+            idle = idle.and(p.impulse.le(zero)).and(r.ge(zero));
+        }
+        // Exact solution with every point pushing: K e = −rhs, Δλ = ms·e − is·λ. (A clamped
+        // exact solution is no good start: K of four coplanar points is nearly singular and
+        // its exact solution may hold large self-cancelling parts.)
+        let mut ok = F4::splat(f32::from_bits(u32::MAX));
+        let mut lower = [zero; MAXP];
+        for i in 0..N {
+            let mut d = zero;
+            for j in 0..N {
+                d = d - w.k_inv[i][j] * rhs[j];
             }
-        };
-        let (max_push, slop) = bias.map_or((zero, zero), |b| (F4::splat(-b.max_push), F4::splat(b.slop)));
-        let mut rhs = [zero; MAXP];
-        let mut msp = [one; MAXP];
-        let mut isp = [zero; MAXP];
-        for i in 0..count {
             let p = &w.points[i];
-            let spec = p.separation.gt(zero);
-            let push = (rate * (p.separation + slop).min(zero)).max(max_push);
-            let b = F4::select(spec, p.separation * inv_h, push);
-            msp[i] = F4::select(spec, one, ms);
-            isp[i] = F4::select(spec, zero, is);
-            let v = rel(va, wa, vb, wb, n, p.rna, p.rnb) + b;
-            rhs[i] = F4::select(p.active, v, zero);
+            // e may not go below this, or the point would pull.
+            lower[i] = -((one - isp[i]) * p.impulse / msp[i]);
+            let e = F4::select(idle, zero, d);
+            ok = ok.and(e.ge(lower[i]));
+            delta[i] = msp[i] * e - isp[i] * p.impulse;
         }
-        // Solve K e = −rhs for e ≥ −(1 − is)λ/ms, then Δλ = ms·e − is·λ (soft update).
-        let mut delta = [zero; MAXP];
-        if count == 1 {
-            let p = &w.points[0];
-            let new = (p.impulse - msp[0] * p.normal_mass * rhs[0] - isp[0] * p.impulse).max(zero);
-            delta[0] = new - p.impulse;
-        } else {
-            // Lanes touching without load and not approaching (side faces of neighbours) need
-            // nothing: every impulse is zero and stays zero.
-            let mut idle = F4::splat(f32::from_bits(u32::MAX));
-            for (p, r) in w.points[..count].iter().zip(&rhs) {
-                idle = idle.and(p.impulse.le(zero)).and(r.ge(zero));
-            }
-            // Exact solution with every point pushing: K e = −rhs, Δλ = ms·e − is·λ. (A clamped
-            // exact solution is no good start: K of four coplanar points is nearly singular and
-            // its exact solution may hold large self-cancelling parts.)
-            let mut ok = F4::splat(f32::from_bits(u32::MAX));
-            let mut lower = [zero; MAXP];
-            for i in 0..count {
-                let mut d = zero;
-                for j in 0..count {
-                    d = d - w.k_inv[i][j] * rhs[j];
-                }
-                let p = &w.points[i];
-                // e may not go below this, or the point would pull.
-                lower[i] = -((one - isp[i]) * p.impulse / msp[i]);
-                let e = F4::select(idle, zero, d);
-                ok = ok.and(e.ge(lower[i]));
-                delta[i] = msp[i] * e - isp[i] * p.impulse;
-            }
-            if ok.bits() != 0b1111 {
-                // Some lane has a point that would pull: projected Gauss–Seidel on K there.
-                let mut e = [zero; MAXP];
-                for it in 0..BLOCK_ITERATIONS {
-                    for s in 0..count {
-                        let i = if forward ^ (it % 2 == 1) { s } else { count - 1 - s };
-                        let mut r = rhs[i];
-                        for j in 0..count {
-                            r = r + w.k[i][j] * e[j];
-                        }
-                        let p = &w.points[i];
-                        e[i] = F4::select(p.active, (e[i] - p.normal_mass * r).max(lower[i]), zero);
+        if ok.bits() != 0b1111 {
+            // Some lane has a point that would pull: projected Gauss–Seidel on K there.
+            let mut e = [zero; MAXP];
+            for it in 0..BLOCK_ITERATIONS {
+                for s in 0..N {
+                    let i = if forward ^ (it % 2 == 1) { s } else { N - 1 - s };
+                    let mut r = rhs[i];
+                    for j in 0..N {
+                        r = r + w.k[i][j] * e[j];
                     }
-                }
-                for i in 0..count {
-                    let soft = msp[i] * e[i] - isp[i] * w.points[i].impulse;
-                    delta[i] = F4::select(ok, delta[i], soft);
+                    let p = &w.points[i];
+                    e[i] = F4::select(p.active, (e[i] - p.normal_mass * r).max(lower[i]), zero);
                 }
             }
+            for i in 0..N {
+                let soft = msp[i] * e[i] - isp[i] * w.points[i].impulse;
+                delta[i] = F4::select(ok, delta[i], soft);
+            }
         }
-        let (mut lin, mut ang_a, mut ang_b, mut total) = (zero, V4::zero(), V4::zero(), zero);
-        for (p, d) in w.points[..count].iter_mut().zip(delta) {
-            p.impulse = p.impulse + d;
-            p.max_impulse = p.max_impulse.max(d);
-            total = total + p.impulse;
-            lin = lin + d;
-            ang_a = ang_a.add_scaled(p.ia, d);
+    }
+    let (mut lin, mut ang_a, mut ang_b, mut total) = (zero, V4::zero(), V4::zero(), zero);
+    for (p, d) in w.points[..N].iter_mut().zip(delta) {
+        p.impulse = p.impulse + d;
+        p.max_impulse = p.max_impulse.max(d);
+        total = total + p.impulse;
+        lin = lin + d;
+        ang_a = ang_a.add_scaled(p.ia, d);
+        if !SB {
             ang_b = ang_b.add_scaled(p.ib, d);
         }
-        va = va.add_scaled(n, -(w.ma * lin));
-        wa = wa - ang_a;
+    }
+    va = va.add_scaled(n, -(w.ma * lin));
+    wa = wa - ang_a;
+    if !SB {
         vb = vb.add_scaled(n, w.mb * lin);
         wb = wb + ang_b;
+    }
 
-        // Patch friction: the static coefficient while the patch sticks, dynamic once it slides.
-        let f = &mut w.friction;
-        let old = f.tangent_impulse;
-        let mut new = [zero; 2];
-        for k in 0..2 {
-            let vt = rel(va, wa, vb, wb, w.tangents[k], f.rta[k], f.rtb[k]);
-            new[k] = old[k] - f.tangent_mass[k] * vt;
-        }
-        let old_twist = f.twist_impulse;
-        let twist = old_twist - f.twist_mass * (wb - wa).dot(n);
-        let len2 = new[0] * new[0] + new[1] * new[1];
-        // Stick or slide is decided per step from the tangential speed at its start (see
-        // `prepare`): deciding mid-step would latch on the transient before the normal impulse
-        // has built up.
-        let limit = F4::select(f.sliding, w.dynamic_friction, w.static_friction) * total;
-        let over = len2.gt(limit * limit);
-        let scale = F4::select(
-            over,
-            limit / F4::select(over, len2, F4::splat(1.0)).sqrt(),
-            F4::splat(1.0),
-        );
-        new[0] = new[0] * scale;
-        new[1] = new[1] * scale;
-        let twist_limit = limit * f.twist_radius;
-        let twist = twist.min(twist_limit).max(-twist_limit);
-        let d_twist = twist - old_twist;
-        let mut lin = V4::zero();
-        let mut ang_a = f.ina.scale(d_twist);
-        let mut ang_b = f.inb.scale(d_twist);
-        for k in 0..2 {
-            let d = new[k] - old[k];
-            lin = lin.add_scaled(w.tangents[k], d);
-            ang_a = ang_a.add_scaled(f.ita[k], d);
+    // Patch friction: the static coefficient while the patch sticks, dynamic once it slides.
+    let f = &mut w.friction;
+    let old = f.tangent_impulse;
+    let mut new = [zero; 2];
+    for k in 0..2 {
+        let vt = rel::<SB>(va, wa, vb, wb, w.tangents[k], f.rta[k], f.rtb[k]);
+        new[k] = old[k] - f.tangent_mass[k] * vt;
+    }
+    let old_twist = f.twist_impulse;
+    let twist = if N > 1 {
+        old_twist - f.twist_mass * (wb - wa).dot(n)
+    } else {
+        zero
+    };
+    let len2 = new[0] * new[0] + new[1] * new[1];
+    // Stick or slide is decided per step from the tangential speed at its start (see
+    // `prepare`): deciding mid-step would latch on the transient before the normal impulse
+    // has built up.
+    let limit = F4::select(f.sliding, w.dynamic_friction, w.static_friction) * total;
+    let over = len2.gt(limit * limit);
+    let scale = F4::select(
+        over,
+        limit / F4::select(over, len2, F4::splat(1.0)).sqrt(),
+        F4::splat(1.0),
+    );
+    new[0] = new[0] * scale;
+    new[1] = new[1] * scale;
+    let twist_limit = limit * f.twist_radius;
+    let twist = twist.min(twist_limit).max(-twist_limit);
+    let d_twist = twist - old_twist;
+    let mut lin = V4::zero();
+    let (mut ang_a, mut ang_b) = if N > 1 {
+        (f.ina.scale(d_twist), f.inb.scale(d_twist))
+    } else {
+        (V4::zero(), V4::zero())
+    };
+    for k in 0..2 {
+        let d = new[k] - old[k];
+        lin = lin.add_scaled(w.tangents[k], d);
+        ang_a = ang_a.add_scaled(f.ita[k], d);
+        if !SB {
             ang_b = ang_b.add_scaled(f.itb[k], d);
         }
-        f.tangent_impulse = new;
-        f.twist_impulse = twist;
-        va = va.add_scaled(lin, -w.ma);
-        wa = wa - ang_a;
+    }
+    f.tangent_impulse = new;
+    f.twist_impulse = twist;
+    va = va.add_scaled(lin, -w.ma);
+    wa = wa - ang_a;
+    scatter(vel, &w.a, va, wa);
+    if !SB {
         vb = vb.add_scaled(lin, w.mb);
         wb = wb + ang_b;
-        scatter(vel, &w.a, va, wa);
         scatter(vel, &w.b, vb, wb);
     }
 }
@@ -660,30 +821,46 @@ pub fn solve(vel: &mut [Velocity], batches: &mut [WideContact], inv_h: f32, forw
 /// Bounces: points that approached faster than `threshold` and pushed leave at −e times their
 /// approach speed.
 pub fn restitution(vel: &mut [Velocity], batches: &mut [WideContact], threshold: f32) {
-    let zero = F4::zero();
     for w in batches.iter_mut().filter(|w| w.has_restitution) {
-        let (mut va, mut wa) = gather(vel, &w.a);
-        let (mut vb, mut wb) = gather(vel, &w.b);
-        let n = w.normal;
-        for p in w.points[..w.count].iter_mut() {
-            let bounce = p
-                .active
-                .and((-p.relative_velocity).gt(F4::splat(threshold)))
-                .and(p.max_impulse.gt(zero));
-            if bounce.bits() == 0 {
-                continue;
-            }
-            let vn = rel(va, wa, vb, wb, n, p.rna, p.rnb);
-            let new = (p.impulse - p.normal_mass * (vn + w.restitution * p.relative_velocity)).max(zero);
-            let d = F4::select(bounce, new - p.impulse, zero);
-            p.impulse = p.impulse + d;
-            p.max_impulse = p.max_impulse.max(d);
-            va = va.add_scaled(n, -(w.ma * d));
-            wa = wa.add_scaled(p.ia, -d);
+        if w.b_static {
+            restitution_batch::<true>(vel, w, threshold);
+        } else {
+            restitution_batch::<false>(vel, w, threshold);
+        }
+    }
+}
+
+fn restitution_batch<const SB: bool>(vel: &mut [Velocity], w: &mut WideContact, threshold: f32) {
+    let zero = F4::zero();
+    let (mut va, mut wa) = gather(vel, &w.a);
+    let (mut vb, mut wb) = if SB {
+        (V4::zero(), V4::zero())
+    } else {
+        gather(vel, &w.b)
+    };
+    let n = w.normal;
+    for p in w.points[..w.count].iter_mut() {
+        let bounce = p
+            .active
+            .and((-p.relative_velocity).gt(F4::splat(threshold)))
+            .and(p.max_impulse.gt(zero));
+        if bounce.bits() == 0 {
+            continue;
+        }
+        let vn = rel::<SB>(va, wa, vb, wb, n, p.rna, p.rnb);
+        let new = (p.impulse - p.normal_mass * (vn + w.restitution * p.relative_velocity)).max(zero);
+        let d = F4::select(bounce, new - p.impulse, zero);
+        p.impulse = p.impulse + d;
+        p.max_impulse = p.max_impulse.max(d);
+        va = va.add_scaled(n, -(w.ma * d));
+        wa = wa.add_scaled(p.ia, -d);
+        if !SB {
             vb = vb.add_scaled(n, w.mb * d);
             wb = wb.add_scaled(p.ib, d);
         }
-        scatter(vel, &w.a, va, wa);
+    }
+    scatter(vel, &w.a, va, wa);
+    if !SB {
         scatter(vel, &w.b, vb, wb);
     }
 }

@@ -15,6 +15,10 @@ mod imp {
     // The primitive lane operations; the operator traits below call them.
     #[allow(clippy::should_implement_trait)]
     impl F4 {
+        // SAFETY: `__m128` is four `f32`s.
+        pub const ZERO_CONST: F4 = F4(unsafe { std::mem::transmute::<[f32; 4], __m128>([0.0; 4]) });
+        pub const ONE_CONST: F4 = F4(unsafe { std::mem::transmute::<[f32; 4], __m128>([1.0; 4]) });
+
         #[inline(always)]
         pub fn splat(x: f32) -> F4 {
             unsafe { F4(_mm_set1_ps(x)) }
@@ -354,6 +358,24 @@ pub struct M4 {
 }
 
 impl M4 {
+    pub const IDENTITY: M4 = M4 {
+        c0: V4 {
+            x: F4::ONE_CONST,
+            y: F4::ZERO_CONST,
+            z: F4::ZERO_CONST,
+        },
+        c1: V4 {
+            x: F4::ZERO_CONST,
+            y: F4::ONE_CONST,
+            z: F4::ZERO_CONST,
+        },
+        c2: V4 {
+            x: F4::ZERO_CONST,
+            y: F4::ZERO_CONST,
+            z: F4::ONE_CONST,
+        },
+    };
+
     #[inline(always)]
     pub fn from_lanes(m: [&Mat3; 4]) -> M4 {
         M4 {

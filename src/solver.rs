@@ -58,8 +58,9 @@ pub struct BodyState {
     pub inv_i: Mat3,
     /// The contact passes' view, as rows of four floats so four bodies load into lanes with
     /// transposes: translation since the start of the step, then the columns of the rotation
-    /// since the start of the step, then the columns of the world inverse inertia.
-    pub rows: [[f32; 4]; 7],
+    /// since the start of the step, then the columns of the world inverse inertia, then the
+    /// rotation since the start of the step as a rotation vector.
+    pub rows: [[f32; 4]; 8],
 }
 
 impl BodyState {
@@ -72,6 +73,7 @@ impl BodyState {
             [1.0, 0.0, 0.0, 0.0],
             [0.0, 1.0, 0.0, 0.0],
             [0.0, 0.0, 1.0, 0.0],
+            [0.0; 4],
             [0.0; 4],
             [0.0; 4],
             [0.0; 4],
@@ -98,10 +100,13 @@ impl BodyState {
     }
 
     #[inline]
-    fn set_rot(&mut self, r: Mat3) {
+    fn set_rotation(&mut self, dq: Quat) {
+        self.dq = dq;
+        let r = Mat3::from_quat(dq);
         for (row, col) in self.rows[1..4].iter_mut().zip([r.x_axis, r.y_axis, r.z_axis]) {
             *row = col.extend(0.0).to_array();
         }
+        self.rows[7] = dq.to_scaled_axis().extend(0.0).to_array();
     }
 
     #[inline]
@@ -303,11 +308,10 @@ fn integrate_positions(vel: &mut [Velocity], states: &mut [BodyState], sims: &[B
             s.set_dp(s.dp() + h * u.v);
             s.dq = integrate_rotation(s.dq, u.w, h);
         }
-        let rot = Mat3::from_quat(s.dq);
-        s.set_rot(rot);
+        s.set_rotation(s.dq);
         if sim.gyroscopic {
             // Anisotropic inertia turns with the body: keep the world inverse current.
-            let r = rot * Mat3::from_quat(sim.q0);
+            let r = Mat3::from_quat(s.dq * sim.q0);
             s.set_inv_i(r * sim.inv_inertia * r.transpose());
         }
     }
