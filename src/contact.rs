@@ -125,6 +125,14 @@ impl Contact {
         }
     }
 
+    /// Drops every point (the shapes are too far apart to touch this step).
+    pub fn clear(&mut self) {
+        self.manifold = Manifold::EMPTY;
+        self.cache.valid = false;
+        self.touching = false;
+        self.friction = FrictionImpulse::default();
+    }
+
     /// Recomputes the manifold (or moves the cached one, see `ManifoldCache`) and carries
     /// impulses over to points with the same feature id. Returns true when the contact started
     /// touching in this update.

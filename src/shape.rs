@@ -413,7 +413,12 @@ pub struct Shape {
     pub def: ShapeDef,
     /// Tree proxy, or `crate::body::NONE` for planes.
     pub proxy: u32,
+    /// Tight world bounds at the end of the last step (or at creation / teleport).
+    pub aabb: Aabb,
     pub fat_aabb: Aabb,
     /// Set while the shape sits in the broad phase's move buffer.
     pub in_move_buffer: bool,
+    /// Radius about the body's centre of mass that bounds the shape (`Geometry::extent_from`),
+    /// kept current when the body's mass changes.
+    pub extent: f32,
 }

@@ -106,7 +106,9 @@ impl BodyState {
         for (row, col) in self.rows[1..4].iter_mut().zip([r.x_axis, r.y_axis, r.z_axis]) {
             *row = col.extend(0.0).to_array();
         }
-        self.rows[7] = dq.to_scaled_axis().extend(0.0).to_array();
+        // Rotation vector to first order (it only gauges and updates small motions).
+        let v = 2.0 * dq.w.signum() * Vec3::new(dq.x, dq.y, dq.z);
+        self.rows[7] = v.extend(0.0).to_array();
     }
 
     #[inline]

@@ -127,6 +127,7 @@ impl World {
 
     fn collide(&mut self, dt: f32) {
         self.scratch_wake.clear();
+        let mut touching = 0;
         let mut i = self.awake_contacts.len();
         while i > 0 {
             i -= 1;
@@ -153,11 +154,16 @@ impl World {
                 self.destroy_contact(ci);
                 continue;
             }
-            let motion = (bb.v - ba.v).length()
-                + ba.w.length() * sa.geometry.extent_from(ba.local_center)
-                + bb.w.length() * sb.geometry.extent_from(bb.local_center);
+            let motion = (bb.v - ba.v).length() + ba.w.length() * sa.extent + bb.w.length() * sb.extent;
             let speculative = SPECULATIVE_DISTANCE + motion * dt;
-            c.update(sa, &ba.xf, sb, &bb.xf, speculative);
+            if apart(sa, &ba.xf, sb, &bb.xf, speculative) {
+                // Tight boxes further apart than the speculative distance: no points, and the
+                // narrow phase is skipped.
+                c.clear();
+            } else {
+                c.update(sa, &ba.xf, sb, &bb.xf, speculative);
+            }
+            touching += c.touching as usize;
             if c.touching && (!ba.awake || !bb.awake) {
                 let sleeper = if ba.awake { c.body_b } else { c.body_a };
                 if !bodies.at(sleeper).is_static() {
@@ -169,13 +175,9 @@ impl World {
         for &b in &wake {
             self.wake_body(b);
         }
+        self.counters.touching_contacts = touching;
         wake.clear();
         self.scratch_wake = wake;
-        self.counters.touching_contacts = self
-            .awake_contacts
-            .iter()
-            .filter(|&&c| self.contacts.at(c).touching)
-            .count();
     }
 
     fn update_bounds(&mut self, dt: f32) {
@@ -188,6 +190,34 @@ impl World {
                 self.refresh_proxy(s, d, false);
             }
         }
+    }
+}
+
+/// Are two shapes' tight bounds further apart than `margin` (so no contact point can exist)?
+fn apart(
+    a: &crate::shape::Shape,
+    xf_a: &crate::math::Transform,
+    b: &crate::shape::Shape,
+    xf_b: &crate::math::Transform,
+    margin: f32,
+) -> bool {
+    match (a.proxy == NONE, b.proxy == NONE) {
+        (false, false) => {
+            let (ba, bb) = (a.aabb, b.aabb);
+            let gap = (ba.min - bb.max).max(bb.min - ba.max);
+            gap.max_element() > margin
+        }
+        (true, false) => {
+            let (n, d) = world_plane(&a.geometry, xf_a);
+            let bb = b.aabb;
+            n.dot(bb.center()) - n.abs().dot(bb.extents()) > d + margin
+        }
+        (false, true) => {
+            let (n, d) = world_plane(&b.geometry, xf_b);
+            let ba = a.aabb;
+            n.dot(ba.center()) - n.abs().dot(ba.extents()) > d + margin
+        }
+        (true, true) => true,
     }
 }
 

@@ -416,8 +416,10 @@ impl World {
             geometry,
             def: *def,
             proxy: NONE,
+            aabb: crate::aabb::Aabb::EMPTY,
             fat_aabb: crate::aabb::Aabb::EMPTY,
             in_move_buffer: false,
+            extent: 0.0,
         };
         let h = self.shapes.insert(shape);
         self.bodies.at_mut(bi).shapes.push(h);
@@ -425,10 +427,12 @@ impl World {
             self.broad.planes.push(h.index);
         } else {
             let xf = self.bodies.at(bi).xf;
-            let fat = geometry.aabb(&xf).expanded(AABB_MARGIN);
+            let tight = geometry.aabb(&xf);
+            let fat = tight.expanded(AABB_MARGIN);
             let proxy = self.broad.tree.create_proxy(fat, h.index);
             let s = self.shapes.at_mut(h.index);
             s.proxy = proxy;
+            s.aabb = tight;
             s.fat_aabb = fat;
             self.push_moved(h.index);
         }
@@ -493,6 +497,13 @@ impl World {
                 .map(|s| s.geometry.mass_properties(s.def.density)),
         );
         self.bodies.at_mut(bi).set_mass_properties(mp);
+        // Shape extents are measured from the centre of mass, which may have moved.
+        let center = self.bodies.at(bi).local_center;
+        for k in 0..self.bodies.at(bi).shapes.len() {
+            let h = self.bodies.at(bi).shapes[k];
+            let shape = self.shapes.get_mut(h).unwrap();
+            shape.extent = shape.geometry.extent_from(center);
+        }
     }
 
     /// Recomputes a shape's box; if it left its fat box, refit the proxy and queue it for new
@@ -503,12 +514,17 @@ impl World {
             return;
         }
         let xf = self.bodies.at(shape.body).xf;
-        let bb = shape.geometry.aabb(&xf).swept(displacement);
-        if force || !shape.fat_aabb.contains(&bb) {
-            let fat = bb.expanded(AABB_MARGIN);
-            let proxy = shape.proxy;
+        let tight = shape.geometry.aabb(&xf);
+        let bb = tight.swept(displacement);
+        let proxy = shape.proxy;
+        let refit = force || !shape.fat_aabb.contains(&bb);
+        let shape = self.shapes.at_mut(s);
+        shape.aabb = tight;
+        if refit {
+            // Sweep one more step of motion ahead, so a fast body refits every other step.
+            let fat = bb.swept(displacement).expanded(AABB_MARGIN);
+            shape.fat_aabb = fat;
             self.broad.tree.move_proxy(proxy, fat);
-            self.shapes.at_mut(s).fat_aabb = fat;
             self.push_moved(s);
         }
     }
