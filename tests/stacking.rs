@@ -79,13 +79,30 @@ fn box_rests_at_its_half_height() {
             &ShapeDef::default(),
         );
         let s = scenes::dynamic_sphere(&mut w, Vec3::new(3.0, 2.0, 0.0), 0.3, &ShapeDef::default());
+        // A capsule lying flat (axis along z) rests on its side at its radius.
+        let c = w
+            .create_body(&BodyDef {
+                body_type: BodyType::Dynamic,
+                transform: Transform::new(Vec3::new(-3.0, 2.0, 0.0), Quat::IDENTITY),
+                ..Default::default()
+            })
+            .unwrap();
+        let capsule = Geometry::Capsule {
+            a: Vec3::new(0.0, 0.0, -0.6),
+            b: Vec3::new(0.0, 0.0, 0.6),
+            radius: 0.2,
+        };
+        w.create_shape(c, &ShapeDef::default(), &capsule).unwrap();
         for _ in 0..180 {
             w.step(DT).unwrap();
         }
         let yb = w.transform(b).unwrap().p.y;
         let ys = w.transform(s).unwrap().p.y;
+        let tc = w.transform(c).unwrap();
         assert!((yb - 0.25).abs() < 0.005, "{ground}: box rests at {yb}");
         assert!((ys - 0.3).abs() < 0.005, "{ground}: sphere rests at {ys}");
+        assert!((tc.p.y - 0.2).abs() < 0.005, "{ground}: capsule rests at {}", tc.p.y);
+        assert!((tc.q * Vec3::Z).y.abs() < 0.01, "{ground}: capsule tipped up");
     }
 }
 

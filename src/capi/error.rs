@@ -117,3 +117,42 @@ pub fn guard_value<T>(fallback: T, f: impl FnOnce() -> T) -> T {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn last() -> String {
+        with_last_error(|m| m.to_string())
+    }
+
+    #[test]
+    fn a_panic_becomes_a_result_code_with_its_message() {
+        let r = guard(|| panic!("boom at the boundary"));
+        assert_eq!(r, HEARTH_ERROR_PANIC);
+        assert!(last().contains("boom at the boundary"), "{}", last());
+        assert_eq!(guard_value(7, || panic!("again")), 7);
+        assert!(last().contains("again"));
+    }
+
+    #[test]
+    fn failures_keep_their_code_and_message_and_success_keeps_the_last_message() {
+        assert_eq!(guard(|| Err(Failure::null("out"))), HEARTH_ERROR_NULL_POINTER);
+        assert_eq!(last(), "out must not be NULL");
+        assert_eq!(guard(|| Ok(())), HEARTH_OK);
+        assert_eq!(last(), "out must not be NULL");
+    }
+
+    #[test]
+    fn messages_are_per_thread() {
+        let _ = guard(|| Err(Failure::invalid("main thread")));
+        std::thread::spawn(|| {
+            assert_eq!(last(), "");
+            let _ = guard(|| Err(Failure::invalid("other thread")));
+            assert_eq!(last(), "other thread");
+        })
+        .join()
+        .unwrap();
+        assert_eq!(last(), "main thread");
+    }
+}

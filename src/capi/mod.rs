@@ -11,7 +11,7 @@ pub mod types;
 pub mod validate;
 pub mod world;
 
-use std::os::raw::c_char;
+use libc::c_char;
 
 use error::*;
 

@@ -404,3 +404,27 @@ pub unsafe extern "C" fn hearth_world_get_transforms(
         Ok(())
     })
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_world_that_panicked_mid_step_refuses_further_steps() {
+        let def = hearth_world_def_default();
+        let mut world: *mut HearthWorld = std::ptr::null_mut();
+        unsafe {
+            assert_eq!(hearth_world_create(&def, &mut world), HEARTH_OK);
+            assert_eq!(hearth_world_step(world, 1.0 / 60.0), HEARTH_OK);
+            // What the step's own panic guard records when the engine panics mid-step.
+            (*world).poisoned.set(true);
+            assert_eq!(hearth_world_step(world, 1.0 / 60.0), HEARTH_ERROR_PANIC);
+            let msg = with_last_error(|m| m.to_string());
+            assert!(msg.contains("panicked"), "{msg}");
+            // Reads still work, and the world can be destroyed.
+            let mut g = HearthVec3::default();
+            assert_eq!(hearth_world_get_gravity(world, &mut g), HEARTH_OK);
+            hearth_world_destroy(world);
+        }
+    }
+}
