@@ -309,6 +309,10 @@ typedef struct ForceProbe {
     HearthResult particle_created;
     HearthResult impulse;
     HearthResult sink_add;
+    HearthResult particle_destroyed;
+    HearthResult generator_destroyed;
+    HearthResult burst;
+    HearthResult particle_moved;
     float read_y;
 } ForceProbe;
 
@@ -347,6 +351,13 @@ static void lift_callback(void *user_data, HearthWorld *world, const HearthGener
     probe->particle_created = hearth_particle_create(world, &pd, &np);
     probe->impulse = hearth_body_apply_linear_impulse(world, probe->body, vec3(0, 1, 0));
     probe->sink_add = hearth_contact_sink_add(NULL, NULL);
+    if (ctx->particle_count > 0) {
+        probe->particle_destroyed = hearth_particle_destroy(world, ctx->particles[0]);
+        probe->particle_moved = hearth_particle_set_position(world, ctx->particles[0], vec3(0, 0, 0));
+    }
+    probe->generator_destroyed = hearth_generator_destroy(world, ctx->generator);
+    HearthBurstDef burst = hearth_burst_def_default();
+    probe->burst = hearth_particle_emit_burst(world, &burst, NULL, 0, NULL);
     hearth_world_destroy(world); /* ignored while stepping */
 }
 
@@ -392,6 +403,10 @@ static void test_user_force_generator(void) {
     ENSURE(probe.particle_created == HEARTH_ERROR_WORLD_LOCKED);
     ENSURE(probe.impulse == HEARTH_ERROR_WORLD_LOCKED);
     ENSURE(probe.sink_add == HEARTH_ERROR_NULL_POINTER);
+    ENSURE(probe.particle_destroyed == HEARTH_ERROR_WORLD_LOCKED);
+    ENSURE(probe.particle_moved == HEARTH_ERROR_WORLD_LOCKED);
+    ENSURE(probe.generator_destroyed == HEARTH_ERROR_WORLD_LOCKED);
+    ENSURE(probe.burst == HEARTH_ERROR_WORLD_LOCKED);
     /* The lift cancelled gravity: both float where they were. */
     HearthTransform t;
     ENSURE_OK(hearth_body_get_transform(w, b, &t));

@@ -147,8 +147,15 @@ static void test_state_and_ids(void) {
     memset(&null_id, 0, sizeof null_id);
     ENSURE_RESULT(hearth_particle_get_position(w, null_id, &v), HEARTH_ERROR_INVALID_ID);
     ENSURE_RESULT(hearth_particle_get_position(other, p, &v), HEARTH_ERROR_INVALID_ID);
+    ENSURE_RESULT(hearth_particle_get_user_data(w, p, NULL), HEARTH_ERROR_NULL_POINTER);
+    ENSURE_RESULT(hearth_particle_is_awake(w, p, NULL), HEARTH_ERROR_NULL_POINTER);
+    ENSURE_RESULT(hearth_particle_get_velocity(NULL, p, &v), HEARTH_ERROR_NULL_POINTER);
     ENSURE_OK(hearth_particle_destroy(w, p));
     ENSURE_RESULT(hearth_particle_destroy(w, p), HEARTH_ERROR_INVALID_ID);
+    ENSURE_RESULT(hearth_particle_get_user_data(w, p, &ud), HEARTH_ERROR_INVALID_ID);
+    ENSURE_RESULT(hearth_particle_set_position(w, p, vec3(0, 0, 0)), HEARTH_ERROR_INVALID_ID);
+    ENSURE_RESULT(hearth_particle_apply_impulse(w, p, vec3(0, 0, 0)), HEARTH_ERROR_INVALID_ID);
+    ENSURE_RESULT(hearth_particle_set_awake(w, p, 1), HEARTH_ERROR_INVALID_ID);
     ENSURE_RESULT(hearth_particle_get_position(w, p, &v), HEARTH_ERROR_INVALID_ID);
     ENSURE_RESULT(hearth_particle_set_velocity(w, p, vec3(0, 0, 0)), HEARTH_ERROR_INVALID_ID);
     ENSURE_RESULT(hearth_particle_apply_force(w, p, vec3(0, 0, 0)), HEARTH_ERROR_INVALID_ID);
