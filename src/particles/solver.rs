@@ -52,11 +52,23 @@ use crate::world::World;
 
 const LINK_KEY: u64 = 1 << 63;
 
+/// A particle's contact with a plane, before it is known whether it is its only one.
+#[derive(Clone, Copy, Debug)]
+struct PlaneHit {
+    n: Vec3,
+    gap: f32,
+    friction: f32,
+    restitution: f32,
+}
+
 #[derive(Default)]
 pub struct Scratch {
     constraints: Vec<Constraint>,
     simple: Vec<Simple>,
     found: Vec<Constraint>,
+    hits: Vec<PlaneHit>,
+    /// The world's planes in world space for this step: (normal, offset, shape slot).
+    planes: Vec<(Vec3, f32, u32)>,
     coupled: Vec<Coupled>,
     coupled_index: IntMap<u32, u32>,
     /// Inverse mass of each particle for this stage (0 while asleep).
@@ -390,6 +402,13 @@ impl World {
             ..
         } = self;
         let gravity = settings.gravity;
+        // Planes in world space, once per step.
+        s.planes.clear();
+        s.planes.extend(broad.planes.iter().map(|&ps| {
+            let shape = shapes.at(ps);
+            let (n, offset) = world_plane(&shape.geometry, &bodies.at(shape.body).xf);
+            (n, offset, ps)
+        }));
         for i in 0..p.len() {
             if p.flags[i] & (AWAKE | COLLIDE) != (AWAKE | COLLIDE) {
                 continue;
@@ -398,26 +417,17 @@ impl World {
             let accel = gravity * p.gravity_scale[i] + p.accel[i] + p.force[i] * p.inv_mass[i];
             let reach = crate::step::SPECULATIVE_DISTANCE + (v.length() + accel.length() * dt) * dt;
             s.found.clear();
-            for &ps in &broad.planes {
-                let shape = shapes.at(ps);
-                let body = bodies.at(shape.body);
-                let (n, offset) = world_plane(&shape.geometry, &body.xf);
+            s.hits.clear();
+            for &(n, offset, ps) in &s.planes {
                 let gap = n.dot(x) - offset - r;
                 if gap < reach {
-                    let (friction, restitution) = mix(p, i, shape);
-                    let foot = x - n * (gap + r);
-                    let fixed = Side::Fixed {
-                        p: foot,
-                        v: Vec3::ZERO,
-                        sleeper: NONE,
-                    };
-                    let mut c = Constraint::new(Side::Particle(i as u32), fixed, Kind::Contact, n, gap);
-                    c.pa0 = x;
-                    c.pb0 = foot;
-                    c.friction = friction;
-                    c.restitution = restitution;
-                    c.vn0 = n.dot(v);
-                    s.found.push(c);
+                    let (friction, restitution) = mix(p, i, shapes.at(ps));
+                    s.hits.push(PlaneHit {
+                        n,
+                        gap,
+                        friction,
+                        restitution,
+                    });
                 }
             }
             if broad.tree.proxy_count() > 0 {
@@ -466,22 +476,44 @@ impl World {
                 });
             }
             // The fast path: a single contact with something fixed and nothing else.
-            if s.count[i] == 0 && s.found.len() == 1 {
-                let c = &s.found[0];
-                if let Side::Fixed { v: vf, sleeper, .. } = c.b {
+            if s.count[i] == 0 && s.hits.len() + s.found.len() == 1 {
+                let simple = if let Some(h) = s.hits.first() {
+                    Some((h.n, h.gap, Vec3::ZERO, h.restitution, h.friction, h.n.dot(v), NONE))
+                } else if let Side::Fixed { v: vf, sleeper, .. } = s.found[0].b {
+                    let c = &s.found[0];
+                    Some((c.n, c.gap0, vf, c.restitution, c.friction, c.vn0, sleeper))
+                } else {
+                    None
+                };
+                if let Some((n, gap, vf, restitution, friction, vn0, sleeper)) = simple {
                     s.simple.push(Simple {
                         i: i as u32,
-                        n: c.n,
-                        offset: c.n.dot(x) - c.gap0,
+                        n,
+                        offset: n.dot(x) - gap,
                         v: vf,
-                        restitution: c.restitution,
-                        friction: c.friction,
-                        vn0: c.vn0,
+                        restitution,
+                        friction,
+                        vn0,
                         total: 0.0,
                         sleeper,
                     });
                     continue;
                 }
+            }
+            for h in &s.hits {
+                let foot = x - h.n * (h.gap + r);
+                let fixed = Side::Fixed {
+                    p: foot,
+                    v: Vec3::ZERO,
+                    sleeper: NONE,
+                };
+                let mut c = Constraint::new(Side::Particle(i as u32), fixed, Kind::Contact, h.n, h.gap);
+                c.pa0 = x;
+                c.pb0 = foot;
+                c.friction = h.friction;
+                c.restitution = h.restitution;
+                c.vn0 = h.n.dot(v);
+                s.constraints.push(c);
             }
             s.constraints.extend_from_slice(&s.found);
         }
