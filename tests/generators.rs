@@ -146,7 +146,7 @@ fn spring_between_two_particles_keeps_momentum_and_oscillates() {
 /// Runs a particle on a stiff spring with `dt` chosen so one damped period is exactly `steps`
 /// steps; returns (measured ratio of displacements one period apart, expected ratio,
 /// measured period, expected period).
-fn stiff_spring_run(k: f32, c: f32, m: f32, substeps: u32) -> (f32, f32, f32, f32) {
+fn stiff_spring_run(k: f32, c: f32, m: f32, substeps: u32, body: bool) -> (f32, f32, f32, f32) {
     let omega_d = (k / m - 0.25 * (c / m) * (c / m)).sqrt();
     let period = 2.0 * std::f32::consts::PI / omega_d;
     let steps = 40usize;
@@ -158,7 +158,6 @@ fn stiff_spring_run(k: f32, c: f32, m: f32, substeps: u32) -> (f32, f32, f32, f3
         ..Default::default()
     })
     .unwrap();
-    let p = particle(&mut w, Vec3::new(1.0, 0.0, 0.0), 1.0 / m);
     let g = w
         .create_generator(&GeneratorDef::StiffSpring {
             anchor: End::World(Vec3::ZERO),
@@ -167,12 +166,24 @@ fn stiff_spring_run(k: f32, c: f32, m: f32, substeps: u32) -> (f32, f32, f32, f3
             damping: c,
         })
         .unwrap();
-    w.attach_particle(g, p).unwrap();
+    let (p, b) = if body {
+        let b = ball(&mut w, Vec3::new(1.0, 0.0, 0.0), m);
+        w.attach_body(g, b).unwrap();
+        (None, Some(b))
+    } else {
+        let p = particle(&mut w, Vec3::new(1.0, 0.0, 0.0), 1.0 / m);
+        w.attach_particle(g, p).unwrap();
+        (Some(p), None)
+    };
     let mut xs = vec![1.0f32];
     let mut samples = vec![(0.0f32, 1.0f32)];
     for i in 0..steps * 4 {
         w.step(dt).unwrap();
-        let x = w.particle_position(p).unwrap().x;
+        let x = match (p, b) {
+            (Some(p), _) => w.particle_position(p).unwrap().x,
+            (_, Some(b)) => w.transform(b).unwrap().p.x,
+            _ => unreachable!(),
+        };
         xs.push(x);
         samples.push(((i + 1) as f32 * dt, x));
     }
@@ -187,22 +198,26 @@ fn stiff_spring_run(k: f32, c: f32, m: f32, substeps: u32) -> (f32, f32, f32, f3
 
 #[test]
 fn stiff_spring_decay_and_frequency_are_exact() {
-    // Soft and very stiff springs (k/m · dt² up to 2.5: an explicit spring explodes there).
-    for &(k, c, m, n) in &[
-        (100.0f32, 2.0f32, 1.0f32, 4u32),
-        (4.0e4, 40.0, 2.0, 1),
-        (900.0, 30.0, 1.0, 8),
-    ] {
-        let (measured, expected, period, expected_period) = stiff_spring_run(k, c, m, n);
-        let err = (measured - expected).abs() / expected;
-        let perr = (period - expected_period).abs() / expected_period;
-        println!(
-            "stiff spring k={k} c={c} m={m} substeps={n}: decay per period {measured:.6} (exact {expected:.6}, error {:.4}%), period error {:.4}%",
-            100.0 * err,
-            100.0 * perr
-        );
-        assert!(err < 0.01, "decay {measured}, expected {expected}");
-        assert!(perr < 0.01, "period {period}, expected {expected_period}");
+    // Soft and very stiff springs (k/m · dt² up to 2.5: an explicit spring explodes there),
+    // on particles and on rigid bodies.
+    for body in [false, true] {
+        for &(k, c, m, n) in &[
+            (100.0f32, 2.0f32, 1.0f32, 4u32),
+            (4.0e4, 40.0, 2.0, 1),
+            (900.0, 30.0, 1.0, 8),
+        ] {
+            let (measured, expected, period, expected_period) = stiff_spring_run(k, c, m, n, body);
+            let err = (measured - expected).abs() / expected;
+            let perr = (period - expected_period).abs() / expected_period;
+            println!(
+                "stiff spring ({}) k={k} c={c} m={m} substeps={n}: decay per period {measured:.6} (exact {expected:.6}, error {:.4}%), period error {:.4}%",
+                if body { "body" } else { "particle" },
+                100.0 * err,
+                100.0 * perr
+            );
+            assert!(err < 0.01, "decay {measured}, expected {expected}");
+            assert!(perr < 0.01, "period {period}, expected {expected_period}");
+        }
     }
 }
 

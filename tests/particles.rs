@@ -669,6 +669,49 @@ fn steady_particle_steps_do_not_allocate() {
     )
     .unwrap();
     w.attach_particles(drag, &ids).unwrap();
+    // Generators on bodies: a spring, a rod to a world anchor, an explosion.
+    let hanging = scenes::dynamic_box(
+        &mut w,
+        Vec3::new(-4.0, 3.0, 0.0),
+        Vec3::splat(0.2),
+        &ShapeDef::default(),
+    );
+    let spring = w
+        .create_generator(&GeneratorDef::Spring(hearth::generators::Spring {
+            other: End::World(Vec3::new(-4.0, 5.0, 0.0)),
+            local_point: Vec3::ZERO,
+            rest_length: 1.5,
+            stiffness: 500.0,
+            damping: 5.0,
+        }))
+        .unwrap();
+    w.attach_body(spring, hanging).unwrap();
+    let swinging = scenes::dynamic_box(
+        &mut w,
+        Vec3::new(-7.0, 3.0, 0.0),
+        Vec3::splat(0.2),
+        &ShapeDef::default(),
+    );
+    w.create_generator(&GeneratorDef::Rod {
+        a: End::World(Vec3::new(-8.0, 4.0, 0.0)),
+        b: End::Body {
+            body: swinging,
+            local: Vec3::ZERO,
+        },
+        length: 2.0f32.sqrt(),
+    })
+    .unwrap();
+    w.create_generator(&GeneratorDef::Explosion {
+        center: Vec3::new(0.0, 0.0, 20.0),
+        blast_radius: 1.0,
+        blast_impulse: 1.0,
+        shock_speed: 1.0,
+        shock_thickness: 1.0,
+        shock_force: 1.0,
+        max_radius: 100.0,
+        affect_all: true,
+    })
+    .unwrap();
     let mut prev = End::World(Vec3::new(4.0, 3.0, 0.0));
     for k in 0..5 {
         let p = particle(&mut w, Vec3::new(4.0 + 0.3 * (k + 1) as f32, 3.0, 0.0), 1.0, 0.05);
