@@ -681,9 +681,12 @@ fn solve_batch<const N: usize, const SB: bool>(
         }
     };
     let (max_push, slop) = bias.map_or((zero, zero), |b| (F4::splat(-b.max_push), F4::splat(b.slop)));
+    // The part of its impulse a soft point keeps: e may not fall below −keep·λ.
+    let keep = (one - is) / ms;
     let mut rhs = [zero; MAXP];
     let mut msp = [one; MAXP];
     let mut isp = [zero; MAXP];
+    let mut kp = [one; MAXP];
     for i in 0..N {
         let p = &w.points[i];
         let spec = p.separation.gt(zero);
@@ -691,6 +694,7 @@ fn solve_batch<const N: usize, const SB: bool>(
         let b = F4::select(spec, p.separation * inv_h, push);
         msp[i] = F4::select(spec, one, ms);
         isp[i] = F4::select(spec, zero, is);
+        kp[i] = F4::select(spec, one, keep);
         let v = rel::<SB>(va, wa, vb, wb, n, p.rna, p.rnb) + b;
         rhs[i] = F4::select(p.active, v, zero);
     }
@@ -719,7 +723,7 @@ fn solve_batch<const N: usize, const SB: bool>(
             }
             let p = &w.points[i];
             // e may not go below this, or the point would pull.
-            lower[i] = -((one - isp[i]) * p.impulse / msp[i]);
+            lower[i] = -(kp[i] * p.impulse);
             let e = F4::select(idle, zero, d);
             ok = ok.and(e.ge(lower[i]));
             delta[i] = msp[i] * e - isp[i] * p.impulse;
