@@ -63,6 +63,10 @@ pub struct ContactConstraint {
     pub friction: PatchFriction,
     /// A and B were exchanged so that a static body is always B (see `static_to_b`).
     pub swapped: bool,
+    /// Solved with the full rigid response and no leak of accumulated impulse: generated
+    /// contacts (rods, cables) must hold their length under load, and they do not form the
+    /// deep stacks the soft contacts damp.
+    pub rigid: bool,
 }
 
 impl ContactConstraint {
@@ -140,6 +144,7 @@ pub fn prepare(world: &mut World) {
             points: [ConstraintPoint::default(); MAX_MANIFOLD_POINTS],
             friction: PatchFriction::default(),
             swapped: false,
+            rigid: false,
         };
         let mut centroid = Vec3::ZERO;
         for i in 0..c.manifold.count {
@@ -224,6 +229,7 @@ fn prepare_generated(world: &mut World) {
             points: [ConstraintPoint::default(); MAX_MANIFOLD_POINTS],
             friction: PatchFriction::default(),
             swapped: false,
+            rigid: true,
         };
         cc.points[0] = ConstraintPoint {
             ra0: ra,

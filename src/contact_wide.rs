@@ -33,6 +33,9 @@ const BLOCK_ITERATIONS: usize = 4;
 /// Relative regularisation of K (four coplanar points constrain only three motions).
 const BLOCK_REGULARIZATION: f32 = 1.0e-3;
 
+/// Fraction of the remaining error a rigid (generated) constraint removes per sub-step.
+const RIGID_PUSH: f32 = 0.3;
+
 /// Lane index marking an empty lane.
 const EMPTY: u32 = u32::MAX;
 
@@ -99,6 +102,8 @@ pub struct WideContact {
     static_friction: F4,
     dynamic_friction: F4,
     restitution: F4,
+    /// All-ones in lanes solved rigidly (see `ContactConstraint::rigid`).
+    rigid: F4,
     has_restitution: bool,
     points: [WidePoint; MAXP],
     k: [[F4; MAXP]; MAXP],
@@ -183,7 +188,7 @@ fn pack(w: &mut WideContact, lanes: &[u32], constraints: &[ContactConstraint]) {
     // Stage each field per lane (empty lanes stay zero), then load the lanes at once.
     #[derive(Default)]
     struct Stage {
-        f: [[f32; 4]; 10],
+        f: [[f32; 4]; 11],
         v: [[Vec3; 4]; 7],
         pf: [[[f32; 4]; 4]; MAXP],
         pv: [[[Vec3; 4]; 2]; MAXP],
@@ -217,6 +222,7 @@ fn pack(w: &mut WideContact, lanes: &[u32], constraints: &[ContactConstraint]) {
             f.tangent_impulse[0],
             f.tangent_impulse[1],
             f.twist_impulse,
+            if c.rigid { on } else { 0.0 },
         ]) {
             slot[i] = x;
         }
@@ -243,7 +249,8 @@ fn pack(w: &mut WideContact, lanes: &[u32], constraints: &[ContactConstraint]) {
     // Batches run as one-point or four-point manifolds (missing points are inactive).
     w.count = if w.count <= 1 { 1 } else { MAXP };
     w.b_static = w.b.iter().all(|&b| b == 0);
-    let [ma, mb, at_b, fs, fd, e, twist_radius, t0, t1, twist] = st.f.map(F4::from_array);
+    let [ma, mb, at_b, fs, fd, e, twist_radius, t0, t1, twist, rigid] = st.f.map(F4::from_array);
+    w.rigid = rigid;
     let [normal, oa, ob, tan0, tan1, fca0, fcb0] = st.v.map(V4::from_lanes);
     (w.ma, w.mb, w.at_b, w.static_friction, w.dynamic_friction, w.restitution) = (ma, mb, at_b, fs, fd, e);
     (w.normal, w.oa, w.ob, w.tangents) = (normal, oa, ob, [tan0, tan1]);
@@ -658,6 +665,7 @@ fn solve_batch<const N: usize, const SB: bool>(
 ) {
     let zero = F4::zero();
     let one = F4::splat(1.0);
+    let inv_h_scalar = inv_h;
     let inv_h = F4::splat(inv_h);
     let (mut va, mut wa) = gather(vel, &w.a);
     // A static B has no velocity and never moves.
@@ -681,6 +689,11 @@ fn solve_batch<const N: usize, const SB: bool>(
         }
     };
     let (max_push, slop) = bias.map_or((zero, zero), |b| (F4::splat(-b.max_push), F4::splat(b.slop)));
+    // Rigid lanes: full response, no leak, and a fast push-out (a fraction of the sub-step
+    // rate; the relax sweep removes the push velocity) so a rod keeps its length while it
+    // swings.
+    let (ms, is) = (F4::select(w.rigid, one, ms), F4::select(w.rigid, zero, is));
+    let rate = F4::select(w.rigid, F4::splat(RIGID_PUSH * inv_h_scalar), rate);
     // The part of its impulse a soft point keeps: e may not fall below −keep·λ.
     let keep = (one - is) / ms;
     let mut rhs = [zero; MAXP];
