@@ -104,6 +104,12 @@ pub struct WideContact {
     restitution: F4,
     /// All-ones in lanes solved rigidly (see `ContactConstraint::rigid`).
     rigid: F4,
+    /// The biased sweep's coefficients per lane, fixed for a step (`set_softness`): push-out
+    /// rate, mass scale, impulse leak, and the part of its impulse a point keeps.
+    soft_rate: F4,
+    soft_ms: F4,
+    soft_is: F4,
+    soft_keep: F4,
     has_restitution: bool,
     points: [WidePoint; MAXP],
     k: [[F4; MAXP]; MAXP],
@@ -566,6 +572,25 @@ fn refresh_batch<const N: usize, const SB: bool>(states: &[BodyState], w: &mut W
     }
 }
 
+/// Sets each batch's biased-sweep coefficients for this step: the soft contact's (the static
+/// variant when a body has infinite mass), or for rigid lanes the full response, no leak and a
+/// fast push-out (a fraction of the sub-step rate; the relax sweep removes the push velocity)
+/// so a rod keeps its length while it swings.
+pub fn set_softness(batches: &mut [WideContact], soft: &SoftSweep, inv_h: f32) {
+    let (zero, one) = (F4::zero(), F4::splat(1.0));
+    for w in batches.iter_mut() {
+        let dynamic = w.ma.gt(zero).and(w.mb.gt(zero));
+        let pick = |d: f32, s: f32| F4::select(dynamic, F4::splat(d), F4::splat(s));
+        let rate = pick(soft.soft.bias_rate, soft.soft_static.bias_rate);
+        let ms = pick(soft.soft.mass_scale, soft.soft_static.mass_scale);
+        let is = pick(soft.soft.impulse_scale, soft.soft_static.impulse_scale);
+        w.soft_rate = F4::select(w.rigid, F4::splat(RIGID_PUSH * inv_h), rate);
+        w.soft_ms = F4::select(w.rigid, one, ms);
+        w.soft_is = F4::select(w.rigid, zero, is);
+        w.soft_keep = (one - w.soft_is) / w.soft_ms;
+    }
+}
+
 /// Relative velocity along `d` with angular Jacobians `ja`, `jb`.
 #[inline(always)]
 fn rel<const SB: bool>(va: V4, wa: V4, vb: V4, wb: V4, d: V4, ja: V4, jb: V4) -> F4 {
@@ -665,7 +690,6 @@ fn solve_batch<const N: usize, const SB: bool>(
 ) {
     let zero = F4::zero();
     let one = F4::splat(1.0);
-    let inv_h_scalar = inv_h;
     let inv_h = F4::splat(inv_h);
     let (mut va, mut wa) = gather(vel, &w.a);
     // A static B has no velocity and never moves.
@@ -675,27 +699,19 @@ fn solve_batch<const N: usize, const SB: bool>(
         gather(vel, &w.b)
     };
     let n = w.normal;
-    // Per lane: rigid (relax), or soft with the dynamic or the static coefficients.
-    let (rate, ms, is) = match bias {
-        None => (zero, one, zero),
-        Some(b) => {
-            let stat = w.ma.gt(zero).and(w.mb.gt(zero));
-            let pick = |d: f32, s: f32| F4::select(stat, F4::splat(d), F4::splat(s));
-            (
-                pick(b.soft.bias_rate, b.soft_static.bias_rate),
-                pick(b.soft.mass_scale, b.soft_static.mass_scale),
-                pick(b.soft.impulse_scale, b.soft_static.impulse_scale),
-            )
-        }
+    // Per lane: the biased sweep's coefficients (see `set_softness`), or rigid without bias
+    // for the relax sweep.
+    let (rate, ms, is, keep, max_push, slop) = match bias {
+        Some(b) => (
+            w.soft_rate,
+            w.soft_ms,
+            w.soft_is,
+            w.soft_keep,
+            F4::splat(-b.max_push),
+            F4::splat(b.slop),
+        ),
+        None => (zero, one, zero, one, zero, zero),
     };
-    let (max_push, slop) = bias.map_or((zero, zero), |b| (F4::splat(-b.max_push), F4::splat(b.slop)));
-    // Rigid lanes: full response, no leak, and a fast push-out (a fraction of the sub-step
-    // rate; the relax sweep removes the push velocity) so a rod keeps its length while it
-    // swings.
-    let (ms, is) = (F4::select(w.rigid, one, ms), F4::select(w.rigid, zero, is));
-    let rate = F4::select(w.rigid, F4::splat(RIGID_PUSH * inv_h_scalar), rate);
-    // The part of its impulse a soft point keeps: e may not fall below −keep·λ.
-    let keep = (one - is) / ms;
     let mut rhs = [zero; MAXP];
     let mut msp = [one; MAXP];
     let mut isp = [zero; MAXP];

@@ -412,6 +412,7 @@ pub fn solve(world: &mut World, dt: f32) {
         max_push: settings.contact_push_max_velocity,
         slop: settings.linear_slop,
     };
+    contact_wide::set_softness(batches, &soft, inv_h);
     for sub in 0..substeps {
         integrate_velocities(vel, states, sims, h, settings.max_linear_speed);
         contact_wide::refresh(states, batches, sub == 0);
