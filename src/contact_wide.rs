@@ -278,31 +278,56 @@ fn pack(w: &mut WideContact, lanes: &[u32], constraints: &[ContactConstraint]) {
 fn gather_states(states: &[BodyState], idx: &[u32; 4]) -> (V4, M4, M4) {
     let rows = idx.map(|i| &states[i as usize].rows);
     let lanes = |r: usize| {
-        let t = transpose([
+        transpose([
             load(&rows[0][r]),
             load(&rows[1][r]),
             load(&rows[2][r]),
             load(&rows[3][r]),
-        ]);
-        V4 {
-            x: t[0],
-            y: t[1],
-            z: t[2],
-        }
+        ])
     };
+    let v = |t: [F4; 4]| V4 {
+        x: t[0],
+        y: t[1],
+        z: t[2],
+    };
+    let dp = v(lanes(0));
+    let [x, y, z, w] = lanes(1);
     (
-        lanes(0),
+        dp,
+        rotation(x, y, z, w),
         M4 {
-            c0: lanes(1),
-            c1: lanes(2),
-            c2: lanes(3),
-        },
-        M4 {
-            c0: lanes(4),
-            c1: lanes(5),
-            c2: lanes(6),
+            c0: v(lanes(2)),
+            c1: v(lanes(3)),
+            c2: v(lanes(4)),
         },
     )
+}
+
+/// The rotation matrices of four unit quaternions.
+#[inline(always)]
+fn rotation(x: F4, y: F4, z: F4, w: F4) -> M4 {
+    let (x2, y2, z2) = (x + x, y + y, z + z);
+    let (xx, xy, xz) = (x * x2, x * y2, x * z2);
+    let (yy, yz, zz) = (y * y2, y * z2, z * z2);
+    let (wx, wy, wz) = (w * x2, w * y2, w * z2);
+    let one = F4::splat(1.0);
+    M4 {
+        c0: V4 {
+            x: one - (yy + zz),
+            y: xy + wz,
+            z: xz - wy,
+        },
+        c1: V4 {
+            x: xy - wz,
+            y: one - (xx + zz),
+            z: yz + wx,
+        },
+        c2: V4 {
+            x: xz + wy,
+            y: yz - wx,
+            z: one - (xx + yy),
+        },
+    }
 }
 
 #[inline(always)]
@@ -464,7 +489,7 @@ fn light_refresh<const N: usize, const SB: bool>(states: &[BodyState], w: &mut W
                 z: t[2],
             }
         };
-        (lanes(0), lanes(7))
+        (lanes(0), lanes(5))
     };
     let (dpa, tha) = motion(&w.a);
     let (dpb, thb) = if SB { (V4::zero(), V4::zero()) } else { motion(&w.b) };

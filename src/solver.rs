@@ -57,10 +57,10 @@ pub struct BodyState {
     pub inv_mass: f32,
     pub inv_i: Mat3,
     /// The contact passes' view, as rows of four floats so four bodies load into lanes with
-    /// transposes: translation since the start of the step, then the columns of the rotation
-    /// since the start of the step, then the columns of the world inverse inertia, then the
+    /// transposes: translation since the start of the step, rotation since the start of the
+    /// step as a quaternion (x, y, z, w), the columns of the world inverse inertia, and the
     /// rotation since the start of the step as a rotation vector.
-    pub rows: [[f32; 4]; 8],
+    pub rows: [[f32; 4]; 6],
 }
 
 impl BodyState {
@@ -68,16 +68,7 @@ impl BodyState {
         dq: Quat::IDENTITY,
         inv_mass: 0.0,
         inv_i: Mat3::ZERO,
-        rows: [
-            [0.0; 4],
-            [1.0, 0.0, 0.0, 0.0],
-            [0.0, 1.0, 0.0, 0.0],
-            [0.0, 0.0, 1.0, 0.0],
-            [0.0; 4],
-            [0.0; 4],
-            [0.0; 4],
-            [0.0; 4],
-        ],
+        rows: [[0.0; 4], [0.0, 0.0, 0.0, 1.0], [0.0; 4], [0.0; 4], [0.0; 4], [0.0; 4]],
     };
 
     fn new(inv_mass: f32, inv_i: Mat3) -> BodyState {
@@ -102,19 +93,17 @@ impl BodyState {
     #[inline]
     fn set_rotation(&mut self, dq: Quat) {
         self.dq = dq;
-        let r = Mat3::from_quat(dq);
-        for (row, col) in self.rows[1..4].iter_mut().zip([r.x_axis, r.y_axis, r.z_axis]) {
-            *row = col.extend(0.0).to_array();
-        }
+        // The contact refresh turns the quaternion into a matrix only when it needs one.
+        self.rows[1] = dq.to_array();
         // Rotation vector to first order (it only gauges and updates small motions).
         let v = 2.0 * dq.w.signum() * Vec3::new(dq.x, dq.y, dq.z);
-        self.rows[7] = v.extend(0.0).to_array();
+        self.rows[5] = v.extend(0.0).to_array();
     }
 
     #[inline]
     fn set_inv_i(&mut self, m: Mat3) {
         self.inv_i = m;
-        for (row, col) in self.rows[4..7].iter_mut().zip([m.x_axis, m.y_axis, m.z_axis]) {
+        for (row, col) in self.rows[2..5].iter_mut().zip([m.x_axis, m.y_axis, m.z_axis]) {
             *row = col.extend(0.0).to_array();
         }
     }
