@@ -41,6 +41,9 @@ pub struct Contact {
     /// Position in the world's awake-contact list, or `NONE`.
     pub awake_index: u32,
     pub key: u64,
+    /// Rounding radii of the two shapes (`Geometry::rounding_radius`), for the solver.
+    pub radius_a: f32,
+    pub radius_b: f32,
     /// The manifold in the bodies' own frames, for reuse while they barely move relative to
     /// each other.
     pub cache: ManifoldCache,
@@ -121,6 +124,8 @@ impl Contact {
             touching: false,
             awake_index: crate::body::NONE,
             key,
+            radius_a: a.geometry.rounding_radius(),
+            radius_b: b.geometry.rounding_radius(),
             cache: ManifoldCache::default(),
         }
     }

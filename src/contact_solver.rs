@@ -138,8 +138,8 @@ pub fn prepare(world: &mut World) {
             static_friction: c.static_friction,
             dynamic_friction: c.dynamic_friction,
             restitution: c.restitution,
-            radius_a: world.shapes.at(c.shape_a).geometry.rounding_radius(),
-            radius_b: world.shapes.at(c.shape_b).geometry.rounding_radius(),
+            radius_a: c.radius_a,
+            radius_b: c.radius_b,
             count: c.manifold.count,
             points: [ConstraintPoint::default(); MAX_MANIFOLD_POINTS],
             friction: PatchFriction::default(),
@@ -163,13 +163,16 @@ pub fn prepare(world: &mut World) {
             };
         }
         centroid /= c.manifold.count as f32;
-        let twist_radius = c
-            .manifold
-            .points()
-            .iter()
-            .map(|p| (p.point - centroid).length())
-            .sum::<f32>()
-            / c.manifold.count as f32;
+        let twist_radius = if c.manifold.count > 1 {
+            c.manifold
+                .points()
+                .iter()
+                .map(|p| (p.point - centroid).length())
+                .sum::<f32>()
+                / c.manifold.count as f32
+        } else {
+            0.0
+        };
         let (ra, rb) = (centroid - ba.center, centroid - bb.center);
         let dv = ub.v + ub.w.cross(rb) - ua.v - ua.w.cross(ra);
         let vt = dv - n * dv.dot(n);
