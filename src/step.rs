@@ -64,6 +64,9 @@ impl World {
         // 7. Particles: integration, contacts with shapes (two-way with dynamic bodies),
         //    rods and cables, sleep, lifetimes (particles/solver.rs).
         self.step_particles(dt);
+        // 7c. Soft bodies: XPBD sub-steps, pressure, contacts with shapes (two-way with
+        //     dynamic bodies), pins (soft/solver.rs).
+        self.step_soft_bodies(dt);
         // 8. Bounds: refit moved proxies, sweeping them along the coming motion.
         self.update_bounds(dt);
         // 9. Sleep.
@@ -79,7 +82,6 @@ impl World {
             shapes,
             bodies,
             counters,
-            joints,
             ..
         } = self;
         broad.candidates.clear();
@@ -99,10 +101,7 @@ impl World {
                 if other.body == shape.body || (other.in_move_buffer && t < s) {
                     return true;
                 }
-                if (body.is_dynamic() || bodies.at(other.body).is_dynamic())
-                    // Joints with collide_connected off (issue 5) filter their body pair.
-                    && joints.should_collide(shape.body, other.body)
-                {
+                if body.is_dynamic() || bodies.at(other.body).is_dynamic() {
                     candidates.push((s, t));
                 }
                 true
@@ -111,7 +110,7 @@ impl World {
                 for &p in &broad.planes {
                     let plane = shapes.at(p);
                     let (n, d) = world_plane(&plane.geometry, &bodies.at(plane.body).xf);
-                    if aabb_touches_plane(&fat, n, d) && joints.should_collide(shape.body, plane.body) {
+                    if aabb_touches_plane(&fat, n, d) {
                         candidates.push((s, p));
                     }
                 }

@@ -1,0 +1,271 @@
+//! Mesh helpers for soft bodies: an icosphere, a box lattice and a cloth grid, each centred
+//! on the origin; and the topology a soft body derives from a triangle mesh (unique edges,
+//! bending pairs across edges).
+
+use crate::hash::IntMap;
+use crate::math::Vec3;
+
+/// A triangle mesh (counter-clockwise seen from outside for closed meshes) plus optional
+/// extra springs that are not triangle edges (the inner springs of a lattice).
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct SoftMesh {
+    pub vertices: Vec<Vec3>,
+    pub triangles: Vec<[u32; 3]>,
+    pub extra_edges: Vec<[u32; 2]>,
+}
+
+/// An icosphere of `radius` (m): an icosahedron whose triangles are split in four
+/// `subdivisions` times (0..=6), vertices pushed onto the sphere. Vertex counts: 12, 42,
+/// 162, 642, 2562, ...
+pub fn icosphere(radius: f32, subdivisions: u32) -> SoftMesh {
+    let t = (1.0 + 5f32.sqrt()) / 2.0;
+    let mut vertices: Vec<Vec3> = [
+        (-1.0, t, 0.0),
+        (1.0, t, 0.0),
+        (-1.0, -t, 0.0),
+        (1.0, -t, 0.0),
+        (0.0, -1.0, t),
+        (0.0, 1.0, t),
+        (0.0, -1.0, -t),
+        (0.0, 1.0, -t),
+        (t, 0.0, -1.0),
+        (t, 0.0, 1.0),
+        (-t, 0.0, -1.0),
+        (-t, 0.0, 1.0),
+    ]
+    .iter()
+    .map(|&(x, y, z)| Vec3::new(x, y, z).normalize())
+    .collect();
+    let mut triangles: Vec<[u32; 3]> = vec![
+        [0, 11, 5],
+        [0, 5, 1],
+        [0, 1, 7],
+        [0, 7, 10],
+        [0, 10, 11],
+        [1, 5, 9],
+        [5, 11, 4],
+        [11, 10, 2],
+        [10, 7, 6],
+        [7, 1, 8],
+        [3, 9, 4],
+        [3, 4, 2],
+        [3, 2, 6],
+        [3, 6, 8],
+        [3, 8, 9],
+        [4, 9, 5],
+        [2, 4, 11],
+        [6, 2, 10],
+        [8, 6, 7],
+        [9, 8, 1],
+    ];
+    for _ in 0..subdivisions {
+        let mut mid: IntMap<u64, u32> = IntMap::default();
+        let mut next = Vec::with_capacity(triangles.len() * 4);
+        let mut midpoint = |a: u32, b: u32, vertices: &mut Vec<Vec3>| -> u32 {
+            let key = ((a.min(b) as u64) << 32) | a.max(b) as u64;
+            *mid.entry(key).or_insert_with(|| {
+                let p = ((vertices[a as usize] + vertices[b as usize]) * 0.5).normalize();
+                vertices.push(p);
+                vertices.len() as u32 - 1
+            })
+        };
+        for &[a, b, c] in &triangles {
+            let ab = midpoint(a, b, &mut vertices);
+            let bc = midpoint(b, c, &mut vertices);
+            let ca = midpoint(c, a, &mut vertices);
+            next.extend_from_slice(&[[a, ab, ca], [b, bc, ab], [c, ca, bc], [ab, bc, ca]]);
+        }
+        triangles = next;
+    }
+    for v in &mut vertices {
+        *v *= radius;
+    }
+    SoftMesh {
+        vertices,
+        triangles,
+        extra_edges: Vec::new(),
+    }
+}
+
+/// A box of `half_extents` (m) filled with a lattice of `n[0] × n[1] × n[2]` cells (each
+/// 1..=64): vertices on the grid, springs along every cell edge, face diagonal and body
+/// diagonal (so it keeps its shape), and the outer faces as triangles.
+pub fn lattice(half_extents: Vec3, n: [u32; 3]) -> SoftMesh {
+    let [nx, ny, nz] = n.map(|k| k as usize);
+    let id = |i: usize, j: usize, k: usize| (i + (nx + 1) * (j + (ny + 1) * k)) as u32;
+    let mut vertices = Vec::with_capacity((nx + 1) * (ny + 1) * (nz + 1));
+    for k in 0..=nz {
+        for j in 0..=ny {
+            for i in 0..=nx {
+                let f = Vec3::new(i as f32 / nx as f32, j as f32 / ny as f32, k as f32 / nz as f32);
+                vertices.push(-half_extents + 2.0 * half_extents * f);
+            }
+        }
+    }
+    // Springs: every pair of corners of every cell (edges, face and body diagonals);
+    // duplicates are removed when the body is built.
+    let mut extra_edges = Vec::new();
+    for k in 0..nz {
+        for j in 0..ny {
+            for i in 0..nx {
+                let corners: [u32; 8] = std::array::from_fn(|c| id(i + (c & 1), j + ((c >> 1) & 1), k + (c >> 2)));
+                for a in 0..8 {
+                    for b in a + 1..8 {
+                        extra_edges.push([corners[a], corners[b]]);
+                    }
+                }
+            }
+        }
+    }
+    // Surface triangles, counter-clockwise from outside.
+    let mut triangles = Vec::new();
+    let mut quad = |a: u32, b: u32, c: u32, d: u32| {
+        triangles.push([a, b, c]);
+        triangles.push([a, c, d]);
+    };
+    for j in 0..ny {
+        for i in 0..nx {
+            // z = -h (normal -z) and z = +h (normal +z).
+            quad(id(i, j, 0), id(i, j + 1, 0), id(i + 1, j + 1, 0), id(i + 1, j, 0));
+            quad(id(i, j, nz), id(i + 1, j, nz), id(i + 1, j + 1, nz), id(i, j + 1, nz));
+        }
+    }
+    for k in 0..nz {
+        for i in 0..nx {
+            // y = -h and y = +h.
+            quad(id(i, 0, k), id(i + 1, 0, k), id(i + 1, 0, k + 1), id(i, 0, k + 1));
+            quad(id(i, ny, k), id(i, ny, k + 1), id(i + 1, ny, k + 1), id(i + 1, ny, k));
+        }
+    }
+    for k in 0..nz {
+        for j in 0..ny {
+            // x = -h and x = +h.
+            quad(id(0, j, k), id(0, j, k + 1), id(0, j + 1, k + 1), id(0, j + 1, k));
+            quad(id(nx, j, k), id(nx, j + 1, k), id(nx, j + 1, k + 1), id(nx, j, k + 1));
+        }
+    }
+    SoftMesh {
+        vertices,
+        triangles,
+        extra_edges,
+    }
+}
+
+/// An open cloth of `width × height` (m) in the XZ plane (normal +Y), with `columns × rows`
+/// cells (each 1..=1024); vertex `(i, j)` is `i + (columns + 1) · j`, `i` along +X from
+/// `-width/2`, `j` along +Z from `-height/2`.
+pub fn cloth(width: f32, height: f32, columns: u32, rows: u32) -> SoftMesh {
+    let (nx, nz) = (columns as usize, rows as usize);
+    let id = |i: usize, j: usize| (i + (nx + 1) * j) as u32;
+    let mut vertices = Vec::with_capacity((nx + 1) * (nz + 1));
+    for j in 0..=nz {
+        for i in 0..=nx {
+            vertices.push(Vec3::new(
+                width * (i as f32 / nx as f32 - 0.5),
+                0.0,
+                height * (j as f32 / nz as f32 - 0.5),
+            ));
+        }
+    }
+    let mut triangles = Vec::with_capacity(2 * nx * nz);
+    for j in 0..nz {
+        for i in 0..nx {
+            let (a, b, c, d) = (id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1));
+            // Alternate the diagonal so the cloth has no preferred shear direction.
+            if (i + j) % 2 == 0 {
+                triangles.push([a, c, b]);
+                triangles.push([a, d, c]);
+            } else {
+                triangles.push([a, d, b]);
+                triangles.push([b, d, c]);
+            }
+        }
+    }
+    SoftMesh {
+        vertices,
+        triangles,
+        extra_edges: Vec::new(),
+    }
+}
+
+/// Unique edges of the triangles and extra edges, and the bending pairs: for every edge
+/// shared by exactly two triangles, the two vertices opposite it. Sorted, so the order
+/// (and hence the solve) is deterministic.
+pub(crate) fn topology(triangles: &[[u32; 3]], extra: &[[u32; 2]]) -> (Vec<[u32; 2]>, Vec<[u32; 2]>) {
+    let key = |a: u32, b: u32| ((a.min(b) as u64) << 32) | a.max(b) as u64;
+    // Edge -> (count, first opposite vertex, second opposite vertex).
+    let mut map: IntMap<u64, (u32, u32, u32)> = IntMap::default();
+    for t in triangles {
+        for e in 0..3 {
+            let (a, b, o) = (t[e], t[(e + 1) % 3], t[(e + 2) % 3]);
+            let entry = map.entry(key(a, b)).or_insert((0, u32::MAX, u32::MAX));
+            if entry.0 == 0 {
+                entry.1 = o;
+            } else if entry.0 == 1 {
+                entry.2 = o;
+            }
+            entry.0 += 1;
+        }
+    }
+    let mut edges: Vec<u64> = map.keys().copied().collect();
+    edges.extend(extra.iter().filter(|e| e[0] != e[1]).map(|e| key(e[0], e[1])));
+    edges.sort_unstable();
+    edges.dedup();
+    let mut bends: Vec<[u32; 2]> = map
+        .values()
+        .filter(|&&(count, a, b)| count == 2 && a != b)
+        .map(|&(_, a, b)| [a.min(b), a.max(b)])
+        .collect();
+    bends.sort_unstable();
+    bends.dedup();
+    let edges = edges.iter().map(|&k| [(k >> 32) as u32, k as u32]).collect();
+    (edges, bends)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn volume(m: &SoftMesh) -> f32 {
+        m.triangles
+            .iter()
+            .map(|t| {
+                let [a, b, c] = t.map(|i| m.vertices[i as usize]);
+                a.dot(b.cross(c)) / 6.0
+            })
+            .sum()
+    }
+
+    #[test]
+    fn icosphere_has_642_vertices_at_three_subdivisions_and_the_sphere_volume() {
+        let m = icosphere(1.0, 3);
+        assert_eq!(m.vertices.len(), 642);
+        assert_eq!(m.triangles.len(), 1280);
+        let v = volume(&m);
+        assert!((v - 4.0 / 3.0 * std::f32::consts::PI).abs() < 0.05, "{v}");
+        let (edges, bends) = topology(&m.triangles, &[]);
+        assert_eq!(edges.len(), 1920);
+        assert_eq!(bends.len(), 1920);
+    }
+
+    #[test]
+    fn lattice_surface_is_closed_and_outward() {
+        let m = lattice(Vec3::new(0.5, 1.0, 1.5), [2, 3, 4]);
+        assert_eq!(m.vertices.len(), 3 * 4 * 5);
+        assert!((volume(&m) - 6.0).abs() < 1e-4, "{}", volume(&m));
+        let (edges, bends) = topology(&m.triangles, &m.extra_edges);
+        assert!(edges.len() > m.vertices.len());
+        // One pair per surface edge, fewer where two edges share their opposite pair.
+        assert!(!bends.is_empty() && bends.len() <= 3 * m.triangles.len() / 2);
+    }
+
+    #[test]
+    fn cloth_grid_counts() {
+        let m = cloth(2.0, 1.0, 4, 2);
+        assert_eq!(m.vertices.len(), 15);
+        assert_eq!(m.triangles.len(), 16);
+        let (edges, _) = topology(&m.triangles, &[]);
+        // 4·3 + 5·2 grid edges and one diagonal per cell.
+        assert_eq!(edges.len(), 12 + 10 + 8);
+    }
+}

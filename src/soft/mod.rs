@@ -1,0 +1,504 @@
+//! Soft bodies: triangle meshes whose vertices are point masses held by springs, with an
+//! optional volume constraint and an ideal-gas pressure (P·V = nRT) inside.
+//!
+//! Each soft body is one object in the world's pool (`SoftBodyHandle`), holding its
+//! vertices as dense arrays (positions, velocities, inverse masses), its triangles, its
+//! stretch springs (the unique mesh edges, plus the inner springs of a lattice) and its
+//! bending springs (between the two vertices opposite each edge shared by two triangles).
+//!
+//! * `mesh.rs` — helpers: icosphere, box lattice, cloth grid; edges and bending pairs.
+//! * `solver.rs` — the soft-body stage of the step (after the particle stage): XPBD with
+//!   sub-steps, collisions with rigid shapes and planes, two-way impulses with dynamic
+//!   bodies, pins.
+//!
+//! **Pins.** A vertex pinned to the world stays where it was pinned; a vertex pinned to a
+//! body follows the body's motion (it is moved with it, the body does not feel the soft
+//! body's pull). Destroying a body unpins every vertex pinned to it; those vertices then
+//! move freely again.
+
+pub mod mesh;
+pub mod solver;
+
+use crate::error::{check_finite, check_non_negative, check_positive, check_quat, check_vec, invalid, Error, Result};
+use crate::math::{Quat, Transform, Vec3};
+use crate::pool::{Handle, Pool};
+use crate::world::World;
+pub use mesh::SoftMesh;
+
+pub type SoftBodyHandle = Handle;
+
+/// Everything about a soft body except its mesh.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SoftBodyDef {
+    /// Placement of the mesh: vertices are rotated, then moved by `position`.
+    pub transform: Transform,
+    /// Initial velocity of every vertex (m/s).
+    pub velocity: Vec3,
+    /// Total mass (kg, > 0), shared equally by the vertices unless per-vertex masses are
+    /// given.
+    pub mass: f32,
+    /// Compliance of the stretch springs (m/N, >= 0; 0 is inextensible). XPBD: the
+    /// stiffness does not depend on the time step and any value is stable.
+    pub edge_compliance: f32,
+    /// Compliance of the bending springs (m/N, >= 0); infinity disables bending.
+    pub bend_compliance: f32,
+    /// Keep the enclosed volume at its rest value (closed meshes).
+    pub preserve_volume: bool,
+    /// Compliance of the volume constraint (1/(N·m²)... m³/J, >= 0).
+    pub volume_compliance: f32,
+    /// Gas pressure as n·R·T (J = Pa·m³, >= 0): each face is pushed along its normal by
+    /// `nRT / V · area`, V the current enclosed volume.
+    pub pressure: f32,
+    /// Linear damping of the vertices (1/s, >= 0).
+    pub damping: f32,
+    /// Coulomb friction against shapes (>= 0; geometric mean with the shape's).
+    pub friction: f32,
+    /// Bounce against shapes (>= 0; the larger of the two).
+    pub restitution: f32,
+    /// Radius of the vertices for collision (m, >= 0).
+    pub vertex_radius: f32,
+    /// Multiplier of world gravity.
+    pub gravity_scale: f32,
+    /// XPBD sub-steps per step (1..=64).
+    pub substeps: u32,
+    /// Collide with rigid shapes and planes.
+    pub collide: bool,
+    pub user_data: u64,
+}
+
+impl Default for SoftBodyDef {
+    fn default() -> Self {
+        SoftBodyDef {
+            transform: Transform::new(Vec3::ZERO, Quat::IDENTITY),
+            velocity: Vec3::ZERO,
+            mass: 1.0,
+            edge_compliance: 0.0,
+            bend_compliance: 1.0e-2,
+            preserve_volume: false,
+            volume_compliance: 0.0,
+            pressure: 0.0,
+            damping: 0.5,
+            friction: 0.5,
+            restitution: 0.0,
+            vertex_radius: 0.01,
+            gravity_scale: 1.0,
+            substeps: 20,
+            collide: true,
+            user_data: 0,
+        }
+    }
+}
+
+impl SoftBodyDef {
+    pub fn validate(&self) -> Result<()> {
+        check_vec("position", self.transform.p)?;
+        check_quat("rotation", self.transform.q)?;
+        check_vec("velocity", self.velocity)?;
+        check_positive("mass", self.mass)?;
+        check_non_negative("edge_compliance", self.edge_compliance)?;
+        if self.bend_compliance.is_nan() || self.bend_compliance < 0.0 {
+            return Err(invalid(format!(
+                "bend_compliance must be >= 0 (infinity: no bending), got {}",
+                self.bend_compliance
+            )));
+        }
+        check_non_negative("volume_compliance", self.volume_compliance)?;
+        check_non_negative("pressure", self.pressure)?;
+        check_non_negative("damping", self.damping)?;
+        check_non_negative("friction", self.friction)?;
+        check_non_negative("restitution", self.restitution)?;
+        check_non_negative("vertex_radius", self.vertex_radius)?;
+        check_finite("gravity_scale", self.gravity_scale)?;
+        if !(1..=64).contains(&self.substeps) {
+            return Err(invalid(format!("substeps must be in 1..=64, got {}", self.substeps)));
+        }
+        Ok(())
+    }
+}
+
+/// A vertex pinned to the world (`body` null) or to a body, at `local` in its frame.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct Pin {
+    pub vertex: u32,
+    pub body: Handle,
+    /// The pin point: world space for world pins, the body's frame otherwise.
+    pub local: Vec3,
+}
+
+/// A spring between two vertices with its rest length.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct Spring {
+    pub a: u32,
+    pub b: u32,
+    pub rest: f32,
+}
+
+/// A tether (long-range attachment): a vertex stays within `max` of a pinned vertex.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct Tether {
+    pub vertex: u32,
+    pub anchor: u32,
+    pub max: f32,
+}
+
+/// What a vertex collides with this step: the plane `n · x = offset` (normal out of the
+/// shape), the shape's body slot (`NONE`: a plane or nothing) and the pair's materials.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct VertexContact {
+    pub n: Vec3,
+    pub offset: f32,
+    /// Body slot for two-way impulses (dynamic and awake), else `NONE`.
+    pub body: u32,
+    /// Slot of a sleeping dynamic body it touches (woken when pushed hard), else `NONE`.
+    pub sleeper: u32,
+    pub friction: f32,
+    pub restitution: f32,
+    pub active: bool,
+}
+
+impl Default for VertexContact {
+    fn default() -> Self {
+        VertexContact {
+            n: Vec3::Y,
+            offset: 0.0,
+            body: crate::body::NONE,
+            sleeper: crate::body::NONE,
+            friction: 0.0,
+            restitution: 0.0,
+            active: false,
+        }
+    }
+}
+
+/// One soft body.
+pub struct SoftBody {
+    pub def: SoftBodyDef,
+    pub pos: Vec<Vec3>,
+    pub vel: Vec<Vec3>,
+    /// Positions at the start of the sub-step.
+    pub(crate) prev: Vec<Vec3>,
+    /// Inverse masses as created (1/kg).
+    pub inv_mass: Vec<f32>,
+    /// Inverse masses for the solve: 0 for pinned vertices.
+    pub(crate) w: Vec<f32>,
+    /// Rest positions (the mesh as created, in world space).
+    pub(crate) rest: Vec<Vec3>,
+    pub triangles: Vec<[u32; 3]>,
+    pub(crate) edges: Vec<Spring>,
+    pub(crate) bends: Vec<Spring>,
+    pub(crate) pins: Vec<Pin>,
+    pub(crate) tethers: Vec<Tether>,
+    pub contacts: Vec<VertexContact>,
+    /// Volume-constraint gradients (scratch, one per vertex).
+    pub(crate) grad: Vec<Vec3>,
+    /// Enclosed volume at creation (m³).
+    pub rest_volume: f32,
+    /// Impulses applied since the last step, added to velocities at its start (N·s).
+    pub(crate) impulses: Vec<Vec3>,
+    pub(crate) has_impulses: bool,
+}
+
+impl SoftBody {
+    pub fn vertex_count(&self) -> usize {
+        self.pos.len()
+    }
+
+    /// Enclosed volume (m³) of the current positions: the signed sum over triangles, so
+    /// it is meaningful for closed, outward-wound meshes.
+    pub fn volume(&self) -> f32 {
+        volume_of(&self.pos, &self.triangles)
+    }
+
+    pub fn total_mass(&self) -> f32 {
+        self.inv_mass.iter().map(|&w| if w > 0.0 { 1.0 / w } else { 0.0 }).sum()
+    }
+
+    /// Mass-weighted centre (m).
+    pub fn center(&self) -> Vec3 {
+        let mut m = 0.0;
+        let mut c = Vec3::ZERO;
+        for (p, &w) in self.pos.iter().zip(&self.inv_mass) {
+            if w > 0.0 {
+                c += *p / w;
+                m += 1.0 / w;
+            }
+        }
+        if m > 0.0 {
+            c / m
+        } else {
+            Vec3::ZERO
+        }
+    }
+
+    /// Area-weighted vertex normals into `out` (one per vertex; unit, or zero for a vertex
+    /// in no triangle).
+    pub fn normals_into(&self, out: &mut [Vec3]) {
+        for o in out.iter_mut() {
+            *o = Vec3::ZERO;
+        }
+        for t in &self.triangles {
+            let [a, b, c] = t.map(|i| self.pos[i as usize]);
+            let n = (b - a).cross(c - a);
+            for &i in t {
+                out[i as usize] += n;
+            }
+        }
+        for o in out.iter_mut() {
+            *o = o.normalize_or_zero();
+        }
+    }
+
+    /// Rebuilds solve masses and tethers after pins changed.
+    fn refresh_pins(&mut self) {
+        self.w.copy_from_slice(&self.inv_mass);
+        for p in &self.pins {
+            self.w[p.vertex as usize] = 0.0;
+        }
+        // Each free vertex is tethered to its nearest pinned vertex (rest distance):
+        // stretch cannot accumulate along a long hanging cloth.
+        self.tethers.clear();
+        if self.pins.is_empty() {
+            return;
+        }
+        for v in 0..self.pos.len() {
+            if self.w[v] == 0.0 {
+                continue;
+            }
+            let mut best: Option<Tether> = None;
+            for p in &self.pins {
+                let d = self.rest[v].distance(self.rest[p.vertex as usize]);
+                if best.map_or(true, |b| d < b.max) {
+                    best = Some(Tether {
+                        vertex: v as u32,
+                        anchor: p.vertex,
+                        max: d,
+                    });
+                }
+            }
+            self.tethers.extend(best);
+        }
+    }
+}
+
+pub(crate) fn volume_of(pos: &[Vec3], triangles: &[[u32; 3]]) -> f32 {
+    triangles
+        .iter()
+        .map(|t| {
+            let [a, b, c] = t.map(|i| pos[i as usize]);
+            a.dot(b.cross(c))
+        })
+        .sum::<f32>()
+        / 6.0
+}
+
+/// The soft bodies of a world.
+pub struct SoftBodies {
+    pub(crate) pool: Pool<SoftBody>,
+    /// Slots of the live soft bodies, ascending (the stage's deterministic order).
+    pub(crate) live: Vec<u32>,
+    pub(crate) scratch: solver::SoftScratch,
+}
+
+impl SoftBodies {
+    pub fn new(tag: u32) -> SoftBodies {
+        SoftBodies {
+            pool: Pool::new(tag),
+            live: Vec::new(),
+            scratch: Default::default(),
+        }
+    }
+}
+
+/// Largest mesh accepted (vertices, triangles).
+pub const MAX_SOFT_VERTICES: usize = 1 << 20;
+
+impl World {
+    /// Creates a soft body from a mesh (in its own frame; `def.transform` places it).
+    /// `masses` (kg, one per vertex, each > 0) replaces the equal split of `def.mass`.
+    pub fn create_soft_body(
+        &mut self,
+        def: &SoftBodyDef,
+        mesh: &SoftMesh,
+        masses: Option<&[f32]>,
+    ) -> Result<SoftBodyHandle> {
+        def.validate()?;
+        let n = mesh.vertices.len();
+        if n == 0 || n > MAX_SOFT_VERTICES || mesh.triangles.len() > 2 * MAX_SOFT_VERTICES {
+            return Err(invalid(format!(
+                "a soft body needs 1..={MAX_SOFT_VERTICES} vertices, got {n}"
+            )));
+        }
+        for (i, v) in mesh.vertices.iter().enumerate() {
+            check_vec(&format!("vertices[{i}]"), *v)?;
+        }
+        for (i, t) in mesh.triangles.iter().enumerate() {
+            if t.iter().any(|&k| k as usize >= n) || t[0] == t[1] || t[1] == t[2] || t[0] == t[2] {
+                return Err(invalid(format!(
+                    "triangle {i} has an index out of range or repeats a vertex"
+                )));
+            }
+        }
+        if mesh.extra_edges.iter().flatten().any(|&k| k as usize >= n) {
+            return Err(invalid("an extra edge has an index out of range"));
+        }
+        let inv_mass: Vec<f32> = match masses {
+            Some(m) => {
+                if m.len() != n {
+                    return Err(invalid(format!("{} masses for {n} vertices", m.len())));
+                }
+                for (i, &x) in m.iter().enumerate() {
+                    check_positive(&format!("masses[{i}]"), x)?;
+                }
+                m.iter().map(|&x| 1.0 / x).collect()
+            }
+            None => vec![n as f32 / def.mass; n],
+        };
+        let q = check_quat("rotation", def.transform.q)?;
+        let xf = Transform::new(def.transform.p, q);
+        let pos: Vec<Vec3> = mesh.vertices.iter().map(|&v| xf.apply(v)).collect();
+        let (edges, bends) = mesh::topology(&mesh.triangles, &mesh.extra_edges);
+        let spring = |e: &[u32; 2]| Spring {
+            a: e[0],
+            b: e[1],
+            rest: pos[e[0] as usize].distance(pos[e[1] as usize]),
+        };
+        let edges: Vec<Spring> = edges.iter().map(spring).collect();
+        let bends: Vec<Spring> = if def.bend_compliance.is_finite() {
+            bends.iter().map(spring).collect()
+        } else {
+            Vec::new()
+        };
+        let rest_volume = volume_of(&pos, &mesh.triangles);
+        let body = SoftBody {
+            def: SoftBodyDef { transform: xf, ..*def },
+            vel: vec![def.velocity; n],
+            prev: pos.clone(),
+            w: inv_mass.clone(),
+            inv_mass,
+            rest: pos.clone(),
+            pos,
+            triangles: mesh.triangles.clone(),
+            edges,
+            bends,
+            pins: Vec::new(),
+            tethers: Vec::new(),
+            contacts: vec![VertexContact::default(); n],
+            grad: vec![Vec3::ZERO; n],
+            rest_volume,
+            impulses: vec![Vec3::ZERO; n],
+            has_impulses: false,
+        };
+        let h = self.soft_bodies.pool.insert(body);
+        let live = &mut self.soft_bodies.live;
+        let at = live.partition_point(|&i| i < h.index);
+        live.insert(at, h.index);
+        Ok(h)
+    }
+
+    pub fn soft_body(&self, h: SoftBodyHandle) -> Result<&SoftBody> {
+        self.soft_bodies.pool.get(h).ok_or(Error::InvalidId("soft body"))
+    }
+
+    fn soft_body_mut(&mut self, h: SoftBodyHandle) -> Result<&mut SoftBody> {
+        self.soft_bodies.pool.get_mut(h).ok_or(Error::InvalidId("soft body"))
+    }
+
+    pub fn destroy_soft_body(&mut self, h: SoftBodyHandle) -> Result<()> {
+        self.soft_bodies.pool.remove(h).ok_or(Error::InvalidId("soft body"))?;
+        self.soft_bodies.live.retain(|&i| i != h.index);
+        Ok(())
+    }
+
+    pub fn soft_body_count(&self) -> usize {
+        self.soft_bodies.pool.len()
+    }
+
+    /// Pins `vertex` where it is now: to the world (`body` null) or to a body, following
+    /// it. Pinning a pinned vertex moves its pin.
+    pub fn pin_soft_vertex(&mut self, h: SoftBodyHandle, vertex: u32, body: Option<crate::BodyHandle>) -> Result<()> {
+        let xf = match body {
+            Some(b) => Some(self.body(b)?.xf),
+            None => None,
+        };
+        let s = self.soft_body_mut(h)?;
+        let p = *s
+            .pos
+            .get(vertex as usize)
+            .ok_or_else(|| invalid(format!("vertex {vertex} out of range ({})", s.pos.len())))?;
+        let pin = Pin {
+            vertex,
+            body: body.unwrap_or(Handle::NULL),
+            local: xf.map_or(p, |xf| xf.apply_inv(p)),
+        };
+        s.pins.retain(|q| q.vertex != vertex);
+        s.pins.push(pin);
+        s.vel[vertex as usize] = Vec3::ZERO;
+        s.refresh_pins();
+        Ok(())
+    }
+
+    /// Frees a pinned vertex (a vertex that is not pinned is left as it is).
+    pub fn unpin_soft_vertex(&mut self, h: SoftBodyHandle, vertex: u32) -> Result<()> {
+        let s = self.soft_body_mut(h)?;
+        if vertex as usize >= s.pos.len() {
+            return Err(invalid(format!("vertex {vertex} out of range ({})", s.pos.len())));
+        }
+        s.pins.retain(|q| q.vertex != vertex);
+        s.refresh_pins();
+        Ok(())
+    }
+
+    /// Is `vertex` pinned?
+    pub fn soft_vertex_is_pinned(&self, h: SoftBodyHandle, vertex: u32) -> Result<bool> {
+        let s = self.soft_body(h)?;
+        if vertex as usize >= s.pos.len() {
+            return Err(invalid(format!("vertex {vertex} out of range ({})", s.pos.len())));
+        }
+        Ok(s.pins.iter().any(|p| p.vertex == vertex))
+    }
+
+    /// Applies an impulse (N·s) to one vertex (`Some`) or spread over the whole body in
+    /// proportion to mass (`None`: every vertex changes velocity by `impulse / mass`).
+    /// Acts at the start of the next step; pinned vertices ignore it.
+    pub fn apply_soft_impulse(&mut self, h: SoftBodyHandle, vertex: Option<u32>, impulse: Vec3) -> Result<()> {
+        check_vec("impulse", impulse)?;
+        let s = self.soft_body_mut(h)?;
+        match vertex {
+            Some(v) => {
+                let i = v as usize;
+                if i >= s.pos.len() {
+                    return Err(invalid(format!("vertex {v} out of range ({})", s.pos.len())));
+                }
+                s.impulses[i] += impulse;
+            }
+            None => {
+                let m = s.total_mass();
+                for (k, &w) in s.inv_mass.iter().enumerate() {
+                    if w > 0.0 {
+                        s.impulses[k] += impulse / (m * w);
+                    }
+                }
+            }
+        }
+        s.has_impulses = true;
+        Ok(())
+    }
+
+    /// Sets the gas pressure n·R·T (J, >= 0).
+    pub fn set_soft_pressure(&mut self, h: SoftBodyHandle, pressure: f32) -> Result<()> {
+        check_non_negative("pressure", pressure)?;
+        self.soft_body_mut(h)?.def.pressure = pressure;
+        Ok(())
+    }
+
+    /// Called when a body is destroyed: vertices pinned to it are freed.
+    pub(crate) fn unpin_soft_vertices_of(&mut self, body: Handle) {
+        for &i in &self.soft_bodies.live {
+            let s = self.soft_bodies.pool.at_mut(i);
+            if s.pins.iter().any(|p| p.body == body) {
+                s.pins.retain(|p| p.body != body);
+                s.refresh_pins();
+            }
+        }
+    }
+}
