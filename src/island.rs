@@ -1,5 +1,5 @@
-//! Islands and sleep. Each step the awake bodies are joined through touching contacts
-//! (union–find); an island whose every body has stayed still for `time_to_sleep` goes to
+//! Islands and sleep. Each step the awake bodies are joined through touching contacts and
+//! joints (union–find); an island whose every body has stayed still for `time_to_sleep` goes to
 //! sleep together. A body's stillness is the seed's recency-weighted motion.
 
 use crate::world::World;
@@ -40,6 +40,7 @@ pub fn update_motion(world: &mut World, dt: f32) {
 
 /// Puts to sleep every island that has been still long enough.
 pub fn sleep_islands(world: &mut World) {
+    wake_joined_sleepers(world);
     if !world.settings.enable_sleep {
         return;
     }
@@ -54,6 +55,21 @@ pub fn sleep_islands(world: &mut World) {
         }
         let (a, b) = (world.bodies.at(c.body_a), world.bodies.at(c.body_b));
         if a.is_static() || b.is_static() || !a.awake || !b.awake {
+            continue;
+        }
+        let ra = find(&mut scratch.parent, a.awake_index);
+        let rb = find(&mut scratch.parent, b.awake_index);
+        if ra != rb {
+            scratch.parent[ra.max(rb) as usize] = ra.min(rb);
+        }
+    }
+    // Joints (issue 5) join their dynamic bodies into one island.
+    for (_, j) in world.joints.pool.iter() {
+        if j.broken || j.b == crate::body::NONE {
+            continue;
+        }
+        let (a, b) = (world.bodies.at(j.a), world.bodies.at(j.b));
+        if !a.is_dynamic() || !b.is_dynamic() || !a.awake || !b.awake {
             continue;
         }
         let ra = find(&mut scratch.parent, a.awake_index);
@@ -91,4 +107,32 @@ pub fn sleep_islands(world: &mut World) {
         }
     }
     world.island_scratch = scratch;
+}
+
+/// A joint between an awake body and a sleeping dynamic one (a kinematic body that started
+/// moving, a body put to sleep by the host) wakes the sleeper, so joined bodies move together.
+fn wake_joined_sleepers(world: &mut World) {
+    if world.joints.is_empty() {
+        return;
+    }
+    let mut wake = std::mem::take(&mut world.scratch_wake);
+    wake.clear();
+    for (_, j) in world.joints.pool.iter() {
+        if j.broken || j.b == crate::body::NONE {
+            continue;
+        }
+        let (a, b) = (world.bodies.at(j.a), world.bodies.at(j.b));
+        if a.is_static() || b.is_static() || a.awake == b.awake {
+            continue;
+        }
+        let (awake, sleeper) = if a.awake { (a, j.b) } else { (b, j.a) };
+        if world.bodies.at(sleeper).is_dynamic() && awake.sleep_time == 0.0 {
+            wake.push(sleeper);
+        }
+    }
+    for &b in &wake {
+        world.wake_body(b);
+    }
+    wake.clear();
+    world.scratch_wake = wake;
 }

@@ -16,6 +16,7 @@ pub mod error;
 pub mod generators;
 pub(crate) mod hash;
 pub mod island;
+pub mod joints;
 pub mod math;
 pub mod particles;
 pub mod pool;
@@ -29,6 +30,7 @@ pub mod world;
 
 pub use body::{BodyDef, BodyHandle, BodyType, ShapeHandle};
 pub use error::{Error, Result};
+pub use joints::{JointDef, JointHandle, JointKind};
 pub use math::{Quat, Transform, Vec3};
 pub use shape::{Geometry, ShapeDef};
 pub use world::{Integrator, World, WorldSettings};

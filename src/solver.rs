@@ -2,8 +2,9 @@
 //! Euler with an implicit gyroscopic term, or RK4 for unconstrained bodies), and the stage
 //! list of a step (after Box2D v3's soft step):
 //!
-//! prepare contacts → per sub-step { integrate velocities, warm start, solve (with bias),
-//! integrate positions, relax (without bias) } → restitution → store impulses.
+//! prepare contacts and joints → per sub-step { integrate velocities, warm start (joints,
+//! then contacts), solve with bias (joints, then contacts), integrate positions, relax
+//! without bias (joints, then contacts) } → restitution → store impulses.
 
 use crate::body::Body;
 use crate::contact_solver::{self, ContactConstraint};
@@ -376,8 +377,10 @@ pub fn solve(world: &mut World, dt: f32) {
     let substeps = world.settings.substeps;
     let h = dt / substeps as f32;
     contact_solver::prepare(world);
+    crate::joints::solver::prepare(world, h);
 
     let settings = world.settings;
+    let joints = &mut world.joints.constraints;
     let scratch = &mut world.solver;
     if settings.integrator == Integrator::Rk4 {
         // Bodies no constraint touches this step are integrated by RK4.
@@ -388,6 +391,7 @@ pub fn solve(world: &mut World, dt: f32) {
             scratch.sims[c.a as usize].rk4 = false;
             scratch.sims[c.b as usize].rk4 = false;
         }
+        crate::joints::solver::mark_constrained(joints, &mut scratch.sims);
     }
     scratch.batches.build(&scratch.constraints, &scratch.states);
     let (vel, states, sims) = (&mut scratch.vel, &mut scratch.states, &scratch.sims);
@@ -405,13 +409,16 @@ pub fn solve(world: &mut World, dt: f32) {
     for sub in 0..substeps {
         integrate_velocities(vel, states, sims, h, settings.max_linear_speed);
         contact_wide::refresh(states, batches, sub == 0);
+        crate::joints::solver::warm_start(joints, vel, states);
         contact_wide::warm_start(vel, batches);
         // Soft, biased sweeps push overlap out and damp; positions move; a rigid relax sweep
         // removes the push velocity. Sweeps alternate direction through each manifold's points.
+        crate::joints::solver::solve(joints, vel, states, h, true);
         for k in 0..settings.velocity_iterations {
             contact_wide::solve(vel, batches, inv_h, (sub + k) % 2 == 0, Some(&soft));
         }
         integrate_positions(vel, states, sims, h);
+        crate::joints::solver::solve(joints, vel, states, h, false);
         contact_wide::solve(vel, batches, inv_h, sub % 2 == 1, None);
     }
     if scratch.constraints.iter().any(|c| c.restitution > 0.0) {
@@ -420,6 +427,7 @@ pub fn solve(world: &mut World, dt: f32) {
     }
     contact_wide::store(batches, &mut scratch.constraints);
     contact_solver::store_impulses(world);
+    crate::joints::solver::store(world, h);
     finalize_bodies(world);
 }
 

@@ -82,6 +82,7 @@ impl World {
             shapes,
             bodies,
             counters,
+            joints,
             ..
         } = self;
         broad.candidates.clear();
@@ -101,7 +102,10 @@ impl World {
                 if other.body == shape.body || (other.in_move_buffer && t < s) {
                     return true;
                 }
-                if body.is_dynamic() || bodies.at(other.body).is_dynamic() {
+                if (body.is_dynamic() || bodies.at(other.body).is_dynamic())
+                    // Joints with collide_connected off (issue 5) filter their body pair.
+                    && joints.should_collide(shape.body, other.body)
+                {
                     candidates.push((s, t));
                 }
                 true
@@ -110,7 +114,7 @@ impl World {
                 for &p in &broad.planes {
                     let plane = shapes.at(p);
                     let (n, d) = world_plane(&plane.geometry, &bodies.at(plane.body).xf);
-                    if aabb_touches_plane(&fat, n, d) {
+                    if aabb_touches_plane(&fat, n, d) && joints.should_collide(shape.body, plane.body) {
                         candidates.push((s, p));
                     }
                 }

@@ -128,6 +128,8 @@ pub struct World {
     pub(crate) generator_scratch: crate::generators::forces::GeneratorScratch,
     /// The particle world (issue 4, `particles/`).
     pub particles: crate::particles::Particles,
+    /// Joints (issue 5, `joints/`).
+    pub joints: crate::joints::Joints,
     /// Soft bodies (issue 6, `soft/`).
     pub soft_bodies: crate::soft::SoftBodies,
 }
@@ -154,6 +156,7 @@ impl World {
             generators: Pool::new(tag),
             generator_scratch: Default::default(),
             particles: crate::particles::Particles::new(tag),
+            joints: crate::joints::Joints::new(tag),
             soft_bodies: crate::soft::SoftBodies::new(tag),
         })
     }
@@ -184,6 +187,8 @@ impl World {
     pub fn destroy_body(&mut self, h: BodyHandle) -> Result<()> {
         let index = self.body_index(h)?;
         self.wake_body(index);
+        // Joints (issue 5): destroyed with the body; their other bodies are woken.
+        self.destroy_body_joints(index);
         // Contacts: wake whoever was touching, then drop.
         while let Some(&c) = self.bodies.at(index).contacts.last() {
             let other = {
@@ -679,7 +684,7 @@ impl World {
         }
     }
 
-    /// The bodies connected to `b` through touching contacts (dynamic bodies only).
+    /// The bodies connected to `b` through touching contacts and joints (dynamic bodies only).
     fn island_of(&self, b: u32) -> Vec<u32> {
         let mut out = vec![b];
         let mut k = 0;
@@ -692,6 +697,12 @@ impl World {
                     continue;
                 }
                 let o = if ct.body_a == x { ct.body_b } else { ct.body_a };
+                if self.bodies.at(o).is_dynamic() && !out.contains(&o) {
+                    out.push(o);
+                }
+            }
+            // Joints (issue 5) join bodies into one island too.
+            for o in self.joint_partners(x) {
                 if self.bodies.at(o).is_dynamic() && !out.contains(&o) {
                     out.push(o);
                 }

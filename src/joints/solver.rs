@@ -1,0 +1,508 @@
+//! The joints' part of the sub-stepped solve (Box2D v3 order): `prepare` next to the
+//! contacts, then per sub-step `warm_start`, `solve` with bias (before the contacts' soft
+//! sweep) and `solve` without bias (the relax sweep, after the positions moved), and `store`
+//! after the sub-steps (impulses kept for the next step, applied force and torque, breaking).
+//!
+//! Anchors and axes are recomputed from each body's motion since the step start (`dp`, `dq`
+//! of its `BodyState`) every time a joint is solved, so joints stay stiff while bodies turn.
+//! Rows are fully rigid in the relax sweep. In the biased sweep they are Box2D v3's stiff
+//! soft constraint ([`JOINT_STIFFNESS`] of the sub-step rate, damping ratio
+//! [`JOINT_DAMPING_RATIO`], correction at most [`MAX_BIAS_SPEED`]): a rigid row with a
+//! Baumgarte bias was tried first and a 20-link chain hanging at rest went unstable with any
+//! bias (the warm-started impulses pump the chain's axial mode); the soft row's leak damps it.
+//! The price is a sag of `load / (effective mass · ω²)`, which sub-steps reduce quadratically. Limits are one-sided rows that act
+//! speculatively (a gap may close within the sub-step, no more). Motors are velocity rows
+//! clamped by their largest force or torque times the sub-step. Springs are soft rows
+//! ([`Softness`]) with the spring's own frequency and damping.
+//!
+//! Plain scalar code on glam types: joints are few next to contacts.
+
+use super::{Impulses, JointKind};
+use crate::body::NONE;
+use crate::math::{Mat3, Quat, Transform, Vec3};
+use crate::solver::{BodySim, BodyState, Softness, Velocity};
+use crate::world::World;
+
+/// Stiffness of joint rows in the biased sweep as a fraction of the sub-step rate (Hz·s):
+/// a quarter, the stiffest Gauss–Seidel stays stable at (measured on a 20-link chain; half
+/// the rate already blows a hanging chain up). The sag under load is
+/// `load / (effective mass · ω²)`, so more sub-steps make joints stiffer quadratically.
+pub const JOINT_STIFFNESS: f32 = 0.25;
+/// Damping ratio of joint rows in the biased sweep.
+pub const JOINT_DAMPING_RATIO: f32 = 5.0;
+/// Fastest speed (m/s, rad/s) at which position error is corrected.
+pub const MAX_BIAS_SPEED: f32 = 5.0;
+/// Sweeps over the joints in each of the biased and relax passes of a sub-step.
+pub const JOINT_ITERATIONS: u32 = 1;
+
+/// One joint prepared for the step.
+#[derive(Clone, Copy, Debug)]
+pub struct JointConstraint {
+    /// Slot of the joint in the pool.
+    pub joint: u32,
+    /// Solver indices of the two bodies (0: static, sleeping or the world).
+    pub ia: u32,
+    pub ib: u32,
+    /// Joint frames at the step start: positions relative to each body's centre of mass and
+    /// rotations, both in world orientation.
+    pub frame_a: Transform,
+    pub frame_b: Transform,
+    /// `center_b - center_a` at the step start.
+    pub delta_center: Vec3,
+    pub kind: JointKind,
+    pub imp: Impulses,
+    /// The spring's soft coefficients for this step's sub-step (hinge, distance).
+    pub spring: Softness,
+}
+
+/// The joint frames now: arms from the centres of mass, the anchor separation
+/// `d = anchor_b - anchor_a`, and the frame rotations.
+#[derive(Clone, Copy, Debug)]
+pub struct Frames {
+    pub ra: Vec3,
+    pub rb: Vec3,
+    pub d: Vec3,
+    pub qa: Quat,
+    pub qb: Quat,
+}
+
+impl Frames {
+    fn new(c: &JointConstraint, sa: &BodyState, sb: &BodyState) -> Frames {
+        let ra = sa.dq * c.frame_a.p;
+        let rb = sb.dq * c.frame_b.p;
+        Frames {
+            ra,
+            rb,
+            d: c.delta_center + sb.dp() - sa.dp() + rb - ra,
+            qa: sa.dq * c.frame_a.q,
+            qb: sb.dq * c.frame_b.q,
+        }
+    }
+
+    /// The Z axes of the two frames (the joint axis).
+    #[inline]
+    pub fn axes(&self) -> (Vec3, Vec3) {
+        (self.qa * Vec3::Z, self.qb * Vec3::Z)
+    }
+
+    /// The angle (rad, -π..=π) B's frame is turned about Z relative to A's: the twist of the
+    /// swing–twist decomposition of the relative rotation.
+    pub fn twist_angle(&self) -> f32 {
+        let q = self.qa.conjugate() * self.qb;
+        wrap_angle(2.0 * q.z.atan2(q.w))
+    }
+
+    /// The rotation from A's frame to B's as a rotation vector (small-angle form).
+    pub fn rotation_error(&self) -> Vec3 {
+        let mut q = self.qb * self.qa.conjugate();
+        if q.w < 0.0 {
+            q = -q;
+        }
+        2.0 * Vec3::new(q.x, q.y, q.z)
+    }
+}
+
+fn wrap_angle(a: f32) -> f32 {
+    use std::f32::consts::PI;
+    if a > PI {
+        a - 2.0 * PI
+    } else if a < -PI {
+        a + 2.0 * PI
+    } else {
+        a
+    }
+}
+
+/// The two bodies' velocities and inverse masses while one joint is solved.
+pub struct Bodies {
+    pub va: Vec3,
+    pub wa: Vec3,
+    pub vb: Vec3,
+    pub wb: Vec3,
+    pub ma: f32,
+    pub mb: f32,
+    pub ia: Mat3,
+    pub ib: Mat3,
+}
+
+/// The sweep being run, and how its rigid rows respond: in the biased sweep a stiff soft
+/// constraint (Box2D v3's joint softness: the position error is fed back at the spring's rate,
+/// the response is scaled and part of the accumulated impulse leaks, which damps the chain
+/// modes a rigid Baumgarte feedback excites), in the relax sweep fully rigid without bias.
+#[derive(Clone, Copy, Debug)]
+pub struct Ctx {
+    pub inv_h: f32,
+    pub h: f32,
+    pub use_bias: bool,
+    pub soft: Softness,
+}
+
+impl Ctx {
+    pub fn new(h: f32, use_bias: bool) -> Ctx {
+        let soft = if use_bias {
+            Softness::new(JOINT_STIFFNESS / h, JOINT_DAMPING_RATIO, h)
+        } else {
+            Softness {
+                bias_rate: 0.0,
+                mass_scale: 1.0,
+                impulse_scale: 0.0,
+            }
+        };
+        Ctx {
+            inv_h: 1.0 / h,
+            h,
+            use_bias,
+            soft,
+        }
+    }
+
+    /// Velocity bias of a rigid row with position error `c` (the row drives `c` to 0).
+    #[inline]
+    pub fn rigid_bias(&self, c: f32) -> f32 {
+        (self.soft.bias_rate * c).clamp(-MAX_BIAS_SPEED, MAX_BIAS_SPEED)
+    }
+
+    /// The same for a vector error.
+    #[inline]
+    pub fn rigid_bias_vec(&self, c: Vec3) -> Vec3 {
+        (self.soft.bias_rate * c).clamp_length_max(MAX_BIAS_SPEED)
+    }
+
+    /// The impulse of a rigid row: `rigid` is the full response `-m (cdot + bias)`.
+    #[inline]
+    pub fn respond(&self, rigid: f32, acc: f32) -> f32 {
+        self.soft.mass_scale * rigid - self.soft.impulse_scale * acc
+    }
+
+    #[inline]
+    pub fn respond_vec(&self, rigid: Vec3, acc: Vec3) -> Vec3 {
+        self.soft.mass_scale * rigid - self.soft.impulse_scale * acc
+    }
+
+    /// Solves a one-sided row (`c >= 0`, impulse >= 0): speculative while apart (the gap may
+    /// close within the sub-step), soft push-out in the biased sweep, rigid in the relax
+    /// sweep. Returns the impulse change.
+    #[inline]
+    pub fn limit(&self, mass: f32, cdot: f32, c: f32, acc: &mut f32) -> f32 {
+        // No leak of the accumulated impulse here: a limit row sees only the angular (or
+        // linear) mass at its own axis, so a leak there sags by the whole mass ratio to the
+        // body's inertia about the anchor (0.04 rad for an arm held at its limit).
+        let imp = if c > 0.0 {
+            -mass * (cdot + c * self.inv_h)
+        } else {
+            -self.soft.mass_scale * mass * (cdot + self.rigid_bias(c))
+        };
+        clamp_positive(acc, imp)
+    }
+}
+
+/// The impulses of a joint as one linear impulse on B (−p on A) and angular impulses on each
+/// body including the moments of `p` (A's is subtracted).
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Wrench {
+    pub p: Vec3,
+    pub ta: Vec3,
+    pub tb: Vec3,
+}
+
+impl Bodies {
+    #[inline]
+    pub fn apply(&mut self, w: &Wrench) {
+        self.va -= self.ma * w.p;
+        self.wa -= self.ia * w.ta;
+        self.vb += self.mb * w.p;
+        self.wb += self.ib * w.tb;
+    }
+
+    /// Relative velocity of the anchors.
+    #[inline]
+    pub fn point_velocity(&self, f: &Frames) -> Vec3 {
+        self.vb + self.wb.cross(f.rb) - self.va - self.wa.cross(f.ra)
+    }
+
+    /// Applies a point impulse `p` at the anchors (on B, −p on A).
+    #[inline]
+    pub fn apply_point(&mut self, f: &Frames, p: Vec3) {
+        self.va -= self.ma * p;
+        self.wa -= self.ia * f.ra.cross(p);
+        self.vb += self.mb * p;
+        self.wb += self.ib * f.rb.cross(p);
+    }
+
+    /// Applies an angular impulse `t` (on B, −t on A).
+    #[inline]
+    pub fn apply_angular(&mut self, t: Vec3) {
+        self.wa -= self.ia * t;
+        self.wb += self.ib * t;
+    }
+
+    /// Effective mass of an angular row along unit `j`.
+    #[inline]
+    pub fn angular_mass(&self, j: Vec3) -> f32 {
+        let k = j.dot(self.ia * j) + j.dot(self.ib * j);
+        if k > 0.0 {
+            1.0 / k
+        } else {
+            0.0
+        }
+    }
+
+    /// Effective mass of a linear row: direction `n`, angular arms `sa` (A) and `sb` (B).
+    #[inline]
+    pub fn linear_mass(&self, n: Vec3, sa: Vec3, sb: Vec3) -> f32 {
+        let k = (self.ma + self.mb) * n.length_squared() + sa.dot(self.ia * sa) + sb.dot(self.ib * sb);
+        if k > 0.0 {
+            1.0 / k
+        } else {
+            0.0
+        }
+    }
+
+    #[inline]
+    pub fn linear_cdot(&self, n: Vec3, sa: Vec3, sb: Vec3) -> f32 {
+        n.dot(self.vb - self.va) + sb.dot(self.wb) - sa.dot(self.wa)
+    }
+
+    #[inline]
+    pub fn apply_linear(&mut self, n: Vec3, sa: Vec3, sb: Vec3, lambda: f32) {
+        self.va -= self.ma * lambda * n;
+        self.wa -= self.ia * (lambda * sa);
+        self.vb += self.mb * lambda * n;
+        self.wb += self.ib * (lambda * sb);
+    }
+
+    /// The rigid point constraint, solved as a 3×3 block: the anchors coincide.
+    pub fn solve_point(&mut self, f: &Frames, acc: &mut Vec3, ctx: &Ctx) {
+        let cdot = self.point_velocity(f);
+        let bias = ctx.rigid_bias_vec(f.d);
+        let k = point_mass_matrix(self, f.ra, f.rb);
+        let imp = ctx.respond_vec(-solve3(&k, cdot + bias), *acc);
+        *acc += imp;
+        self.apply_point(f, imp);
+    }
+
+    /// The rigid angular lock, solved as a 3×3 block: the frames keep their relative rotation.
+    pub fn solve_angular_lock(&mut self, f: &Frames, acc: &mut Vec3, ctx: &Ctx) {
+        let cdot = self.wb - self.wa;
+        let bias = ctx.rigid_bias_vec(f.rotation_error());
+        let k = self.ia + self.ib;
+        let imp = ctx.respond_vec(-solve3(&k, cdot + bias), *acc);
+        *acc += imp;
+        self.apply_angular(imp);
+    }
+
+    /// A one-sided angular row along `j` keeping position `c >= 0` (impulse >= 0).
+    pub fn solve_angular_limit(&mut self, j: Vec3, c: f32, acc: &mut f32, ctx: &Ctx) {
+        let mass = self.angular_mass(j);
+        let cdot = j.dot(self.wb - self.wa);
+        let delta = ctx.limit(mass, cdot, c, acc);
+        self.apply_angular(delta * j);
+    }
+
+    /// An angular motor row along `j`: relative speed `speed`, impulse within ±`max_impulse`.
+    pub fn solve_angular_motor(&mut self, j: Vec3, speed: f32, max_impulse: f32, acc: &mut f32) {
+        let mass = self.angular_mass(j);
+        let cdot = j.dot(self.wb - self.wa);
+        let old = *acc;
+        *acc = (old - mass * (cdot - speed)).clamp(-max_impulse, max_impulse);
+        self.apply_angular((*acc - old) * j);
+    }
+}
+
+/// `(ma + mb)·I − [ra]× Ia [ra]× − [rb]× Ib [rb]×`: velocity change of the anchors per unit
+/// impulse.
+fn point_mass_matrix(b: &Bodies, ra: Vec3, rb: Vec3) -> Mat3 {
+    let sa = skew(ra);
+    let sb = skew(rb);
+    Mat3::from_diagonal(Vec3::splat(b.ma + b.mb)) - sa * b.ia * sa - sb * b.ib * sb
+}
+
+#[inline]
+fn skew(r: Vec3) -> Mat3 {
+    Mat3::from_cols(
+        Vec3::new(0.0, r.z, -r.y),
+        Vec3::new(-r.z, 0.0, r.x),
+        Vec3::new(r.y, -r.x, 0.0),
+    )
+}
+
+/// Solves `k x = b`; zero when `k` is singular (both bodies without mass on this block).
+#[inline]
+pub fn solve3(k: &Mat3, b: Vec3) -> Vec3 {
+    let det = k.determinant();
+    if det.abs() > f32::MIN_POSITIVE && det.is_finite() {
+        k.inverse() * b
+    } else {
+        Vec3::ZERO
+    }
+}
+
+/// Adds `imp` to a non-negative accumulated impulse; returns the change actually applied.
+#[inline]
+pub fn clamp_positive(acc: &mut f32, imp: f32) -> f32 {
+    let new = (*acc + imp).max(0.0);
+    let delta = new - *acc;
+    *acc = new;
+    delta
+}
+
+/// Solves a soft (spring) row: `mass` effective mass, `cdot` relative speed, `c` position
+/// error; returns the impulse change.
+#[inline]
+pub fn soft_impulse(s: &Softness, mass: f32, cdot: f32, c: f32, acc: &mut f32) -> f32 {
+    let imp = -s.mass_scale * mass * (cdot + s.bias_rate * c) - s.impulse_scale * *acc;
+    *acc += imp;
+    imp
+}
+
+/// Builds this step's joint constraints: every unbroken joint with an awake body. Clears the
+/// broken report of the previous step.
+pub fn prepare(world: &mut World, h: f32) {
+    let World {
+        joints, bodies, solver, ..
+    } = world;
+    joints.broken.clear();
+    joints.constraints.clear();
+    let states = &solver.states;
+    for (handle, joint) in joints.pool.iter() {
+        if joint.broken {
+            continue;
+        }
+        let ba = bodies.at(joint.a);
+        let ia = if ba.awake { ba.solver_index } else { 0 };
+        let (ib, center_b, frame_b) = if joint.b == NONE {
+            (0, Vec3::ZERO, joint.def.frame_b)
+        } else {
+            let bb = bodies.at(joint.b);
+            let ib = if bb.awake { bb.solver_index } else { 0 };
+            let frame = Transform::new(
+                bb.xf.q * (joint.def.frame_b.p - bb.local_center),
+                bb.xf.q * joint.def.frame_b.q,
+            );
+            (ib, bb.center, frame)
+        };
+        if ia == 0 && ib == 0 {
+            continue;
+        }
+        if states[ia as usize].inv_mass == 0.0 && states[ib as usize].inv_mass == 0.0 {
+            continue;
+        }
+        let frame_a = Transform::new(
+            ba.xf.q * (joint.def.frame_a.p - ba.local_center),
+            ba.xf.q * joint.def.frame_a.q,
+        );
+        let spring = match joint.def.kind {
+            JointKind::Hinge(p) if p.enable_spring => Softness::new(p.spring_hertz, p.spring_damping_ratio, h),
+            JointKind::Distance(p) if p.enable_spring => Softness::new(p.spring_hertz, p.spring_damping_ratio, h),
+            _ => Softness::default(),
+        };
+        joints.constraints.push(JointConstraint {
+            joint: handle.index,
+            ia,
+            ib,
+            frame_a,
+            frame_b,
+            delta_center: center_b - ba.center,
+            kind: joint.def.kind,
+            imp: joint.impulses,
+            spring,
+        });
+    }
+}
+
+/// Bodies touched by a joint are not integrated by RK4 (they are constrained).
+pub fn mark_constrained(constraints: &[JointConstraint], sims: &mut [BodySim]) {
+    for c in constraints {
+        sims[c.ia as usize].rk4 = false;
+        sims[c.ib as usize].rk4 = false;
+    }
+}
+
+#[inline]
+fn load(c: &JointConstraint, vel: &[Velocity], states: &[BodyState]) -> (Bodies, Frames) {
+    let (sa, sb) = (&states[c.ia as usize], &states[c.ib as usize]);
+    let (ua, ub) = (&vel[c.ia as usize], &vel[c.ib as usize]);
+    (
+        Bodies {
+            va: ua.v,
+            wa: ua.w,
+            vb: ub.v,
+            wb: ub.w,
+            ma: sa.inv_mass,
+            mb: sb.inv_mass,
+            ia: sa.inv_i,
+            ib: sb.inv_i,
+        },
+        Frames::new(c, sa, sb),
+    )
+}
+
+/// Writes the velocities back; index 0 (static, the world) is never written.
+#[inline]
+fn write(c: &JointConstraint, b: &Bodies, vel: &mut [Velocity]) {
+    if c.ia != 0 {
+        vel[c.ia as usize] = Velocity::new(b.va, b.wa);
+    }
+    if c.ib != 0 {
+        vel[c.ib as usize] = Velocity::new(b.vb, b.wb);
+    }
+}
+
+fn wrench(c: &JointConstraint, f: &Frames) -> Wrench {
+    match c.kind {
+        JointKind::Ball(p) => super::ball::wrench(&p, &c.imp, f),
+        JointKind::Hinge(_) => super::hinge::wrench(&c.imp, f),
+        JointKind::Fixed => super::fixed::wrench(&c.imp, f),
+        JointKind::Distance(_) => super::distance::wrench(&c.imp, f),
+        JointKind::Slider(_) => super::slider::wrench(&c.imp, f),
+    }
+}
+
+/// Applies the accumulated impulses at the current anchors (start of each sub-step).
+pub fn warm_start(constraints: &[JointConstraint], vel: &mut [Velocity], states: &[BodyState]) {
+    for c in constraints {
+        let (mut b, f) = load(c, vel, states);
+        b.apply(&wrench(c, &f));
+        write(c, &b, vel);
+    }
+}
+
+/// One sweep over the joints: with position bias (`use_bias`, the biased sweep) or without
+/// (the relax sweep).
+pub fn solve(constraints: &mut [JointConstraint], vel: &mut [Velocity], states: &[BodyState], h: f32, use_bias: bool) {
+    let ctx = Ctx::new(h, use_bias);
+    for _ in 0..JOINT_ITERATIONS {
+        for c in constraints.iter_mut() {
+            let (mut b, f) = load(c, vel, states);
+            match c.kind {
+                JointKind::Ball(p) => super::ball::solve(&p, &mut c.imp, &f, &mut b, &ctx),
+                JointKind::Hinge(p) => super::hinge::solve(&p, &c.spring, &mut c.imp, &f, &mut b, &ctx),
+                JointKind::Fixed => super::fixed::solve(&mut c.imp, &f, &mut b, &ctx),
+                JointKind::Distance(p) => super::distance::solve(&p, &c.spring, &mut c.imp, &f, &mut b, &ctx),
+                JointKind::Slider(p) => super::slider::solve(&p, &mut c.imp, &f, &mut b, &ctx),
+            }
+            write(c, &b, vel);
+        }
+    }
+}
+
+/// After the sub-steps: keeps the impulses for the next step, records the applied force and
+/// torque (impulse per sub-step over the sub-step) and breaks joints past their thresholds.
+pub fn store(world: &mut World, h: f32) {
+    let World { joints, solver, .. } = world;
+    let inv_h = 1.0 / h;
+    for c in &joints.constraints {
+        let (_, f) = load(c, &solver.vel, &solver.states);
+        let w = wrench(c, &f);
+        let joint = joints.pool.at_mut(c.joint);
+        joint.impulses = c.imp;
+        joint.force = w.p * inv_h;
+        joint.torque = (w.tb - f.rb.cross(w.p)) * inv_h;
+        if joint.force.length() > joint.def.break_force || joint.torque.length() > joint.def.break_torque {
+            joint.broken = true;
+            joint.impulses = Impulses::default();
+            let handle = joints.pool.handle_at(c.joint).expect("live joint");
+            joints.broken.push(handle);
+        }
+    }
+}
