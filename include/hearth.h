@@ -96,6 +96,31 @@
 #define HEARTH_GENERATOR_USER_CONTACT 10
 
 /**
+ * Ball-and-socket joint (`hearth_joint_get_type`).
+ */
+#define HEARTH_JOINT_BALL 0
+
+/**
+ * Hinge (revolute) joint.
+ */
+#define HEARTH_JOINT_HINGE 1
+
+/**
+ * Fixed (weld) joint.
+ */
+#define HEARTH_JOINT_FIXED 2
+
+/**
+ * Distance joint.
+ */
+#define HEARTH_JOINT_DISTANCE 3
+
+/**
+ * Slider (prismatic) joint.
+ */
+#define HEARTH_JOINT_SLIDER 4
+
+/**
  * Semi-implicit (symplectic) Euler integration (default).
  */
 #define HEARTH_INTEGRATOR_SEMI_IMPLICIT_EULER 0
@@ -664,6 +689,241 @@ typedef struct HearthCableGeneratorDef {
      */
     uint32_t internal_value;
 } HearthCableGeneratorDef;
+
+/**
+ * The fields every joint def starts with.
+ */
+typedef struct HearthJointBase {
+    /**
+     * Body A (required, any type; at least one of the two bodies must not be static).
+     */
+    struct HearthBodyId body_a;
+    /**
+     * Body B, or the null id to join body A to the world.
+     */
+    struct HearthBodyId body_b;
+    /**
+     * Joint frame on A, relative to A's origin. Default identity.
+     */
+    struct HearthTransform frame_a;
+    /**
+     * Joint frame on B relative to B's origin, or in world space when `body_b` is null.
+     * Default identity.
+     */
+    struct HearthTransform frame_b;
+    /**
+     * 1 to let the two bodies collide with each other; 0 (default) filters the pair and
+     * destroys contacts between them when the joint is created.
+     */
+    uint8_t collide_connected;
+    /**
+     * Force (N, > 0) above which the joint breaks. Default `FLT_MAX` (never).
+     */
+    float break_force;
+    /**
+     * Torque (N·m, > 0) above which the joint breaks. Default `FLT_MAX` (never).
+     */
+    float break_torque;
+} HearthJointBase;
+
+/**
+ * Ball-and-socket: the anchors coincide; optional cone (swing) and twist limits about Z.
+ */
+typedef struct HearthBallJointDef {
+    /**
+     * Bodies, frames, collision, breaking.
+     */
+    struct HearthJointBase base;
+    /**
+     * 1 to keep B's Z axis within `swing_limit` of A's. Default 0.
+     */
+    uint8_t enable_swing_limit;
+    /**
+     * Cone half-angle (rad, 0..=π). Default π/4.
+     */
+    float swing_limit;
+    /**
+     * 1 to keep B's twist about Z within `lower_twist..=upper_twist`. Default 0.
+     */
+    uint8_t enable_twist_limit;
+    /**
+     * Twist limits (rad, -π..=π, lower <= upper). Defaults -π/4 and π/4.
+     */
+    float lower_twist;
+    /**
+     * Upper twist limit (rad).
+     */
+    float upper_twist;
+    /**
+     * Set by `hearth_ball_joint_def_default()`; do not change.
+     */
+    uint32_t internal_value;
+} HearthBallJointDef;
+
+/**
+ * Id of a joint inside its world. All-zero is the null id; a destroyed joint's id is stale
+ * (`HEARTH_ERROR_INVALID_ID`).
+ */
+typedef struct HearthJointId {
+    /**
+     * Slot of the joint.
+     */
+    uint32_t index;
+    /**
+     * Generation of the slot (0 only in the null id).
+     */
+    uint32_t generation;
+} HearthJointId;
+
+/**
+ * Hinge: the anchors coincide and the Z axes stay aligned; B turns about Z. The angle is
+ * B's turn relative to A (0 where the frames coincide); the motor speed is B's angular
+ * speed relative to A about Z.
+ */
+typedef struct HearthHingeJointDef {
+    /**
+     * Bodies, frames, collision, breaking.
+     */
+    struct HearthJointBase base;
+    /**
+     * 1 to keep the angle within `lower..=upper`. Default 0.
+     */
+    uint8_t enable_limit;
+    /**
+     * Lower angle limit (rad, -π..=π). Default -π/2.
+     */
+    float lower;
+    /**
+     * Upper angle limit (rad, -π..=π, >= lower). Default π/2.
+     */
+    float upper;
+    /**
+     * 1 to drive the hinge at `motor_speed`. Default 0.
+     */
+    uint8_t enable_motor;
+    /**
+     * Target speed (rad/s). Default 0.
+     */
+    float motor_speed;
+    /**
+     * Largest motor torque (N·m, >= 0). Default 0.
+     */
+    float max_motor_torque;
+    /**
+     * 1 for a spring toward angle 0. Default 0.
+     */
+    uint8_t enable_spring;
+    /**
+     * Spring frequency (Hz, >= 0; 0 exerts no force). Default 0.
+     */
+    float spring_hertz;
+    /**
+     * Spring damping ratio (>= 0). Default 0.
+     */
+    float spring_damping_ratio;
+    /**
+     * Set by `hearth_hinge_joint_def_default()`; do not change.
+     */
+    uint32_t internal_value;
+} HearthHingeJointDef;
+
+/**
+ * Fixed (weld): the frames stay together.
+ */
+typedef struct HearthFixedJointDef {
+    /**
+     * Bodies, frames, collision, breaking.
+     */
+    struct HearthJointBase base;
+    /**
+     * Set by `hearth_fixed_joint_def_default()`; do not change.
+     */
+    uint32_t internal_value;
+} HearthFixedJointDef;
+
+/**
+ * Distance: the frames' origins (the anchors) stay `length` apart. With the spring off
+ * the joint is rigid; with it on, the spring pulls toward `length` and the limits (when
+ * enabled) bound the length — a spring of 0 Hz is a rope, free within the limits.
+ */
+typedef struct HearthDistanceJointDef {
+    /**
+     * Bodies, frames, collision, breaking.
+     */
+    struct HearthJointBase base;
+    /**
+     * Rest length (m, >= 0). Default 1.
+     */
+    float length;
+    /**
+     * 1 to keep the length within `min_length..=max_length` (with the spring on). Default 0.
+     */
+    uint8_t enable_limit;
+    /**
+     * Shortest length (m, >= 0). Default 0.
+     */
+    float min_length;
+    /**
+     * Longest length (m, >= min_length). Default 1e6.
+     */
+    float max_length;
+    /**
+     * 1 for a spring instead of a rigid rod. Default 0.
+     */
+    uint8_t enable_spring;
+    /**
+     * Spring frequency (Hz, >= 0). Default 0.
+     */
+    float spring_hertz;
+    /**
+     * Spring damping ratio (>= 0). Default 0.
+     */
+    float spring_damping_ratio;
+    /**
+     * Set by `hearth_distance_joint_def_default()`; do not change.
+     */
+    uint32_t internal_value;
+} HearthDistanceJointDef;
+
+/**
+ * Slider (prismatic): B keeps A's orientation and moves only along A's Z axis. The
+ * translation is B's anchor along A's Z from A's anchor; the motor speed is B's speed
+ * relative to A along Z.
+ */
+typedef struct HearthSliderJointDef {
+    /**
+     * Bodies, frames, collision, breaking.
+     */
+    struct HearthJointBase base;
+    /**
+     * 1 to keep the translation within `lower..=upper`. Default 0.
+     */
+    uint8_t enable_limit;
+    /**
+     * Lower translation limit (m). Default -1.
+     */
+    float lower;
+    /**
+     * Upper translation limit (m, >= lower). Default 1.
+     */
+    float upper;
+    /**
+     * 1 to drive the slider at `motor_speed`. Default 0.
+     */
+    uint8_t enable_motor;
+    /**
+     * Target speed (m/s). Default 0.
+     */
+    float motor_speed;
+    /**
+     * Largest motor force (N, >= 0). Default 0.
+     */
+    float max_motor_force;
+    /**
+     * Set by `hearth_slider_joint_def_default()`; do not change.
+     */
+    uint32_t internal_value;
+} HearthSliderJointDef;
 
 /**
  * How to create a particle. Get one from `hearth_particle_def_default()`, then edit it.
@@ -1619,6 +1879,299 @@ HearthResult hearth_generator_get_attachment_count(const struct HearthWorld *wor
 HearthResult hearth_generator_get_type(const struct HearthWorld *world,
                                        struct HearthGeneratorId generator,
                                        uint32_t *out_type);
+
+/**
+ * Defaults: identity frames, no limits, unbreakable, no collision between the bodies.
+ */
+struct HearthBallJointDef hearth_ball_joint_def_default(void);
+
+/**
+ * Creates a ball-and-socket joint. Wakes both bodies.
+ *
+ * Errors: `HEARTH_ERROR_NULL_POINTER`, `HEARTH_ERROR_INVALID_ID` (a body),
+ * `HEARTH_ERROR_INVALID_ARGUMENT` (def not from its default, NaN or infinite numbers, zero
+ * quaternion, flag not 0/1, limits out of range, A equal to B, both bodies static),
+ * `HEARTH_ERROR_WORLD_LOCKED`.
+ *
+ * # Safety
+ * Pointers must be NULL or valid.
+ */
+HearthResult hearth_joint_create_ball(struct HearthWorld *world,
+                                      const struct HearthBallJointDef *def,
+                                      struct HearthJointId *out_joint);
+
+/**
+ * Defaults: identity frames, no limit, motor or spring; unbreakable.
+ */
+struct HearthHingeJointDef hearth_hinge_joint_def_default(void);
+
+/**
+ * Creates a hinge joint. Wakes both bodies.
+ *
+ * Errors: as `hearth_joint_create_ball`, and negative motor torque or spring values.
+ *
+ * # Safety
+ * Pointers must be NULL or valid.
+ */
+HearthResult hearth_joint_create_hinge(struct HearthWorld *world,
+                                       const struct HearthHingeJointDef *def,
+                                       struct HearthJointId *out_joint);
+
+/**
+ * Defaults: identity frames, unbreakable.
+ */
+struct HearthFixedJointDef hearth_fixed_joint_def_default(void);
+
+/**
+ * Creates a fixed joint. Wakes both bodies.
+ *
+ * Errors: as `hearth_joint_create_ball`.
+ *
+ * # Safety
+ * Pointers must be NULL or valid.
+ */
+HearthResult hearth_joint_create_fixed(struct HearthWorld *world,
+                                       const struct HearthFixedJointDef *def,
+                                       struct HearthJointId *out_joint);
+
+/**
+ * Defaults: length 1, rigid, no limits.
+ */
+struct HearthDistanceJointDef hearth_distance_joint_def_default(void);
+
+/**
+ * Creates a distance joint. Wakes both bodies.
+ *
+ * Errors: as `hearth_joint_create_ball`, and negative lengths or spring values.
+ *
+ * # Safety
+ * Pointers must be NULL or valid.
+ */
+HearthResult hearth_joint_create_distance(struct HearthWorld *world,
+                                          const struct HearthDistanceJointDef *def,
+                                          struct HearthJointId *out_joint);
+
+/**
+ * Defaults: identity frames, no limit or motor; unbreakable.
+ */
+struct HearthSliderJointDef hearth_slider_joint_def_default(void);
+
+/**
+ * Creates a slider joint. Wakes both bodies.
+ *
+ * Errors: as `hearth_joint_create_ball`, and a negative motor force.
+ *
+ * # Safety
+ * Pointers must be NULL or valid.
+ */
+HearthResult hearth_joint_create_slider(struct HearthWorld *world,
+                                        const struct HearthSliderJointDef *def,
+                                        struct HearthJointId *out_joint);
+
+/**
+ * Destroys a joint (broken or not) and wakes its bodies; its id becomes stale. Destroying a
+ * body destroys its joints too.
+ *
+ * Errors: `HEARTH_ERROR_NULL_POINTER`, `HEARTH_ERROR_INVALID_ID`, `HEARTH_ERROR_WORLD_LOCKED`.
+ *
+ * # Safety
+ * `world` must be NULL or a live world.
+ */
+HearthResult hearth_joint_destroy(struct HearthWorld *world, struct HearthJointId joint);
+
+/**
+ * Reads a joint's type (`HEARTH_JOINT_*`).
+ *
+ * Errors: `HEARTH_ERROR_NULL_POINTER`, `HEARTH_ERROR_INVALID_ID`.
+ *
+ * # Safety
+ * `world` must be NULL or a live world; `out_type` NULL or writable.
+ */
+HearthResult hearth_joint_get_type(const struct HearthWorld *world,
+                                   struct HearthJointId joint,
+                                   uint32_t *out_type);
+
+/**
+ * Reads a joint's bodies; `*out_body_b` is the null id for a joint to the world.
+ *
+ * Errors: `HEARTH_ERROR_NULL_POINTER`, `HEARTH_ERROR_INVALID_ID`.
+ *
+ * # Safety
+ * `world` must be NULL or a live world; outputs NULL or writable.
+ */
+HearthResult hearth_joint_get_bodies(const struct HearthWorld *world,
+                                     struct HearthJointId joint,
+                                     struct HearthBodyId *out_body_a,
+                                     struct HearthBodyId *out_body_b);
+
+/**
+ * Sets the motor of a hinge (speed in rad/s, `max` torque in N·m) or slider (m/s, N). The
+ * speed is B's relative to A. Wakes the bodies.
+ *
+ * Errors: `HEARTH_ERROR_NULL_POINTER`, `HEARTH_ERROR_INVALID_ID`,
+ * `HEARTH_ERROR_INVALID_ARGUMENT` (not a hinge or slider, flag not 0/1, NaN, negative max),
+ * `HEARTH_ERROR_WORLD_LOCKED`.
+ *
+ * # Safety
+ * `world` must be NULL or a live world.
+ */
+HearthResult hearth_joint_set_motor(struct HearthWorld *world,
+                                    struct HearthJointId joint,
+                                    uint8_t enable,
+                                    float speed,
+                                    float max);
+
+/**
+ * Reads the motor of a hinge or slider.
+ *
+ * Errors: `HEARTH_ERROR_NULL_POINTER`, `HEARTH_ERROR_INVALID_ID`,
+ * `HEARTH_ERROR_INVALID_ARGUMENT` (not a hinge or slider).
+ *
+ * # Safety
+ * `world` must be NULL or a live world; outputs NULL or writable.
+ */
+HearthResult hearth_joint_get_motor(const struct HearthWorld *world,
+                                    struct HearthJointId joint,
+                                    bool *out_enabled,
+                                    float *out_speed,
+                                    float *out_max);
+
+/**
+ * Sets a joint's limits: hinge angles (rad, -π..=π), slider translations (m), distance
+ * lengths (m, >= 0; they act with the spring on), ball twist angles (rad). Wakes the bodies.
+ *
+ * Errors: `HEARTH_ERROR_NULL_POINTER`, `HEARTH_ERROR_INVALID_ID`,
+ * `HEARTH_ERROR_INVALID_ARGUMENT` (a fixed joint, flag not 0/1, NaN, out of range,
+ * lower > upper), `HEARTH_ERROR_WORLD_LOCKED`.
+ *
+ * # Safety
+ * `world` must be NULL or a live world.
+ */
+HearthResult hearth_joint_set_limits(struct HearthWorld *world,
+                                     struct HearthJointId joint,
+                                     uint8_t enable,
+                                     float lower,
+                                     float upper);
+
+/**
+ * Reads a joint's limits (as `hearth_joint_set_limits` sets them).
+ *
+ * Errors: `HEARTH_ERROR_NULL_POINTER`, `HEARTH_ERROR_INVALID_ID`,
+ * `HEARTH_ERROR_INVALID_ARGUMENT` (a fixed joint).
+ *
+ * # Safety
+ * `world` must be NULL or a live world; outputs NULL or writable.
+ */
+HearthResult hearth_joint_get_limits(const struct HearthWorld *world,
+                                     struct HearthJointId joint,
+                                     bool *out_enabled,
+                                     float *out_lower,
+                                     float *out_upper);
+
+/**
+ * Sets a ball joint's swing cone (half-angle in rad, 0..=π). Wakes the bodies.
+ *
+ * Errors: `HEARTH_ERROR_NULL_POINTER`, `HEARTH_ERROR_INVALID_ID`,
+ * `HEARTH_ERROR_INVALID_ARGUMENT` (not a ball joint, flag not 0/1, out of range),
+ * `HEARTH_ERROR_WORLD_LOCKED`.
+ *
+ * # Safety
+ * `world` must be NULL or a live world.
+ */
+HearthResult hearth_joint_set_cone_limit(struct HearthWorld *world,
+                                         struct HearthJointId joint,
+                                         uint8_t enable,
+                                         float angle);
+
+/**
+ * Reads a ball joint's swing cone.
+ *
+ * Errors: `HEARTH_ERROR_NULL_POINTER`, `HEARTH_ERROR_INVALID_ID`,
+ * `HEARTH_ERROR_INVALID_ARGUMENT` (not a ball joint).
+ *
+ * # Safety
+ * `world` must be NULL or a live world; outputs NULL or writable.
+ */
+HearthResult hearth_joint_get_cone_limit(const struct HearthWorld *world,
+                                         struct HearthJointId joint,
+                                         bool *out_enabled,
+                                         float *out_angle);
+
+/**
+ * Sets the spring of a hinge (toward angle 0) or distance joint (toward its length):
+ * frequency (Hz, >= 0) and damping ratio (>= 0). Wakes the bodies.
+ *
+ * Errors: `HEARTH_ERROR_NULL_POINTER`, `HEARTH_ERROR_INVALID_ID`,
+ * `HEARTH_ERROR_INVALID_ARGUMENT` (not a hinge or distance joint, flag not 0/1, negative or
+ * NaN), `HEARTH_ERROR_WORLD_LOCKED`.
+ *
+ * # Safety
+ * `world` must be NULL or a live world.
+ */
+HearthResult hearth_joint_set_spring(struct HearthWorld *world,
+                                     struct HearthJointId joint,
+                                     uint8_t enable,
+                                     float hertz,
+                                     float damping_ratio);
+
+/**
+ * Reads the spring of a hinge or distance joint.
+ *
+ * Errors: `HEARTH_ERROR_NULL_POINTER`, `HEARTH_ERROR_INVALID_ID`,
+ * `HEARTH_ERROR_INVALID_ARGUMENT` (not a hinge or distance joint).
+ *
+ * # Safety
+ * `world` must be NULL or a live world; outputs NULL or writable.
+ */
+HearthResult hearth_joint_get_spring(const struct HearthWorld *world,
+                                     struct HearthJointId joint,
+                                     bool *out_enabled,
+                                     float *out_hertz,
+                                     float *out_damping_ratio);
+
+/**
+ * Reads the force (N) and torque (N·m) the joint applied to body B during the last step,
+ * in world space (the torque leaves out the moment of the force about B's anchor). Zero
+ * before the first step and for a broken joint after it broke.
+ *
+ * Errors: `HEARTH_ERROR_NULL_POINTER`, `HEARTH_ERROR_INVALID_ID`.
+ *
+ * # Safety
+ * `world` must be NULL or a live world; outputs NULL or writable.
+ */
+HearthResult hearth_joint_get_force(const struct HearthWorld *world,
+                                    struct HearthJointId joint,
+                                    struct HearthVec3 *out_force,
+                                    struct HearthVec3 *out_torque);
+
+/**
+ * Reads whether a joint broke (its force or torque went past the def's threshold). A broken
+ * joint no longer acts; destroy it with `hearth_joint_destroy`.
+ *
+ * Errors: `HEARTH_ERROR_NULL_POINTER`, `HEARTH_ERROR_INVALID_ID`.
+ *
+ * # Safety
+ * `world` must be NULL or a live world; `out_broken` NULL or writable.
+ */
+HearthResult hearth_joint_is_broken(const struct HearthWorld *world,
+                                    struct HearthJointId joint,
+                                    bool *out_broken);
+
+/**
+ * Copies the ids of the joints that broke during the last `hearth_world_step` into the
+ * caller's array and writes how many there are to `*out_count`. Pass `out_joints = NULL`
+ * and `capacity = 0` to ask for the count. The list lasts until the next step.
+ *
+ * Errors: `HEARTH_ERROR_NULL_POINTER` (`out_count`, or `out_joints` with `capacity > 0`),
+ * `HEARTH_ERROR_BUFFER_TOO_SMALL` (`capacity` below the count and not 0; nothing written).
+ *
+ * # Safety
+ * `world` must be NULL or a live world; `out_joints` must hold `capacity` ids.
+ */
+HearthResult hearth_world_get_broken_joints(const struct HearthWorld *world,
+                                            struct HearthJointId *out_joints,
+                                            size_t capacity,
+                                            size_t *out_count);
 
 /**
  * Defaults: at the origin, at rest, 1 kg, radius 0.05 m, no damping, full gravity, no
