@@ -781,3 +781,93 @@ fn invalid_defs_and_ids_are_rejected() {
     w.destroy_joint(j).unwrap();
     assert!(matches!(w.destroy_joint(j), Err(hearth::Error::InvalidId(_))));
 }
+
+// ------------------------------------------------------------------ allocation per step
+
+/// Counts allocations per thread, so the other tests of this binary running in parallel do
+/// not disturb the count.
+struct Counting;
+
+thread_local! {
+    static ALLOCATIONS: std::cell::Cell<usize> = const { std::cell::Cell::new(0) };
+}
+
+unsafe impl std::alloc::GlobalAlloc for Counting {
+    unsafe fn alloc(&self, layout: std::alloc::Layout) -> *mut u8 {
+        let _ = ALLOCATIONS.try_with(|c| c.set(c.get() + 1));
+        std::alloc::System.alloc(layout)
+    }
+    unsafe fn dealloc(&self, ptr: *mut u8, layout: std::alloc::Layout) {
+        std::alloc::System.dealloc(ptr, layout)
+    }
+    unsafe fn realloc(&self, ptr: *mut u8, layout: std::alloc::Layout, new_size: usize) -> *mut u8 {
+        let _ = ALLOCATIONS.try_with(|c| c.set(c.get() + 1));
+        std::alloc::System.realloc(ptr, layout, new_size)
+    }
+}
+
+#[global_allocator]
+static GLOBAL: Counting = Counting;
+
+#[test]
+fn steady_joint_steps_do_not_allocate() {
+    let mut w = world(true);
+    ground(&mut w);
+    let parts = ragdoll(&mut w, Vec3::new(0.0, 2.0, 0.0));
+    let (_links, _end, _, _) = heavy_chain(&mut w, 10, 10.0, 0.5);
+    for &b in &parts {
+        w.set_angular_velocity(b, Vec3::new(0.5, 0.0, 2.0)).unwrap();
+    }
+    run(&mut w, 2.0);
+    let before = ALLOCATIONS.with(|c| c.get());
+    run(&mut w, 1.0);
+    let after = ALLOCATIONS.with(|c| c.get());
+    assert_eq!(after - before, 0, "allocations in 60 steps with joints");
+}
+
+#[test]
+fn a_joint_grid_hangs_without_blowing_up() {
+    // Box3D's joint_grid, 20×20: spheres joined to their left and upper neighbours.
+    let n = 20;
+    let mut w = world(false);
+    let mut ids: Vec<BodyHandle> = Vec::new();
+    for k in 0..n {
+        for i in 0..n {
+            let fixed = i == 0 && k + 3 >= n / 2 && k <= n / 2 + 3;
+            let p = Vec3::new(k as f32, -(i as f32), 0.0);
+            let b = if fixed {
+                w.create_body(&BodyDef {
+                    transform: Transform::new(p, Quat::IDENTITY),
+                    ..Default::default()
+                })
+                .unwrap()
+            } else {
+                sphere(&mut w, p, 0.4, 1000.0)
+            };
+            let join = |w: &mut World, other: BodyHandle, offset: Vec3| {
+                if fixed && w.body(other).unwrap().is_static() {
+                    return;
+                }
+                let mut def = JointDef::new(ball());
+                (def.body_a, def.body_b, def.frame_a.p, def.frame_b.p) = (b, other, offset, -offset);
+                w.create_joint(&def).unwrap();
+            };
+            if i > 0 {
+                join(&mut w, ids[k * n + i - 1], Vec3::new(0.0, 0.5, 0.0));
+            }
+            if k > 0 {
+                join(&mut w, ids[(k - 1) * n + i], Vec3::new(-0.5, 0.0, 0.0));
+            }
+            ids.push(b);
+        }
+    }
+    let js = joint_handles(&w);
+    run(&mut w, 10.0);
+    let worst = js.iter().map(|&j| gap(&w, j)).fold(0.0f32, f32::max);
+    let speed = ids
+        .iter()
+        .map(|&b| w.linear_velocity(b).unwrap().length())
+        .fold(0.0f32, f32::max);
+    println!("joint grid 20×20 after 10 s: largest joint gap {worst:.4} m, top speed {speed:.3} m/s");
+    assert!(worst < 0.1 && speed.is_finite() && speed < 20.0);
+}
