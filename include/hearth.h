@@ -1275,8 +1275,9 @@ HearthResult hearth_body_create(struct HearthWorld *world,
                                 struct HearthBodyId *out_body);
 
 /**
- * Destroys a body, its shapes and its contacts (bodies it touched are woken). The id
- * becomes stale; a later body never reuses it.
+ * Destroys a body, its shapes, its contacts (bodies it touched are woken) and its joints;
+ * it is detached from every generator, and particles or soft-body vertices pinned to it are
+ * released. The id becomes stale; a later body never reuses it.
  *
  * Errors: `HEARTH_ERROR_NULL_POINTER`, `HEARTH_ERROR_INVALID_ID`, `HEARTH_ERROR_WORLD_LOCKED`.
  *

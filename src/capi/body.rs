@@ -107,8 +107,9 @@ pub unsafe extern "C" fn hearth_body_create(
     })
 }
 
-/// Destroys a body, its shapes and its contacts (bodies it touched are woken). The id
-/// becomes stale; a later body never reuses it.
+/// Destroys a body, its shapes, its contacts (bodies it touched are woken) and its joints;
+/// it is detached from every generator, and particles or soft-body vertices pinned to it are
+/// released. The id becomes stale; a later body never reuses it.
 ///
 /// Errors: `HEARTH_ERROR_NULL_POINTER`, `HEARTH_ERROR_INVALID_ID`, `HEARTH_ERROR_WORLD_LOCKED`.
 ///
