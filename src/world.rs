@@ -289,86 +289,57 @@ impl World {
         Ok(())
     }
 
-    fn dynamic_index(&self, h: BodyHandle) -> Result<Option<u32>> {
-        let index = self.body_index(h)?;
-        Ok(self.bodies.at(index).is_dynamic().then_some(index))
+    /// Runs `act` on a dynamic body that is awake (woken first when `wake`); static and
+    /// kinematic bodies, and sleeping ones not woken, are left alone.
+    fn act_on_dynamic(&mut self, h: BodyHandle, wake: bool, act: impl FnOnce(&mut Body)) -> Result<()> {
+        let i = self.body_index(h)?;
+        if !self.bodies.at(i).is_dynamic() {
+            return Ok(());
+        }
+        if wake {
+            self.wake_body(i);
+        }
+        let b = self.bodies.at_mut(i);
+        if b.awake {
+            act(b);
+        }
+        Ok(())
     }
 
     /// Adds a force (N) at the centre of mass until the end of the next step. Wakes the body.
     pub fn apply_force(&mut self, h: BodyHandle, f: Vec3, wake: bool) -> Result<()> {
         check_vec("force", f)?;
-        if let Some(i) = self.dynamic_index(h)? {
-            if wake {
-                self.wake_body(i);
-            }
-            let b = self.bodies.at_mut(i);
-            if b.awake {
-                b.force += f;
-            }
-        }
-        Ok(())
+        self.act_on_dynamic(h, wake, |b| b.force += f)
     }
 
     /// Adds a force (N) at a world point: a force plus the torque of its lever arm.
     pub fn apply_force_at_point(&mut self, h: BodyHandle, f: Vec3, point: Vec3, wake: bool) -> Result<()> {
         check_vec("force", f)?;
         check_vec("point", point)?;
-        if let Some(i) = self.dynamic_index(h)? {
-            if wake {
-                self.wake_body(i);
-            }
-            let b = self.bodies.at_mut(i);
-            if b.awake {
-                b.force += f;
-                b.torque += (point - b.center).cross(f);
-            }
-        }
-        Ok(())
+        self.act_on_dynamic(h, wake, |b| {
+            b.force += f;
+            b.torque += (point - b.center).cross(f);
+        })
     }
 
     pub fn apply_torque(&mut self, h: BodyHandle, t: Vec3, wake: bool) -> Result<()> {
         check_vec("torque", t)?;
-        if let Some(i) = self.dynamic_index(h)? {
-            if wake {
-                self.wake_body(i);
-            }
-            let b = self.bodies.at_mut(i);
-            if b.awake {
-                b.torque += t;
-            }
-        }
-        Ok(())
+        self.act_on_dynamic(h, wake, |b| b.torque += t)
     }
 
     /// Applies an impulse (N·s) at a world point: changes velocity at once.
     pub fn apply_impulse_at_point(&mut self, h: BodyHandle, j: Vec3, point: Vec3, wake: bool) -> Result<()> {
         check_vec("impulse", j)?;
         check_vec("point", point)?;
-        if let Some(i) = self.dynamic_index(h)? {
-            if wake {
-                self.wake_body(i);
-            }
-            let b = self.bodies.at_mut(i);
-            if b.awake {
-                b.v += b.inv_mass * j;
-                b.w += b.inv_inertia_world * (point - b.center).cross(j);
-            }
-        }
-        Ok(())
+        self.act_on_dynamic(h, wake, |b| {
+            b.v += b.inv_mass * j;
+            b.w += b.inv_inertia_world * (point - b.center).cross(j);
+        })
     }
 
     pub fn apply_angular_impulse(&mut self, h: BodyHandle, j: Vec3, wake: bool) -> Result<()> {
         check_vec("angular impulse", j)?;
-        if let Some(i) = self.dynamic_index(h)? {
-            if wake {
-                self.wake_body(i);
-            }
-            let b = self.bodies.at_mut(i);
-            if b.awake {
-                b.w += b.inv_inertia_world * j;
-            }
-        }
-        Ok(())
+        self.act_on_dynamic(h, wake, |b| b.w += b.inv_inertia_world * j)
     }
 
     pub fn set_damping(&mut self, h: BodyHandle, linear: f32, angular: f32) -> Result<()> {
