@@ -1143,6 +1143,106 @@ typedef struct HearthPlane {
 } HearthPlane;
 
 /**
+ * How to create a soft body (everything except its mesh). Get one from
+ * `hearth_soft_body_def_default()`, then edit it.
+ *
+ * The solver is XPBD with sub-steps: stiffness is given as compliance (the inverse of
+ * stiffness), does not depend on the time step, and any value is stable.
+ */
+typedef struct HearthSoftBodyDef {
+    /**
+     * Placement of the mesh: its vertices (given in the mesh's own frame) are rotated,
+     * then moved by `transform.position` (m). Default: identity.
+     */
+    struct HearthTransform transform;
+    /**
+     * Initial velocity of every vertex (m/s). Default 0.
+     */
+    struct HearthVec3 velocity;
+    /**
+     * Total mass (kg, > 0), shared equally by the vertices unless per-vertex masses are
+     * given to `hearth_soft_body_create_mesh`. Default 1.
+     */
+    float mass;
+    /**
+     * Compliance of the stretch springs along the mesh edges (m/N, >= 0; 0 is
+     * inextensible). Default 0.
+     */
+    float edge_compliance;
+    /**
+     * Compliance of the bending springs across edges shared by two triangles (m/N, >= 0;
+     * `INFINITY` disables bending). Default 0.01.
+     */
+    float bend_compliance;
+    /**
+     * 1 keeps the enclosed volume at its rest value (closed, outward-wound meshes); 0
+     * (default) does not.
+     */
+    uint8_t preserve_volume;
+    /**
+     * Compliance of the volume constraint (>= 0; 0 is incompressible). Default 0.
+     */
+    float volume_compliance;
+    /**
+     * Gas pressure as n·R·T (J = Pa·m³, >= 0): each face is pushed out along its normal by
+     * `nRT / V · area`, V the current enclosed volume. 0 (default) is no gas.
+     */
+    float pressure;
+    /**
+     * Linear damping of the vertices (1/s, >= 0). Default 0.5.
+     */
+    float damping;
+    /**
+     * Coulomb friction against shapes (>= 0; the pair uses the geometric mean with the
+     * shape's static friction). Default 0.5.
+     */
+    float friction;
+    /**
+     * Bounce against shapes (>= 0; the pair uses the larger of the two). Default 0.
+     */
+    float restitution;
+    /**
+     * Radius of each vertex for collision (m, >= 0). Default 0.01.
+     */
+    float vertex_radius;
+    /**
+     * Multiplier of world gravity (finite). Default 1.
+     */
+    float gravity_scale;
+    /**
+     * XPBD sub-steps per world step (1..=64). Default 20.
+     */
+    uint32_t substeps;
+    /**
+     * 1 (default) collides with rigid shapes and planes; 0 passes through everything.
+     */
+    uint8_t collide;
+    /**
+     * Host data, returned by `hearth_soft_body_get_user_data`.
+     */
+    uint64_t user_data;
+    /**
+     * Set by `hearth_soft_body_def_default()`; do not change.
+     */
+    uint32_t internal_value;
+} HearthSoftBodyDef;
+
+/**
+ * Id of a soft body inside its world. All-zero is the null id. Ids of destroyed soft
+ * bodies and of other worlds are rejected with `HEARTH_ERROR_INVALID_ID`.
+ */
+typedef struct HearthSoftBodyId {
+    /**
+     * Slot of the soft body.
+     */
+    uint32_t index;
+    /**
+     * Generation of the slot (0 only in the null id).
+     */
+    uint32_t generation;
+} HearthSoftBodyId;
+
+/**
  * Settings of a world. Get one from `hearth_world_def_default()`, then edit it.
  */
 typedef struct HearthWorldDef {
@@ -2501,6 +2601,402 @@ HearthResult hearth_shape_destroy(struct HearthWorld *world, struct HearthShapeI
 HearthResult hearth_shape_get_body(const struct HearthWorld *world,
                                    struct HearthShapeId shape,
                                    struct HearthBodyId *out_body);
+
+/**
+ * Defaults: at the origin, at rest, 1 kg, inextensible edges, bend compliance 0.01, no
+ * volume constraint, no gas, damping 0.5, friction 0.5, no bounce, vertex radius 0.01 m,
+ * full gravity, 20 sub-steps, collides.
+ */
+struct HearthSoftBodyDef hearth_soft_body_def_default(void);
+
+/**
+ * Creates a soft body from a triangle mesh given in its own frame (`def.transform`
+ * places it): `vertex_count` positions (m) and `index_count` vertex indices, three per
+ * triangle. A closed mesh must be wound counter-clockwise seen from outside for its
+ * volume, pressure and volume constraint to push outwards. Every unique edge becomes a
+ * stretch spring and every pair of triangles sharing an edge a bending spring. `masses`
+ * (kg, `vertex_count` values, each > 0) gives per-vertex masses and replaces the equal
+ * split of `def.mass`; NULL uses `def.mass`. The arrays are copied; the caller keeps them.
+ *
+ * Errors: `HEARTH_ERROR_NULL_POINTER` (world, def, vertices, indices, out_soft_body),
+ * `HEARTH_ERROR_INVALID_ARGUMENT` (def not from `hearth_soft_body_def_default()` or out of
+ * range, `vertex_count` 0 or above 1048576, `index_count` 0 or not a multiple of 3 or above
+ * 6 × 1048576, an index >= `vertex_count`, a triangle repeating a vertex, a NaN or
+ * infinite vertex, a mass <= 0 or not finite), `HEARTH_ERROR_WORLD_LOCKED`. Nothing is
+ * created on error.
+ *
+ * # Safety
+ * `vertices` must hold `vertex_count` vectors, `indices` `index_count` indices and
+ * `masses` (if not NULL) `vertex_count` floats; other pointers NULL or valid.
+ */
+HearthResult hearth_soft_body_create_mesh(struct HearthWorld *world,
+                                          const struct HearthSoftBodyDef *def,
+                                          const struct HearthVec3 *vertices,
+                                          size_t vertex_count,
+                                          const uint32_t *indices,
+                                          size_t index_count,
+                                          const float *masses,
+                                          struct HearthSoftBodyId *out_soft_body);
+
+/**
+ * Creates a soft ball: an icosphere of `radius` (m, > 0) centred on `def.transform`, an
+ * icosahedron whose triangles are split in four `subdivisions` times (0..=6). Vertex
+ * counts: 12, 42, 162, 642, 2562, 10242, 40962. Give it `def.pressure` (a balloon) or
+ * `def.preserve_volume` to hold its shape.
+ *
+ * Errors: `HEARTH_ERROR_NULL_POINTER`, `HEARTH_ERROR_INVALID_ARGUMENT` (def as for
+ * `hearth_soft_body_create_mesh`, radius not finite or <= 0, subdivisions above 6),
+ * `HEARTH_ERROR_WORLD_LOCKED`.
+ *
+ * # Safety
+ * Pointers must be NULL or valid.
+ */
+HearthResult hearth_soft_body_create_icosphere(struct HearthWorld *world,
+                                               const struct HearthSoftBodyDef *def,
+                                               float radius,
+                                               uint32_t subdivisions,
+                                               struct HearthSoftBodyId *out_soft_body);
+
+/**
+ * Creates a soft box of `half_extents` (m, each > 0) centred on `def.transform`, filled
+ * with a lattice of `cells_x × cells_y × cells_z` cells (each 1..=64): a vertex at every
+ * lattice point, springs along every cell edge, face diagonal and body diagonal (so it
+ * keeps its shape without gas), and the outer faces as triangles (wound outwards). Vertex
+ * count: `(cells_x + 1)(cells_y + 1)(cells_z + 1)`.
+ *
+ * Errors: `HEARTH_ERROR_NULL_POINTER`, `HEARTH_ERROR_INVALID_ARGUMENT` (def as for
+ * `hearth_soft_body_create_mesh`, a half extent not finite or <= 0, a cell count outside
+ * 1..=64), `HEARTH_ERROR_WORLD_LOCKED`.
+ *
+ * # Safety
+ * Pointers must be NULL or valid.
+ */
+HearthResult hearth_soft_body_create_box(struct HearthWorld *world,
+                                         const struct HearthSoftBodyDef *def,
+                                         struct HearthVec3 half_extents,
+                                         uint32_t cells_x,
+                                         uint32_t cells_y,
+                                         uint32_t cells_z,
+                                         struct HearthSoftBodyId *out_soft_body);
+
+/**
+ * Creates an open cloth of `width × height` (m, each > 0) in the XZ plane of
+ * `def.transform` (normal +Y), with `columns × rows` cells (each 1..=1024). Vertex
+ * `(i, j)` has index `i + (columns + 1) · j`, `i` along +X from `-width/2`, `j` along +Z
+ * from `-height/2`: pin corners 0 and `columns` to hang it by its edge at z = -height/2.
+ * Vertex count: `(columns + 1)(rows + 1)`.
+ *
+ * Errors: `HEARTH_ERROR_NULL_POINTER`, `HEARTH_ERROR_INVALID_ARGUMENT` (def as for
+ * `hearth_soft_body_create_mesh`, a size not finite or <= 0, a cell count outside
+ * 1..=1024), `HEARTH_ERROR_WORLD_LOCKED`.
+ *
+ * # Safety
+ * Pointers must be NULL or valid.
+ */
+HearthResult hearth_soft_body_create_cloth(struct HearthWorld *world,
+                                           const struct HearthSoftBodyDef *def,
+                                           float width,
+                                           float height,
+                                           uint32_t columns,
+                                           uint32_t rows,
+                                           struct HearthSoftBodyId *out_soft_body);
+
+/**
+ * Destroys a soft body: its id becomes stale. Bodies it was pinned to are unaffected.
+ *
+ * Errors: `HEARTH_ERROR_NULL_POINTER`, `HEARTH_ERROR_INVALID_ID`, `HEARTH_ERROR_WORLD_LOCKED`.
+ *
+ * # Safety
+ * `world` must be NULL or a live world.
+ */
+HearthResult hearth_soft_body_destroy(struct HearthWorld *world, struct HearthSoftBodyId soft_body);
+
+/**
+ * Reads the number of live soft bodies in the world.
+ *
+ * Errors: `HEARTH_ERROR_NULL_POINTER`.
+ *
+ * # Safety
+ * `world` must be NULL or a live world; `out_count` NULL or writable.
+ */
+HearthResult hearth_world_get_soft_body_count(const struct HearthWorld *world, size_t *out_count);
+
+/**
+ * Reads the number of vertices of a soft body (fixed at creation): the size the arrays of
+ * `hearth_soft_body_get_positions` and `hearth_soft_body_get_normals` need.
+ *
+ * Errors: `HEARTH_ERROR_NULL_POINTER`, `HEARTH_ERROR_INVALID_ID`.
+ *
+ * # Safety
+ * `world` must be NULL or a live world; `out_count` NULL or writable.
+ */
+HearthResult hearth_soft_body_get_vertex_count(const struct HearthWorld *world,
+                                               struct HearthSoftBodyId soft_body,
+                                               size_t *out_count);
+
+/**
+ * Reads the number of triangles of a soft body (fixed at creation);
+ * `hearth_soft_body_get_indices` needs three times as many indices.
+ *
+ * Errors: `HEARTH_ERROR_NULL_POINTER`, `HEARTH_ERROR_INVALID_ID`.
+ *
+ * # Safety
+ * `world` must be NULL or a live world; `out_count` NULL or writable.
+ */
+HearthResult hearth_soft_body_get_triangle_count(const struct HearthWorld *world,
+                                                 struct HearthSoftBodyId soft_body,
+                                                 size_t *out_count);
+
+/**
+ * Reads every vertex position (m, world space) of a soft body into the caller-owned
+ * `out_positions`, in vertex order, one call per frame to rebuild a render mesh.
+ * `*out_count` receives the vertex count. Pass `out_positions = NULL` and `capacity = 0`
+ * to ask for the count only.
+ *
+ * Errors: `HEARTH_ERROR_NULL_POINTER` (world, out_count, or `out_positions` with
+ * `capacity > 0`), `HEARTH_ERROR_INVALID_ID`, `HEARTH_ERROR_BUFFER_TOO_SMALL` (`capacity`
+ * not 0 and below the vertex count; nothing is written).
+ *
+ * # Safety
+ * `out_positions` must be NULL or hold `capacity` vectors; `out_count` NULL or writable.
+ */
+HearthResult hearth_soft_body_get_positions(const struct HearthWorld *world,
+                                            struct HearthSoftBodyId soft_body,
+                                            struct HearthVec3 *out_positions,
+                                            size_t capacity,
+                                            size_t *out_count);
+
+/**
+ * Reads every vertex normal of a soft body into the caller-owned `out_normals`, in vertex
+ * order: unit vectors, the area-weighted average of the normals of the vertex's triangles
+ * (counter-clockwise winding; outwards on the helpers' closed meshes, +Y on a flat cloth),
+ * or zero for a vertex in no triangle. Computed from the current positions. Count and
+ * capacity as for `hearth_soft_body_get_positions`.
+ *
+ * Errors: `HEARTH_ERROR_NULL_POINTER` (world, out_count, or `out_normals` with
+ * `capacity > 0`), `HEARTH_ERROR_INVALID_ID`, `HEARTH_ERROR_BUFFER_TOO_SMALL` (`capacity`
+ * not 0 and below the vertex count; nothing is written).
+ *
+ * # Safety
+ * `out_normals` must be NULL or hold `capacity` vectors; `out_count` NULL or writable.
+ */
+HearthResult hearth_soft_body_get_normals(const struct HearthWorld *world,
+                                          struct HearthSoftBodyId soft_body,
+                                          struct HearthVec3 *out_normals,
+                                          size_t capacity,
+                                          size_t *out_count);
+
+/**
+ * Reads the triangle indices of a soft body into the caller-owned `out_indices`, three
+ * per triangle (counter-clockwise from outside for closed meshes): the mesh given to
+ * `hearth_soft_body_create_mesh`, or the one a helper built. `*out_count` receives the
+ * number of indices (3 × triangle count). Pass `out_indices = NULL` and `capacity = 0` to
+ * ask for the count only.
+ *
+ * Errors: `HEARTH_ERROR_NULL_POINTER` (world, out_count, or `out_indices` with
+ * `capacity > 0`), `HEARTH_ERROR_INVALID_ID`, `HEARTH_ERROR_BUFFER_TOO_SMALL` (`capacity`
+ * not 0 and below the index count; nothing is written).
+ *
+ * # Safety
+ * `out_indices` must be NULL or hold `capacity` indices; `out_count` NULL or writable.
+ */
+HearthResult hearth_soft_body_get_indices(const struct HearthWorld *world,
+                                          struct HearthSoftBodyId soft_body,
+                                          uint32_t *out_indices,
+                                          size_t capacity,
+                                          size_t *out_count);
+
+/**
+ * Reads one vertex's position (m, world space).
+ *
+ * Errors: `HEARTH_ERROR_NULL_POINTER`, `HEARTH_ERROR_INVALID_ID`,
+ * `HEARTH_ERROR_INVALID_ARGUMENT` (vertex out of range).
+ *
+ * # Safety
+ * `world` must be NULL or a live world; `out` NULL or writable.
+ */
+HearthResult hearth_soft_body_get_vertex_position(const struct HearthWorld *world,
+                                                  struct HearthSoftBodyId soft_body,
+                                                  uint32_t vertex,
+                                                  struct HearthVec3 *out);
+
+/**
+ * Reads one vertex's velocity (m/s).
+ *
+ * Errors: `HEARTH_ERROR_NULL_POINTER`, `HEARTH_ERROR_INVALID_ID`,
+ * `HEARTH_ERROR_INVALID_ARGUMENT` (vertex out of range).
+ *
+ * # Safety
+ * `world` must be NULL or a live world; `out` NULL or writable.
+ */
+HearthResult hearth_soft_body_get_vertex_velocity(const struct HearthWorld *world,
+                                                  struct HearthSoftBodyId soft_body,
+                                                  uint32_t vertex,
+                                                  struct HearthVec3 *out);
+
+/**
+ * Reads the mass-weighted centre of a soft body's vertices (m, world space).
+ *
+ * Errors: `HEARTH_ERROR_NULL_POINTER`, `HEARTH_ERROR_INVALID_ID`.
+ *
+ * # Safety
+ * `world` must be NULL or a live world; `out` NULL or writable.
+ */
+HearthResult hearth_soft_body_get_center(const struct HearthWorld *world,
+                                         struct HearthSoftBodyId soft_body,
+                                         struct HearthVec3 *out);
+
+/**
+ * Reads the total mass of a soft body (kg).
+ *
+ * Errors: `HEARTH_ERROR_NULL_POINTER`, `HEARTH_ERROR_INVALID_ID`.
+ *
+ * # Safety
+ * `world` must be NULL or a live world; `out` NULL or writable.
+ */
+HearthResult hearth_soft_body_get_mass(const struct HearthWorld *world,
+                                       struct HearthSoftBodyId soft_body,
+                                       float *out);
+
+/**
+ * Reads the volume a soft body encloses now (m³): the signed sum over its triangles, so
+ * meaningful for closed, outward-wound meshes (an open cloth gives an arbitrary number).
+ *
+ * Errors: `HEARTH_ERROR_NULL_POINTER`, `HEARTH_ERROR_INVALID_ID`.
+ *
+ * # Safety
+ * `world` must be NULL or a live world; `out` NULL or writable.
+ */
+HearthResult hearth_soft_body_get_volume(const struct HearthWorld *world,
+                                         struct HearthSoftBodyId soft_body,
+                                         float *out);
+
+/**
+ * Reads the volume a soft body enclosed when it was created (m³), the target of the
+ * volume constraint.
+ *
+ * Errors: `HEARTH_ERROR_NULL_POINTER`, `HEARTH_ERROR_INVALID_ID`.
+ *
+ * # Safety
+ * `world` must be NULL or a live world; `out` NULL or writable.
+ */
+HearthResult hearth_soft_body_get_rest_volume(const struct HearthWorld *world,
+                                              struct HearthSoftBodyId soft_body,
+                                              float *out);
+
+/**
+ * Reads the gas pressure n·R·T (J).
+ *
+ * Errors: `HEARTH_ERROR_NULL_POINTER`, `HEARTH_ERROR_INVALID_ID`.
+ *
+ * # Safety
+ * `world` must be NULL or a live world; `out` NULL or writable.
+ */
+HearthResult hearth_soft_body_get_pressure(const struct HearthWorld *world,
+                                           struct HearthSoftBodyId soft_body,
+                                           float *out);
+
+/**
+ * Reads the `user_data` given at creation.
+ *
+ * Errors: `HEARTH_ERROR_NULL_POINTER`, `HEARTH_ERROR_INVALID_ID`.
+ *
+ * # Safety
+ * `world` must be NULL or a live world; `out` NULL or writable.
+ */
+HearthResult hearth_soft_body_get_user_data(const struct HearthWorld *world,
+                                            struct HearthSoftBodyId soft_body,
+                                            uint64_t *out);
+
+/**
+ * Sets the gas pressure n·R·T (J = Pa·m³, >= 0); takes effect at the next step. Each face
+ * is pushed out by `nRT / V · area`, V the current enclosed volume.
+ *
+ * Errors: `HEARTH_ERROR_NULL_POINTER`, `HEARTH_ERROR_INVALID_ID`,
+ * `HEARTH_ERROR_INVALID_ARGUMENT` (negative, NaN or infinite), `HEARTH_ERROR_WORLD_LOCKED`.
+ *
+ * # Safety
+ * `world` must be NULL or a live world.
+ */
+HearthResult hearth_soft_body_set_pressure(struct HearthWorld *world,
+                                           struct HearthSoftBodyId soft_body,
+                                           float pressure);
+
+/**
+ * Pins `vertex` where it is now: to the world when `body` is the null id (it stays at
+ * that point), or to `body` (it follows the body's motion at the point it has in the
+ * body's frame now; the body does not feel the pull). Pinning a pinned vertex moves its
+ * pin. Destroying the body frees the vertices pinned to it.
+ *
+ * Errors: `HEARTH_ERROR_NULL_POINTER`, `HEARTH_ERROR_INVALID_ID` (soft body, or a body
+ * that is not null and not live in this world), `HEARTH_ERROR_INVALID_ARGUMENT` (vertex
+ * out of range), `HEARTH_ERROR_WORLD_LOCKED`.
+ *
+ * # Safety
+ * `world` must be NULL or a live world.
+ */
+HearthResult hearth_soft_body_pin_vertex(struct HearthWorld *world,
+                                         struct HearthSoftBodyId soft_body,
+                                         uint32_t vertex,
+                                         struct HearthBodyId body);
+
+/**
+ * Frees a pinned vertex (a vertex that is not pinned is left as it is: `HEARTH_OK`).
+ *
+ * Errors: `HEARTH_ERROR_NULL_POINTER`, `HEARTH_ERROR_INVALID_ID`,
+ * `HEARTH_ERROR_INVALID_ARGUMENT` (vertex out of range), `HEARTH_ERROR_WORLD_LOCKED`.
+ *
+ * # Safety
+ * `world` must be NULL or a live world.
+ */
+HearthResult hearth_soft_body_unpin_vertex(struct HearthWorld *world,
+                                           struct HearthSoftBodyId soft_body,
+                                           uint32_t vertex);
+
+/**
+ * Reads whether `vertex` is pinned (to the world or to a body).
+ *
+ * Errors: `HEARTH_ERROR_NULL_POINTER`, `HEARTH_ERROR_INVALID_ID`,
+ * `HEARTH_ERROR_INVALID_ARGUMENT` (vertex out of range).
+ *
+ * # Safety
+ * `world` must be NULL or a live world; `out_pinned` NULL or writable.
+ */
+HearthResult hearth_soft_body_is_vertex_pinned(const struct HearthWorld *world,
+                                               struct HearthSoftBodyId soft_body,
+                                               uint32_t vertex,
+                                               bool *out_pinned);
+
+/**
+ * Applies an impulse (N·s) to one vertex: its velocity changes by `impulse / mass` at the
+ * start of the next step. A pinned vertex ignores it.
+ *
+ * Errors: `HEARTH_ERROR_NULL_POINTER`, `HEARTH_ERROR_INVALID_ID`,
+ * `HEARTH_ERROR_INVALID_ARGUMENT` (vertex out of range, NaN or infinite impulse),
+ * `HEARTH_ERROR_WORLD_LOCKED`.
+ *
+ * # Safety
+ * `world` must be NULL or a live world.
+ */
+HearthResult hearth_soft_body_apply_impulse(struct HearthWorld *world,
+                                            struct HearthSoftBodyId soft_body,
+                                            uint32_t vertex,
+                                            struct HearthVec3 impulse);
+
+/**
+ * Applies an impulse (N·s) to the whole soft body, spread over its vertices in
+ * proportion to mass: every vertex's velocity changes by `impulse / total mass` at the
+ * start of the next step (pinned vertices ignore it).
+ *
+ * Errors: `HEARTH_ERROR_NULL_POINTER`, `HEARTH_ERROR_INVALID_ID`,
+ * `HEARTH_ERROR_INVALID_ARGUMENT` (NaN or infinite), `HEARTH_ERROR_WORLD_LOCKED`.
+ *
+ * # Safety
+ * `world` must be NULL or a live world.
+ */
+HearthResult hearth_soft_body_apply_impulse_all(struct HearthWorld *world,
+                                                struct HearthSoftBodyId soft_body,
+                                                struct HearthVec3 impulse);
 
 /**
  * The default world settings: gravity (0, -9.81, 0), 6 sub-steps, sleep on.

@@ -151,7 +151,13 @@ fn run_program(exe: &Path) -> String {
     text
 }
 
-const PROGRAMS: &[&str] = &["test_api.c", "test_generators.c", "test_particles.c", "test_joints.c"];
+const PROGRAMS: &[&str] = &[
+    "test_api.c",
+    "test_generators.c",
+    "test_particles.c",
+    "test_joints.c",
+    "test_soft.c",
+];
 
 #[test]
 fn c_programs_pass_with_the_shared_library() {

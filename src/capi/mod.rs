@@ -8,6 +8,7 @@ pub mod generator;
 pub mod joint;
 pub mod particle;
 pub mod shape;
+pub mod soft;
 pub mod types;
 pub mod validate;
 pub mod world;
