@@ -161,11 +161,12 @@ impl Batches {
         let mut used = 0;
         for color in 0..COLORS {
             let members = &mut self.color_members[color];
-            // Like with like: lanes of a batch then share their point count and whether B is
-            // static.
+            // Like with like: lanes of a batch then share their point count, whether B is
+            // static, and whether they carried load (idle batches end their sweep early).
             members.sort_by_key(|&i| {
                 let c = &constraints[i as usize];
-                (c.count > 1, c.b != 0)
+                let loaded = c.points[..c.count].iter().any(|p| p.normal_impulse > 0.0);
+                (c.count > 1, c.b != 0, loaded)
             });
             for chunk in members.chunks(4) {
                 next_slot(&mut self.batches, used);
@@ -753,19 +754,30 @@ fn solve_batch<const N: usize, const SB: bool>(
         rhs[i] = F4::select(p.active, v, zero);
     }
     // Solve K e = −rhs for e ≥ −(1 − is)λ/ms, then Δλ = ms·e − is·λ (soft update).
+    // A batch touching without load, not approaching and without friction (side faces of
+    // neighbours) would change nothing: every impulse is zero and stays zero.
+    let mut idle = F4::splat(f32::from_bits(u32::MAX));
+    for (p, r) in w.points[..N].iter().zip(&rhs) {
+        idle = idle.and(p.impulse.le(zero)).and(r.ge(zero));
+    }
+    if idle.bits() == 0b1111 {
+        let f = &w.friction;
+        let still = f.tangent_impulse[0].ge(zero).and(f.tangent_impulse[0].le(zero));
+        let still = still
+            .and(f.tangent_impulse[1].ge(zero))
+            .and(f.tangent_impulse[1].le(zero));
+        let still = still.and(f.twist_impulse.ge(zero)).and(f.twist_impulse.le(zero));
+        if still.bits() == 0b1111 {
+            return;
+        }
+    }
     let mut delta = [zero; MAXP];
     if N == 1 {
         let p = &w.points[0];
         let new = (p.impulse - msp[0] * p.normal_mass * rhs[0] - isp[0] * p.impulse).max(zero);
         delta[0] = new - p.impulse;
     } else {
-        // Lanes touching without load and not approaching (side faces of neighbours) need
-        // nothing: every impulse is zero and stays zero.
-        let mut idle = F4::splat(f32::from_bits(u32::MAX));
-        for (p, r) in w.points[..N].iter().zip(&rhs) {
-            idle = idle.and(p.impulse.le(zero)).and(r.ge(zero));
-        }
-        // Exact solution with every point pushing: K e = −rhs, Δλ = ms·e − is·λ. (A clamped
+        // Idle lanes (see above) need nothing. Exact solution with every point pushing: K e = −rhs, Δλ = ms·e − is·λ. (A clamped
         // exact solution is no good start: K of four coplanar points is nearly singular and
         // its exact solution may hold large self-cancelling parts.)
         let mut ok = F4::splat(f32::from_bits(u32::MAX));
