@@ -774,20 +774,10 @@ pub unsafe extern "C" fn hearth_world_get_broken_joints(
         let w = world_ref(world)?;
         let count = validate::output(out_count, "out_count")?;
         let broken = w.broken_joints();
-        if capacity == 0 {
-            *count = broken.len();
-            return Ok(());
-        }
-        let out = validate::output(out_joints, "out_joints")?;
-        if capacity < broken.len() {
-            return Err(Failure::new(
-                HEARTH_ERROR_BUFFER_TOO_SMALL,
-                format!("{} broken joints, capacity {capacity}", broken.len()),
-            ));
-        }
-        let out = std::slice::from_raw_parts_mut(out, broken.len());
-        for (o, &h) in out.iter_mut().zip(broken) {
-            *o = h.into();
+        if let Some(out) = validate::counted_output(out_joints, capacity, broken.len(), "out_joints")? {
+            for (o, &h) in out.iter_mut().zip(broken) {
+                *o = h.into();
+            }
         }
         *count = broken.len();
         Ok(())

@@ -412,11 +412,8 @@ pub unsafe extern "C" fn hearth_particle_emit_burst(
             particle: particle_def(&d.particle)?,
         };
         burst.validate()?;
-        if !out_ids.is_null() && capacity < burst.count as usize {
-            return Err(Failure::new(
-                HEARTH_ERROR_BUFFER_TOO_SMALL,
-                format!("out_ids holds {capacity} ids, the burst emits {}", burst.count),
-            ));
+        if !out_ids.is_null() {
+            validate::capacity(capacity, burst.count as usize, "out_ids")?;
         }
         let mut k = 0usize;
         w.emit_burst_with(&burst, |h| {
@@ -474,12 +471,7 @@ pub unsafe extern "C" fn hearth_world_get_particles(
         let out_count = validate::output(out_count, "out_count")?;
         let p = &w.particles;
         let n = p.len();
-        if capacity < n {
-            return Err(Failure::new(
-                HEARTH_ERROR_BUFFER_TOO_SMALL,
-                format!("the arrays hold {capacity} particles, the world has {n}"),
-            ));
-        }
+        validate::capacity(capacity, n, "the particle arrays")?;
         if !out_ids.is_null() {
             let out = std::slice::from_raw_parts_mut(out_ids, n);
             for (o, h) in out.iter_mut().zip(&p.handle) {

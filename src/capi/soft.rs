@@ -444,18 +444,9 @@ unsafe fn bulk<T>(
         let count = validate::output(out_count, "out_count")?;
         let s = w.soft_body(soft_body.into())?;
         let n = len(s);
-        if capacity == 0 {
-            *count = n;
-            return Ok(());
+        if let Some(out) = validate::counted_output(out, capacity, n, what)? {
+            fill(s, out);
         }
-        let out = validate::output(out, what)?;
-        if capacity < n {
-            return Err(Failure::new(
-                HEARTH_ERROR_BUFFER_TOO_SMALL,
-                format!("{what} holds {capacity} elements, the soft body needs {n}"),
-            ));
-        }
-        fill(s, std::slice::from_raw_parts_mut(out, n));
         *count = n;
         Ok(())
     })

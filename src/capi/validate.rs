@@ -42,3 +42,35 @@ pub fn output<T>(ptr: *mut T, what: &str) -> Result<*mut T, Failure> {
         Ok(ptr)
     }
 }
+
+/// Fails with `HEARTH_ERROR_BUFFER_TOO_SMALL` (nothing written) when a caller-owned array of
+/// `capacity` elements cannot hold `needed`.
+pub fn capacity(capacity: usize, needed: usize, what: &str) -> Result<(), Failure> {
+    if capacity < needed {
+        return Err(Failure::new(
+            super::error::HEARTH_ERROR_BUFFER_TOO_SMALL,
+            format!("{what} holds {capacity} elements, {needed} are needed"),
+        ));
+    }
+    Ok(())
+}
+
+/// The count-then-fill protocol of bulk reads into a caller-owned array: `capacity == 0` only
+/// asks for the count (`None`); otherwise `out` must be non-NULL and hold `needed` elements,
+/// and the slice to fill is returned. Nothing is written on failure.
+///
+/// # Safety
+/// `out` must be NULL or writable for `capacity` elements.
+pub unsafe fn counted_output<'a, T>(
+    out: *mut T,
+    capacity: usize,
+    needed: usize,
+    what: &str,
+) -> Result<Option<&'a mut [T]>, Failure> {
+    if capacity == 0 {
+        return Ok(None);
+    }
+    let out = output(out, what)?;
+    self::capacity(capacity, needed, what)?;
+    Ok(Some(std::slice::from_raw_parts_mut(out, needed)))
+}
