@@ -10,8 +10,6 @@ use crate::shape::{Shape, ShapeDef};
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct PointImpulse {
     pub normal: f32,
-    /// Largest normal impulse of the last step (> 0 means the point really pushed).
-    pub max_normal: f32,
 }
 
 /// Friction of the whole contact patch, applied at the centroid of the manifold.

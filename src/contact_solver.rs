@@ -18,7 +18,6 @@ pub struct ConstraintPoint {
     /// Separation at the start of the step (m, negative when overlapping).
     pub separation0: f32,
     pub normal_impulse: f32,
-    pub max_normal_impulse: f32,
     /// Normal relative velocity before the solve (for restitution).
     pub relative_velocity: f32,
 }
@@ -159,7 +158,6 @@ pub fn prepare(world: &mut World) {
                 separation0: mp.separation,
                 normal_impulse: c.impulses[i].normal,
                 relative_velocity: dv.dot(n),
-                ..Default::default()
             };
         }
         centroid /= c.manifold.count as f32;
@@ -265,7 +263,6 @@ pub fn store_impulses(world: &mut World) {
         for (i, p) in c.points[..c.count].iter().enumerate() {
             let imp = &mut contact.impulses[i];
             imp.normal = p.normal_impulse;
-            imp.max_normal = p.max_normal_impulse;
         }
         contact.friction.tangent = c.friction_world();
         contact.friction.twist = c.friction.twist_impulse;

@@ -946,15 +946,13 @@ pub fn store(batches: &[WideContact], constraints: &mut [ContactConstraint]) {
             f.sliding.bits(),
         );
         let impulses: [[f32; 4]; MAXP] = std::array::from_fn(|p| w.points[p].impulse.to_array());
-        let maxes: [[f32; 4]; MAXP] = std::array::from_fn(|p| w.points[p].max_impulse.to_array());
         for lane in 0..4 {
             if w.src[lane] == EMPTY {
                 continue;
             }
             let c = &mut constraints[w.src[lane] as usize];
-            for p in 0..c.count {
-                c.points[p].normal_impulse = impulses[p][lane];
-                c.points[p].max_normal_impulse = maxes[p][lane];
+            for (point, lanes) in c.points[..c.count].iter_mut().zip(&impulses) {
+                point.normal_impulse = lanes[lane];
             }
             c.friction.tangent_impulse = [t0[lane], t1[lane]];
             c.friction.twist_impulse = tw[lane];

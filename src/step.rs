@@ -32,7 +32,6 @@ impl World {
         if dt == 0.0 {
             return Ok(false);
         }
-        self.step_index += 1;
         self.counters = Default::default();
         // 1. Start of frame: derived data is refreshed while the solver's body arrays are
         //    built (in `solve`).

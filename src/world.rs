@@ -122,7 +122,6 @@ pub struct World {
     pub(crate) scratch_wake: Vec<u32>,
     pub(crate) island_scratch: crate::island::IslandScratch,
     pub counters: StepCounters,
-    pub(crate) step_index: u64,
     /// Force and contact generators (issue 4, `generators/`).
     pub generators: Pool<crate::generators::Generator>,
     pub(crate) generator_scratch: crate::generators::forces::GeneratorScratch,
@@ -152,7 +151,6 @@ impl World {
             scratch_wake: Vec::new(),
             island_scratch: Default::default(),
             counters: StepCounters::default(),
-            step_index: 0,
             generators: Pool::new(tag),
             generator_scratch: Default::default(),
             particles: crate::particles::Particles::new(tag),
