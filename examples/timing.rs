@@ -1,8 +1,9 @@
 //! Quick wall-clock ms/step of the standard scenes, for development. The criterion benches in
 //! `benches/` are the record. `cargo run --release --example timing [filter]`; the settings
-//! can be varied with SUBSTEPS=n and ITERATIONS=n.
+//! can be varied with SUBSTEPS=n, ITERATIONS=n and LANES=4 (no AVX2), the run with STEPS=n (default 600) and
+//! SLEEP=0/1 (only the scenes with sleep off/on; for profilers such as callgrind).
 
-use hearth::{scenes, World, WorldSettings};
+use hearth::{scenes, LaneWidth, World, WorldSettings};
 use std::time::Instant;
 
 type Build = fn(&mut World);
@@ -25,21 +26,37 @@ fn main() {
     let settings = WorldSettings {
         substeps: env("SUBSTEPS", defaults.substeps),
         velocity_iterations: env("ITERATIONS", defaults.velocity_iterations),
+        lane_width: if env("LANES", 8) == 4 {
+            LaneWidth::Four
+        } else {
+            LaneWidth::Auto
+        },
         ..defaults
     };
-    for &(name, sleep, build) in SCENES.iter().filter(|s| s.0.contains(filter.as_str())) {
+    let steps = env("STEPS", 600);
+    let sleep_filter = std::env::var("SLEEP").ok().map(|v| v == "1");
+    // An exact scene name picks that scene alone; anything else is a substring filter.
+    let exact = SCENES.iter().any(|s| s.0 == filter);
+    let chosen = SCENES.iter().filter(|s| {
+        let name_ok = if exact {
+            s.0 == filter
+        } else {
+            s.0.contains(filter.as_str())
+        };
+        name_ok && sleep_filter.map_or(true, |f| f == s.1)
+    });
+    for &(name, sleep, build) in chosen {
         let mut w = World::new(WorldSettings {
             enable_sleep: sleep,
             ..settings
         })
         .unwrap();
         build(&mut w);
-        let steps = 600;
         let t = Instant::now();
         for _ in 0..steps {
             w.step(1.0 / 60.0).unwrap();
         }
-        let ms = t.elapsed().as_secs_f64() * 1000.0 / steps as f64;
+        let ms = t.elapsed().as_secs_f64() * 1000.0 / f64::from(steps);
         println!(
             "{name:<14} sleep {sleep:<5} {ms:8.3} ms/step  awake {:5} contacts {:6}",
             w.awake_body_count(),

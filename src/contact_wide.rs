@@ -19,7 +19,9 @@
 use crate::collision::MAX_MANIFOLD_POINTS;
 use crate::contact_solver::ContactConstraint;
 use crate::math::Vec3;
-use crate::simd::{self, load, transpose, F4, M4, V4};
+#[cfg(target_arch = "x86_64")]
+use crate::simd::F8;
+use crate::simd::{Lanes, F4, M, V};
 use crate::solver::{BodyState, Velocity};
 
 const MAXP: usize = MAX_MANIFOLD_POINTS;
@@ -40,93 +42,185 @@ const RIGID_PUSH: f32 = 0.3;
 const EMPTY: u32 = u32::MAX;
 
 #[derive(Clone, Copy, Default)]
-pub struct WidePoint {
+pub struct WidePoint<L> {
     /// Arms to the shapes' core points at the start of the step (they turn with the bodies);
     /// the contact point is the core point plus `oa` (resp. `ob`) along the normal.
-    ca0: V4,
-    cb0: V4,
-    separation0: F4,
+    ca0: V<L>,
+    cb0: V<L>,
+    separation0: L,
     /// All-ones in lanes where this point exists.
-    active: F4,
-    rna: V4,
-    rnb: V4,
-    ia: V4,
-    ib: V4,
-    separation: F4,
-    normal_mass: F4,
-    impulse: F4,
-    max_impulse: F4,
-    relative_velocity: F4,
+    active: L,
+    rna: V<L>,
+    rnb: V<L>,
+    ia: V<L>,
+    ib: V<L>,
+    separation: L,
+    normal_mass: L,
+    impulse: L,
+    max_impulse: L,
+    relative_velocity: L,
 }
 
 #[derive(Clone, Copy, Default)]
-pub struct WideFriction {
-    ca0: V4,
-    cb0: V4,
-    rta: [V4; 2],
-    rtb: [V4; 2],
-    ita: [V4; 2],
-    itb: [V4; 2],
-    ina: V4,
-    inb: V4,
-    tangent_mass: [F4; 2],
-    twist_mass: F4,
-    twist_radius: F4,
-    tangent_impulse: [F4; 2],
-    twist_impulse: F4,
-    sliding: F4,
+pub struct WideFriction<L> {
+    ca0: V<L>,
+    cb0: V<L>,
+    rta: [V<L>; 2],
+    rtb: [V<L>; 2],
+    ita: [V<L>; 2],
+    itb: [V<L>; 2],
+    ina: V<L>,
+    inb: V<L>,
+    tangent_mass: [L; 2],
+    twist_mass: L,
+    twist_radius: L,
+    tangent_impulse: [L; 2],
+    twist_impulse: L,
+    sliding: L,
 }
 
 #[derive(Clone, Copy, Default)]
-pub struct WideContact {
+pub struct WideContact<L: Lanes> {
     /// Solver state indices of the bodies; 0 is the static dummy.
-    a: [u32; 4],
-    b: [u32; 4],
+    a: L::Indices,
+    b: L::Indices,
     /// Index of each lane's scalar constraint, or `EMPTY`.
-    src: [u32; 4],
+    src: L::Indices,
     /// Largest point count of the lanes: 1, or 4 (missing points inactive).
     count: usize,
     /// Every lane's body B is the static dummy: B's half of the work is skipped.
     b_static: bool,
-    ma: F4,
-    mb: F4,
-    normal: V4,
+    ma: L,
+    mb: L,
+    normal: V<L>,
     /// Offsets from each core point to the contact point: `r_a·n` and `−r_b·n`.
-    oa: V4,
-    ob: V4,
+    oa: V<L>,
+    ob: V<L>,
     /// Where the contact point sits between the two bodies' contact points: 0 on A's, 1 on
     /// B's. A rounded surface defines where it touches now (a rolling sphere touches below its
     /// centre, whatever the ground's material point did); otherwise the midpoint.
-    at_b: F4,
-    tangents: [V4; 2],
-    static_friction: F4,
-    dynamic_friction: F4,
-    restitution: F4,
+    at_b: L,
+    tangents: [V<L>; 2],
+    static_friction: L,
+    dynamic_friction: L,
+    restitution: L,
     /// All-ones in lanes solved rigidly (see `ContactConstraint::rigid`).
-    rigid: F4,
+    rigid: L,
     /// The biased sweep's coefficients per lane, fixed for a step (`set_softness`): push-out
     /// rate, mass scale, impulse leak, and the part of its impulse a point keeps.
-    soft_rate: F4,
-    soft_ms: F4,
-    soft_is: F4,
-    soft_keep: F4,
+    soft_rate: L,
+    soft_ms: L,
+    soft_is: L,
+    soft_keep: L,
     has_restitution: bool,
-    points: [WidePoint; MAXP],
-    k: [[F4; MAXP]; MAXP],
-    k_inv: [[F4; MAXP]; MAXP],
-    friction: WideFriction,
+    points: [WidePoint<L>; MAXP],
+    k: [[L; MAXP]; MAXP],
+    k_inv: [[L; MAXP]; MAXP],
+    friction: WideFriction<L>,
+}
+
+/// How many constraints a batch solves at once.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum LaneWidth {
+    /// Eight (AVX2) where the CPU has AVX2, else four.
+    #[default]
+    Auto,
+    /// Four (SSE2 on x86_64).
+    Four,
+}
+
+/// The batches of one step, four or eight lanes wide.
+enum Lanesets {
+    Four(Vec<WideContact<F4>>),
+    #[cfg(target_arch = "x86_64")]
+    Eight(Vec<WideContact<F8>>),
+}
+
+/// Calls the pass `$f::<L>(batches, args…)` on the four-lane batches, or through its AVX2
+/// entry point in `eight` on the eight-lane ones. Results are bit for bit the same either way:
+/// a colour's constraints share no dynamic body, batches are homogeneous (see `build`), and
+/// every pass decides lane by lane.
+macro_rules! dispatch {
+    ($sets:expr, $f:ident($($arg:expr),*)) => {
+        match $sets {
+            Lanesets::Four(b) => $f::<F4>(b, $($arg),*),
+            // SAFETY: `Eight` batches exist only where AVX2 was detected (`Batches::new`).
+            #[cfg(target_arch = "x86_64")]
+            Lanesets::Eight(b) => unsafe { eight::$f(b, $($arg),*) },
+        }
+    };
+}
+
+/// The passes compiled for AVX2 on eight lanes: each entry point enables the feature and the
+/// generic pass (`#[inline(always)]`, like everything it calls) is compiled inside it.
+#[cfg(target_arch = "x86_64")]
+mod eight {
+    use super::*;
+
+    macro_rules! entry {
+        ($($name:ident($($p:ident: $t:ty),*);)*) => {$(
+            #[target_feature(enable = "avx2")]
+            pub unsafe fn $name(b: &mut Vec<WideContact<F8>>, $($p: $t),*) {
+                super::$name::<F8>(b, $($p),*)
+            }
+        )*};
+    }
+
+    entry! {
+        pack_all(members: &mut [Vec<u32>], singles: &[u32], constraints: &[ContactConstraint]);
+        set_softness_all(soft: &SoftSweep, inv_h: f32);
+        refresh_all(states: &[BodyState], first: bool);
+        warm_start_all(vel: &mut [Velocity]);
+        solve_all(vel: &mut [Velocity], inv_h: f32, forward: bool, bias: Option<&SoftSweep>);
+        restitution_all(vel: &mut [Velocity], threshold: f32);
+        store_all(constraints: &mut [ContactConstraint]);
+    }
 }
 
 /// Reused storage of the batched solver.
-#[derive(Default)]
 pub struct Batches {
-    pub batches: Vec<WideContact>,
+    sets: Lanesets,
     color_bits: Vec<Vec<u64>>,
     color_members: Vec<Vec<u32>>,
     singles: Vec<u32>,
 }
 
+impl Default for Batches {
+    fn default() -> Self {
+        Batches::new(LaneWidth::Auto)
+    }
+}
+
 impl Batches {
+    pub fn new(width: LaneWidth) -> Batches {
+        #[cfg(target_arch = "x86_64")]
+        let sets = if width == LaneWidth::Auto && std::arch::is_x86_feature_detected!("avx2") {
+            Lanesets::Eight(Vec::new())
+        } else {
+            Lanesets::Four(Vec::new())
+        };
+        #[cfg(not(target_arch = "x86_64"))]
+        let sets = {
+            let _ = width;
+            Lanesets::Four(Vec::new())
+        };
+        Batches {
+            sets,
+            color_bits: Vec::new(),
+            color_members: Vec::new(),
+            singles: Vec::new(),
+        }
+    }
+
+    /// Lanes per batch in use: 4 or 8.
+    pub fn lanes(&self) -> usize {
+        match &self.sets {
+            Lanesets::Four(_) => F4::N,
+            #[cfg(target_arch = "x86_64")]
+            Lanesets::Eight(_) => F8::N,
+        }
+    }
+
     /// Colours and packs `constraints` into batches. `states` gives inverse masses.
     pub fn build(&mut self, constraints: &[ContactConstraint], states: &[BodyState]) {
         let words = states.len().div_ceil(64);
@@ -157,58 +251,107 @@ impl Batches {
             }
             self.singles.push(ci as u32);
         }
-        // Batches are packed in place over last step's storage: no zeroing, no copies.
-        let mut used = 0;
-        for color in 0..COLORS {
-            let members = &mut self.color_members[color];
-            // Like with like: lanes of a batch then share their point count, whether B is
-            // static, and whether they carried load (idle batches end their sweep early).
-            members.sort_by_key(|&i| {
-                let c = &constraints[i as usize];
-                let loaded = c.points[..c.count].iter().any(|p| p.normal_impulse > 0.0);
-                (c.count > 1, c.b != 0, loaded)
-            });
-            for chunk in members.chunks(4) {
-                next_slot(&mut self.batches, used);
-                pack(&mut self.batches[used], chunk, constraints);
-                used += 1;
-            }
-        }
-        for &i in &self.singles {
-            next_slot(&mut self.batches, used);
-            pack(&mut self.batches[used], &[i], constraints);
-            used += 1;
-        }
-        self.batches.truncate(used);
+        dispatch!(
+            &mut self.sets,
+            pack_all(&mut self.color_members, &self.singles, constraints)
+        )
     }
 }
 
-fn next_slot(batches: &mut Vec<WideContact>, used: usize) {
+/// Point-count class and whether side B is static: a batch holds one kind only, so a
+/// constraint is solved the same way whatever its batch-mates (and the lane width).
+fn kind(c: &ContactConstraint) -> (bool, bool) {
+    (c.count > 1, c.b != 0)
+}
+
+/// Packs each colour's constraints, kind by kind, into batches of `L::N` lanes, then the
+/// constraints that fit no colour one per batch. Batches are packed in place over last step's
+/// storage: no zeroing, no copies.
+#[inline(always)]
+fn pack_all<L: Lanes + Default>(
+    batches: &mut Vec<WideContact<L>>,
+    members: &mut [Vec<u32>],
+    singles: &[u32],
+    constraints: &[ContactConstraint],
+) {
+    let mut used = 0;
+    for members in members.iter_mut() {
+        // Like with like: the kinds, then whether they carried load (idle batches end their
+        // sweep early).
+        members.sort_by_key(|&i| {
+            let c = &constraints[i as usize];
+            let loaded = c.points[..c.count].iter().any(|p| p.normal_impulse > 0.0);
+            (kind(c), loaded)
+        });
+        for group in members.chunk_by(|&x, &y| kind(&constraints[x as usize]) == kind(&constraints[y as usize])) {
+            for chunk in group.chunks(L::N) {
+                next_slot(batches, used);
+                pack(&mut batches[used], chunk, constraints);
+                used += 1;
+            }
+        }
+    }
+    for &i in singles {
+        next_slot(batches, used);
+        pack(&mut batches[used], &[i], constraints);
+        used += 1;
+    }
+    batches.truncate(used);
+}
+
+fn next_slot<L: Lanes + Default>(batches: &mut Vec<WideContact<L>>, used: usize) {
     if batches.len() == used {
         batches.push(WideContact::default());
     }
 }
 
-/// Packs up to four constraints into `w`, setting every field the passes read before they
-/// write it (the storage is reused from earlier steps).
-fn pack(w: &mut WideContact, lanes: &[u32], constraints: &[ContactConstraint]) {
-    // Stage each field per lane (empty lanes stay zero), then load the lanes at once.
-    #[derive(Default)]
-    struct Stage {
-        f: [[f32; 4]; 11],
-        v: [[Vec3; 4]; 7],
-        pf: [[[f32; 4]; 4]; MAXP],
-        pv: [[[Vec3; 4]; 2]; MAXP],
+/// Per-lane staging of a 3-vector field.
+#[derive(Clone, Copy, Default)]
+struct Stage3<A> {
+    x: A,
+    y: A,
+    z: A,
+}
+
+impl<A: AsMut<[f32]>> Stage3<A> {
+    #[inline(always)]
+    fn set(&mut self, lane: usize, v: Vec3) {
+        self.x.as_mut()[lane] = v.x;
+        self.y.as_mut()[lane] = v.y;
+        self.z.as_mut()[lane] = v.z;
     }
-    let mut st = Stage::default();
-    (w.a, w.b, w.src, w.count, w.has_restitution) = ([0; 4], [0; 4], [EMPTY; 4], 0, false);
-    let mut sliding = [0.0f32; 4];
+}
+
+impl<A> Stage3<A> {
+    #[inline(always)]
+    fn load<L: Lanes<Floats = A>>(&self) -> V<L> {
+        V {
+            x: L::load(&self.x),
+            y: L::load(&self.y),
+            z: L::load(&self.z),
+        }
+    }
+}
+
+/// Packs up to `L::N` constraints into `w`, setting every field the passes read before they
+/// write it (the storage is reused from earlier steps).
+#[inline(always)]
+fn pack<L: Lanes>(w: &mut WideContact<L>, lanes: &[u32], constraints: &[ContactConstraint]) {
+    // Stage each field per lane (empty lanes stay zero), then load the lanes at once.
+    let mut f = [L::Floats::default(); 11];
+    let mut v = [Stage3::<L::Floats>::default(); 7];
+    let mut pf = [[L::Floats::default(); 4]; MAXP];
+    let mut pv = [[Stage3::<L::Floats>::default(); 2]; MAXP];
+    let mut sliding = L::Floats::default();
+    let mut src = L::Indices::default();
+    src.as_mut().fill(EMPTY);
+    (w.a, w.b, w.src, w.count, w.has_restitution) = (L::Indices::default(), L::Indices::default(), src, 0, false);
     let on = f32::from_bits(u32::MAX);
     for (i, &k) in lanes.iter().enumerate() {
         let c = &constraints[k as usize];
-        w.a[i] = c.a;
-        w.b[i] = c.b;
-        w.src[i] = k;
+        w.a.as_mut()[i] = c.a;
+        w.b.as_mut()[i] = c.b;
+        w.src.as_mut()[i] = k;
         w.count = w.count.max(c.count);
         w.has_restitution |= c.restitution > 0.0;
         let (oa, ob) = (c.normal * c.radius_a, c.normal * -c.radius_b);
@@ -217,113 +360,119 @@ fn pack(w: &mut WideContact, lanes: &[u32], constraints: &[ContactConstraint]) {
             (false, true) => 1.0,
             _ => 0.5,
         };
-        let f = &c.friction;
-        for (slot, x) in st.f.iter_mut().zip([
+        let fr = &c.friction;
+        for (slot, x) in f.iter_mut().zip([
             c.ma,
             c.mb,
             at_b,
             c.static_friction,
             c.dynamic_friction,
             c.restitution,
-            f.twist_radius,
-            f.tangent_impulse[0],
-            f.tangent_impulse[1],
-            f.twist_impulse,
+            fr.twist_radius,
+            fr.tangent_impulse[0],
+            fr.tangent_impulse[1],
+            fr.twist_impulse,
             if c.rigid { on } else { 0.0 },
         ]) {
-            slot[i] = x;
+            slot.as_mut()[i] = x;
         }
-        for (slot, x) in
-            st.v.iter_mut()
-                .zip([c.normal, oa, ob, c.tangents[0], c.tangents[1], f.ra0 - oa, f.rb0 - ob])
+        for (slot, x) in v
+            .iter_mut()
+            .zip([c.normal, oa, ob, c.tangents[0], c.tangents[1], fr.ra0 - oa, fr.rb0 - ob])
         {
-            slot[i] = x;
+            slot.set(i, x);
         }
         for (p, cp) in c.points[..c.count].iter().enumerate() {
-            for (slot, x) in st.pf[p]
+            for (slot, x) in pf[p]
                 .iter_mut()
                 .zip([cp.separation0, on, cp.normal_impulse, cp.relative_velocity])
             {
-                slot[i] = x;
+                slot.as_mut()[i] = x;
             }
-            st.pv[p][0][i] = cp.ra0 - oa;
-            st.pv[p][1][i] = cp.rb0 - ob;
+            pv[p][0].set(i, cp.ra0 - oa);
+            pv[p][1].set(i, cp.rb0 - ob);
         }
-        if f.sliding {
-            sliding[i] = on;
+        if fr.sliding {
+            sliding.as_mut()[i] = on;
         }
     }
-    // Batches run as one-point or four-point manifolds (missing points are inactive).
+    // Batches run as one-point or four-point manifolds (missing points inactive).
     w.count = if w.count <= 1 { 1 } else { MAXP };
-    w.b_static = w.b.iter().all(|&b| b == 0);
-    let [ma, mb, at_b, fs, fd, e, twist_radius, t0, t1, twist, rigid] = st.f.map(F4::from_array);
+    w.b_static = w.b.as_ref().iter().all(|&b| b == 0);
+    let [ma, mb, at_b, fs, fd, e, twist_radius, t0, t1, twist, rigid] = load_all::<L, 11>(&f);
     w.rigid = rigid;
-    let [normal, oa, ob, tan0, tan1, fca0, fcb0] = st.v.map(V4::from_lanes);
+    let [normal, oa, ob, tan0, tan1, fca0, fcb0] = [0, 1, 2, 3, 4, 5, 6].map(|i| v[i].load::<L>());
     (w.ma, w.mb, w.at_b, w.static_friction, w.dynamic_friction, w.restitution) = (ma, mb, at_b, fs, fd, e);
     (w.normal, w.oa, w.ob, w.tangents) = (normal, oa, ob, [tan0, tan1]);
-    let f = &mut w.friction;
-    (f.ca0, f.cb0, f.twist_radius, f.tangent_impulse, f.twist_impulse) = (fca0, fcb0, twist_radius, [t0, t1], twist);
-    f.sliding = F4::from_array(sliding);
+    let fw = &mut w.friction;
+    (fw.ca0, fw.cb0, fw.twist_radius, fw.tangent_impulse, fw.twist_impulse) =
+        (fca0, fcb0, twist_radius, [t0, t1], twist);
+    fw.sliding = L::load(&sliding);
     for p in 0..w.count {
         let wp = &mut w.points[p];
-        let [sep0, active, impulse, rel] = st.pf[p].map(F4::from_array);
+        let [sep0, active, impulse, rel] = load_all::<L, 4>(&pf[p]);
         (wp.separation0, wp.active, wp.impulse, wp.relative_velocity) = (sep0, active, impulse, rel);
-        wp.max_impulse = F4::zero();
-        wp.ca0 = V4::from_lanes(st.pv[p][0]);
-        wp.cb0 = V4::from_lanes(st.pv[p][1]);
+        wp.max_impulse = L::zero();
+        wp.ca0 = pv[p][0].load::<L>();
+        wp.cb0 = pv[p][1].load::<L>();
     }
 }
 
-/// Four bodies' motion so far into lanes: translation, rotation and world inverse inertia.
+/// The lanes' bodies' motion so far: translation, rotation and world inverse inertia.
 #[inline(always)]
-fn gather_states(states: &[BodyState], idx: &[u32; 4]) -> (V4, M4, M4) {
-    let rows = idx.map(|i| &states[i as usize].rows);
-    let lanes = |r: usize| {
-        transpose([
-            load(&rows[0][r]),
-            load(&rows[1][r]),
-            load(&rows[2][r]),
-            load(&rows[3][r]),
-        ])
-    };
-    let v = |t: [F4; 4]| V4 {
-        x: t[0],
-        y: t[1],
-        z: t[2],
-    };
-    let dp = v(lanes(0));
-    let [x, y, z, w] = lanes(1);
+fn gather_states<L: Lanes>(states: &[BodyState], idx: &L::Indices) -> (V<L>, M<L>, M<L>) {
+    let dp = V::from_columns(state_rows(states, idx, 0));
+    let [x, y, z, w] = state_rows(states, idx, 1);
     (
         dp,
         rotation(x, y, z, w),
-        M4 {
-            c0: v(lanes(2)),
-            c1: v(lanes(3)),
-            c2: v(lanes(4)),
+        M {
+            c0: V::from_columns(state_rows(states, idx, 2)),
+            c1: V::from_columns(state_rows(states, idx, 3)),
+            c2: V::from_columns(state_rows(states, idx, 4)),
         },
     )
 }
 
-/// The rotation matrices of four unit quaternions.
+/// Row `r` of the lanes' body states, as four columns. (Helpers on the passes' paths are
+/// functions marked `#[inline(always)]`, never closures: a closure is compiled apart, without
+/// the AVX2 of the eight-lane entry points, and would call every intrinsic out of line.)
 #[inline(always)]
-fn rotation(x: F4, y: F4, z: F4, w: F4) -> M4 {
+fn state_rows<L: Lanes>(states: &[BodyState], idx: &L::Indices, r: usize) -> [L; 4] {
+    let idx = idx.as_ref();
+    L::gather(|i| &states[idx[i] as usize].rows[r])
+}
+
+/// Loads `K` staged fields.
+#[inline(always)]
+fn load_all<L: Lanes, const K: usize>(a: &[L::Floats; K]) -> [L; K] {
+    let mut out = [L::zero(); K];
+    for (o, x) in out.iter_mut().zip(a) {
+        *o = L::load(x);
+    }
+    out
+}
+
+/// The rotation matrices of unit quaternions.
+#[inline(always)]
+fn rotation<L: Lanes>(x: L, y: L, z: L, w: L) -> M<L> {
     let (x2, y2, z2) = (x + x, y + y, z + z);
     let (xx, xy, xz) = (x * x2, x * y2, x * z2);
     let (yy, yz, zz) = (y * y2, y * z2, z * z2);
     let (wx, wy, wz) = (w * x2, w * y2, w * z2);
-    let one = F4::splat(1.0);
-    M4 {
-        c0: V4 {
+    let one = L::one();
+    M {
+        c0: V {
             x: one - (yy + zz),
             y: xy + wz,
             z: xz - wy,
         },
-        c1: V4 {
+        c1: V {
             x: xy - wz,
             y: one - (xx + zz),
             z: yz + wx,
         },
-        c2: V4 {
+        c2: V {
             x: xz + wy,
             y: yz - wx,
             z: one - (xx + yy),
@@ -332,31 +481,11 @@ fn rotation(x: F4, y: F4, z: F4, w: F4) -> M4 {
 }
 
 #[inline(always)]
-fn gather(vel: &[Velocity], idx: &[u32; 4]) -> (V4, V4) {
-    let rows = idx.map(|i| vel[i as usize].rows());
-    let v = transpose([
-        load(&rows[0][0]),
-        load(&rows[1][0]),
-        load(&rows[2][0]),
-        load(&rows[3][0]),
-    ]);
-    let w = transpose([
-        load(&rows[0][1]),
-        load(&rows[1][1]),
-        load(&rows[2][1]),
-        load(&rows[3][1]),
-    ]);
+fn gather<L: Lanes>(vel: &[Velocity], idx: &L::Indices) -> (V<L>, V<L>) {
+    let idx = idx.as_ref();
     (
-        V4 {
-            x: v[0],
-            y: v[1],
-            z: v[2],
-        },
-        V4 {
-            x: w[0],
-            y: w[1],
-            z: w[2],
-        },
+        V::from_columns(L::gather(|i| &vel[idx[i] as usize].rows()[0])),
+        V::from_columns(L::gather(|i| &vel[idx[i] as usize].rows()[1])),
     )
 }
 
@@ -364,37 +493,37 @@ fn gather(vel: &[Velocity], idx: &[u32; 4]) -> (V4, V4) {
 /// velocity they gathered (their inverse mass and inertia are zero), and the colouring keeps
 /// the dynamic bodies of a batch distinct, so writing every lane is safe.
 #[inline(always)]
-fn scatter(vel: &mut [Velocity], idx: &[u32; 4], v: V4, w: V4) {
-    let zero = F4::zero();
-    let vr = transpose([v.x, v.y, v.z, zero]);
-    let wr = transpose([w.x, w.y, w.z, zero]);
-    for i in 0..4 {
-        let rows = vel[idx[i] as usize].rows_mut();
-        simd::store(vr[i], &mut rows[0]);
-        simd::store(wr[i], &mut rows[1]);
+fn scatter<L: Lanes>(vel: &mut [Velocity], idx: &L::Indices, v: V<L>, w: V<L>) {
+    let zero = L::zero();
+    let vr = L::scatter([v.x, v.y, v.z, zero]);
+    let wr = L::scatter([w.x, w.y, w.z, zero]);
+    for ((&i, v), w) in idx.as_ref().iter().zip(vr.as_ref()).zip(wr.as_ref()) {
+        let rows = vel[i as usize].rows_mut();
+        rows[0] = *v;
+        rows[1] = *w;
     }
 }
 
 #[inline(always)]
-fn safe_inverse(k: F4) -> F4 {
-    let ok = k.gt(F4::zero());
-    F4::select(ok, F4::splat(1.0).div(F4::select(ok, k, F4::splat(1.0))), F4::zero())
+fn safe_inverse<L: Lanes>(k: L) -> L {
+    let ok = k.gt(L::zero());
+    L::select(ok, L::one() / L::select(ok, k, L::one()), L::zero())
 }
 
 #[allow(clippy::needless_range_loop)] // index notation mirrors the matrix algebra
 /// Inverts each lane's K (symmetric positive definite after regularisation, identity rows
 /// for missing points) by Cholesky: K = L Lᵀ, K⁻¹ = L⁻ᵀ L⁻¹.
-fn invert_spd(k: &[[F4; MAXP]; MAXP], n: usize, out: &mut [[F4; MAXP]; MAXP]) {
-    let mut l = [[F4::zero(); MAXP]; MAXP];
-    let mut inv_diag = [F4::zero(); MAXP];
+fn invert_spd<L: Lanes>(k: &[[L; MAXP]; MAXP], n: usize, out: &mut [[L; MAXP]; MAXP]) {
+    let mut l = [[L::zero(); MAXP]; MAXP];
+    let mut inv_diag = [L::zero(); MAXP];
     for j in 0..n {
         let mut d = k[j][j];
         for p in 0..j {
             d = d - l[j][p] * l[j][p];
         }
-        let d = d.max(F4::splat(1e-20)).sqrt();
+        let d = d.max(L::splat(1e-20)).sqrt();
         l[j][j] = d;
-        inv_diag[j] = F4::splat(1.0) / d;
+        inv_diag[j] = L::splat(1.0) / d;
         for i in j + 1..n {
             let mut s = k[i][j];
             for p in 0..j {
@@ -404,11 +533,11 @@ fn invert_spd(k: &[[F4; MAXP]; MAXP], n: usize, out: &mut [[F4; MAXP]; MAXP]) {
         }
     }
     // L⁻¹ by forward substitution.
-    let mut li = [[F4::zero(); MAXP]; MAXP];
+    let mut li = [[L::zero(); MAXP]; MAXP];
     for i in 0..n {
         li[i][i] = inv_diag[i];
         for j in 0..i {
-            let mut s = F4::zero();
+            let mut s = L::zero();
             for p in j..i {
                 s = s + l[i][p] * li[p][j];
             }
@@ -417,7 +546,7 @@ fn invert_spd(k: &[[F4; MAXP]; MAXP], n: usize, out: &mut [[F4; MAXP]; MAXP]) {
     }
     for i in 0..n {
         for j in 0..=i {
-            let mut s = F4::zero();
+            let mut s = L::zero();
             for p in i..n {
                 s = s + li[p][i] * li[p][j];
             }
@@ -428,10 +557,10 @@ fn invert_spd(k: &[[F4; MAXP]; MAXP], n: usize, out: &mut [[F4; MAXP]; MAXP]) {
 }
 
 /// Offsets of the contact points from the core points, and where between them forces act.
-struct Geometry4 {
-    oa: V4,
-    ob: V4,
-    at_b: F4,
+struct Geometry<L> {
+    oa: V<L>,
+    ob: V<L>,
+    at_b: L,
 }
 
 /// Current lever arms and the gap between the two bodies' contact points. Core points (box
@@ -440,69 +569,76 @@ struct Geometry4 {
 /// A's contact point to B's), so equal and opposite impulses conserve angular momentum.
 #[inline(always)]
 #[allow(clippy::too_many_arguments)]
-fn arms(ca0: V4, cb0: V4, g: &Geometry4, dpa: V4, dpb: V4, rot_a: &M4, rot_b: &M4) -> (V4, V4, V4) {
+fn arms<L: Lanes>(
+    ca0: V<L>,
+    cb0: V<L>,
+    g: &Geometry<L>,
+    dpa: V<L>,
+    dpb: V<L>,
+    rot_a: &M<L>,
+    rot_b: &M<L>,
+) -> (V<L>, V<L>, V<L>) {
     let pra = rot_a.mul_vec(ca0) + g.oa;
     let prb = rot_b.mul_vec(cb0) + g.ob;
     let gap = ((ca0 + g.oa) - (cb0 + g.ob)) + (dpb - dpa) + (prb - pra);
     (
         pra.add_scaled(gap, g.at_b),
-        prb.add_scaled(gap, g.at_b - F4::splat(1.0)),
+        prb.add_scaled(gap, g.at_b - L::splat(1.0)),
         gap,
     )
 }
 
 /// Relative motion (m; rad counts as m of arm) since the start of the step below which a
-/// batch keeps the arms of its last full refresh and updates separations to first order.
+/// constraint keeps the arms of its last full refresh and updates separations to first order.
 const LIGHT_REFRESH_MOTION: f32 = 1.0e-3;
 
+pub fn refresh(states: &[BodyState], batches: &mut Batches, first: bool) {
+    dispatch!(&mut batches.sets, refresh_all(states, first))
+}
+
 /// Brings the constraints up to date with the motion so far. On the first sub-step (`first`):
-/// arms, Jacobians, effective masses, K and K⁻¹, separations. Later, a batch whose bodies
+/// arms, Jacobians, effective masses, K and K⁻¹, separations. Later, a constraint whose bodies
 /// moved less than `LIGHT_REFRESH_MOTION` relative to each other only updates separations
 /// (`s₀ + n·Δp + θ_B·(r_B×n) − θ_A·(r_A×n)`, exact to first order); others recompute their
-/// arms, so fast contacts keep impulses at one point and angular momentum exact.
-pub fn refresh(states: &[BodyState], batches: &mut [WideContact], first: bool) {
+/// arms, so fast contacts keep impulses at one point and angular momentum exact. The choice is
+/// made lane by lane.
+#[inline(always)]
+#[allow(clippy::ptr_arg)] // all passes take the storage `pack_all` grows (see `dispatch!`)
+fn refresh_all<L: Lanes>(batches: &mut Vec<WideContact<L>>, states: &[BodyState], first: bool) {
     for w in batches.iter_mut() {
         match (w.count == 1, w.b_static) {
-            (true, true) => refresh_batch::<1, true>(states, w, first),
-            (true, false) => refresh_batch::<1, false>(states, w, first),
-            (false, true) => refresh_batch::<MAXP, true>(states, w, first),
-            (false, false) => refresh_batch::<MAXP, false>(states, w, first),
+            (true, true) => refresh_batch::<L, 1, true>(states, w, first),
+            (true, false) => refresh_batch::<L, 1, false>(states, w, first),
+            (false, true) => refresh_batch::<L, MAXP, true>(states, w, first),
+            (false, false) => refresh_batch::<L, MAXP, false>(states, w, first),
         }
     }
 }
 
-/// First-order separation update for a batch whose bodies barely moved relative to each
-/// other; false (and nothing changed) when some lane moved too much.
+/// The lanes whose bodies barely moved relative to each other, with their first-order
+/// separations written; the other lanes' separations are left alone.
 #[inline(always)]
-fn light_refresh<const N: usize, const SB: bool>(states: &[BodyState], w: &mut WideContact) -> bool {
-    let motion = |idx: &[u32; 4]| {
-        let rows = idx.map(|i| &states[i as usize].rows);
-        let lanes = |r: usize| {
-            let t = transpose([
-                load(&rows[0][r]),
-                load(&rows[1][r]),
-                load(&rows[2][r]),
-                load(&rows[3][r]),
-            ]);
-            V4 {
-                x: t[0],
-                y: t[1],
-                z: t[2],
-            }
-        };
-        (lanes(0), lanes(5))
+fn light_refresh<L: Lanes, const N: usize, const SB: bool>(states: &[BodyState], w: &mut WideContact<L>) -> L {
+    let (dpa, tha) = (
+        V::from_columns(state_rows::<L>(states, &w.a, 0)),
+        V::from_columns(state_rows::<L>(states, &w.a, 5)),
+    );
+    let (dpb, thb) = if SB {
+        (V::zero(), V::zero())
+    } else {
+        (
+            V::from_columns(state_rows::<L>(states, &w.b, 0)),
+            V::from_columns(state_rows::<L>(states, &w.b, 5)),
+        )
     };
-    let (dpa, tha) = motion(&w.a);
-    let (dpb, thb) = if SB { (V4::zero(), V4::zero()) } else { motion(&w.b) };
     let d = dpb - dpa;
-    let tol2 = F4::splat(LIGHT_REFRESH_MOTION * LIGHT_REFRESH_MOTION);
-    if d.length_squared()
-        .gt(tol2)
-        .or((tha.length_squared() + thb.length_squared()).gt(tol2))
-        .bits()
-        != 0
-    {
-        return false;
+    let tol2 = L::splat(LIGHT_REFRESH_MOTION * LIGHT_REFRESH_MOTION);
+    let light = d
+        .length_squared()
+        .le(tol2)
+        .and((tha.length_squared() + thb.length_squared()).le(tol2));
+    if light.bits() == 0 {
+        return light;
     }
     let nd = w.normal.dot(d);
     for p in w.points[..N].iter_mut() {
@@ -510,45 +646,52 @@ fn light_refresh<const N: usize, const SB: bool>(states: &[BodyState], w: &mut W
         if !SB {
             s = s + thb.dot(p.rnb);
         }
-        p.separation = s;
+        p.separation = L::select(light, s, p.separation);
     }
-    true
+    light
 }
 
 /// `refresh` for one batch of `N`-point manifolds (1, or 4 with missing points inactive).
+/// `block`: the first sub-step, which also builds K and K⁻¹.
 #[inline(always)]
-fn refresh_batch<const N: usize, const SB: bool>(states: &[BodyState], w: &mut WideContact, block: bool) {
-    if !block && light_refresh::<N, SB>(states, w) {
+fn refresh_batch<L: Lanes, const N: usize, const SB: bool>(states: &[BodyState], w: &mut WideContact<L>, block: bool) {
+    // Lanes that keep their arms (`light_refresh` updated their separations).
+    let keep = if block {
+        L::zero()
+    } else {
+        light_refresh::<L, N, SB>(states, w)
+    };
+    if keep.bits() == L::ALL {
         return;
     }
     let (dpa, rot_a, ia) = gather_states(states, &w.a);
     let (dpb, rot_b, ib) = if SB {
-        (V4::zero(), M4::IDENTITY, M4::default())
+        (V::zero(), M::identity(), M::zero())
     } else {
         gather_states(states, &w.b)
     };
     let n = w.normal;
     let m = w.ma + w.mb;
-    let g = Geometry4 {
+    let g = Geometry {
         oa: w.oa,
         ob: w.ob,
         at_b: w.at_b,
     };
     for p in w.points[..N].iter_mut() {
         let (ra, rb, gap) = arms(p.ca0, p.cb0, &g, dpa, dpb, &rot_a, &rot_b);
-        p.separation = p.separation0 + gap.dot(n);
-        p.rna = ra.cross(n);
-        p.ia = ia.mul_vec(p.rna);
+        p.separation = L::select(keep, p.separation, p.separation0 + gap.dot(n));
+        p.rna = V::select(keep, p.rna, ra.cross(n));
+        p.ia = V::select(keep, p.ia, ia.mul_vec(p.rna));
         let mut k = m + p.rna.dot(p.ia);
         if !SB {
-            p.rnb = rb.cross(n);
-            p.ib = ib.mul_vec(p.rnb);
+            p.rnb = V::select(keep, p.rnb, rb.cross(n));
+            p.ib = V::select(keep, p.ib, ib.mul_vec(p.rnb));
             k = k + p.rnb.dot(p.ib);
         }
-        p.normal_mass = F4::select(p.active, safe_inverse(k), F4::zero());
+        p.normal_mass = L::select(keep, p.normal_mass, L::select(p.active, safe_inverse(k), L::zero()));
     }
     if block && N > 1 {
-        let one = F4::splat(1.0);
+        let one = L::one();
         for i in 0..N {
             for j in i..N {
                 let (pi, pj) = (&w.points[i], &w.points[j]);
@@ -558,9 +701,9 @@ fn refresh_batch<const N: usize, const SB: bool>(states: &[BodyState], w: &mut W
                     kij = kij + pi.rnb.dot(pj.ib);
                 }
                 if i == j {
-                    w.k[i][i] = F4::select(both, kij, one);
+                    w.k[i][i] = L::select(both, kij, one);
                 } else {
-                    let v = F4::select(both, kij, F4::zero());
+                    let v = L::select(both, kij, L::zero());
                     w.k[i][j] = v;
                     w.k[j][i] = v;
                 }
@@ -568,7 +711,7 @@ fn refresh_batch<const N: usize, const SB: bool>(states: &[BodyState], w: &mut W
         }
         let mut reg = w.k;
         for (i, row) in reg.iter_mut().enumerate().take(N) {
-            row[i] = row[i] * F4::splat(1.0 + BLOCK_REGULARIZATION);
+            row[i] = row[i] * L::splat(1.0 + BLOCK_REGULARIZATION);
         }
         invert_spd(&reg, N, &mut w.k_inv);
     }
@@ -576,25 +719,25 @@ fn refresh_batch<const N: usize, const SB: bool>(states: &[BodyState], w: &mut W
     let (ra, rb, _) = arms(f.ca0, f.cb0, &g, dpa, dpb, &rot_a, &rot_b);
     for k in 0..2 {
         let t = w.tangents[k];
-        f.rta[k] = ra.cross(t);
-        f.ita[k] = ia.mul_vec(f.rta[k]);
+        f.rta[k] = V::select(keep, f.rta[k], ra.cross(t));
+        f.ita[k] = V::select(keep, f.ita[k], ia.mul_vec(f.rta[k]));
         let mut km = m + f.rta[k].dot(f.ita[k]);
         if !SB {
-            f.rtb[k] = rb.cross(t);
-            f.itb[k] = ib.mul_vec(f.rtb[k]);
+            f.rtb[k] = V::select(keep, f.rtb[k], rb.cross(t));
+            f.itb[k] = V::select(keep, f.itb[k], ib.mul_vec(f.rtb[k]));
             km = km + f.rtb[k].dot(f.itb[k]);
         }
-        f.tangent_mass[k] = safe_inverse(km);
+        f.tangent_mass[k] = L::select(keep, f.tangent_mass[k], safe_inverse(km));
     }
     // One-point manifolds have no twist lever (the radius is zero).
     if N > 1 {
-        f.ina = ia.mul_vec(n);
+        f.ina = V::select(keep, f.ina, ia.mul_vec(n));
         let mut kt = n.dot(f.ina);
         if !SB {
-            f.inb = ib.mul_vec(n);
+            f.inb = V::select(keep, f.inb, ib.mul_vec(n));
             kt = kt + n.dot(f.inb);
         }
-        f.twist_mass = safe_inverse(kt);
+        f.twist_mass = L::select(keep, f.twist_mass, safe_inverse(kt));
     }
 }
 
@@ -602,24 +745,30 @@ fn refresh_batch<const N: usize, const SB: bool>(states: &[BodyState], w: &mut W
 /// variant when a body has infinite mass), or for rigid lanes the full response, no leak and a
 /// fast push-out (a fraction of the sub-step rate; the relax sweep removes the push velocity)
 /// so a rod keeps its length while it swings.
-pub fn set_softness(batches: &mut [WideContact], soft: &SoftSweep, inv_h: f32) {
-    let (zero, one) = (F4::zero(), F4::splat(1.0));
+pub fn set_softness(batches: &mut Batches, soft: &SoftSweep, inv_h: f32) {
+    dispatch!(&mut batches.sets, set_softness_all(soft, inv_h))
+}
+
+#[inline(always)]
+#[allow(clippy::ptr_arg)] // all passes take the storage `pack_all` grows (see `dispatch!`)
+fn set_softness_all<L: Lanes>(batches: &mut Vec<WideContact<L>>, soft: &SoftSweep, inv_h: f32) {
+    let (zero, one) = (L::zero(), L::one());
     for w in batches.iter_mut() {
         let dynamic = w.ma.gt(zero).and(w.mb.gt(zero));
-        let pick = |d: f32, s: f32| F4::select(dynamic, F4::splat(d), F4::splat(s));
-        let rate = pick(soft.soft.bias_rate, soft.soft_static.bias_rate);
-        let ms = pick(soft.soft.mass_scale, soft.soft_static.mass_scale);
-        let is = pick(soft.soft.impulse_scale, soft.soft_static.impulse_scale);
-        w.soft_rate = F4::select(w.rigid, F4::splat(RIGID_PUSH * inv_h), rate);
-        w.soft_ms = F4::select(w.rigid, one, ms);
-        w.soft_is = F4::select(w.rigid, zero, is);
+        let (d, s) = (&soft.soft, &soft.soft_static);
+        let rate = L::select(dynamic, L::splat(d.bias_rate), L::splat(s.bias_rate));
+        let ms = L::select(dynamic, L::splat(d.mass_scale), L::splat(s.mass_scale));
+        let is = L::select(dynamic, L::splat(d.impulse_scale), L::splat(s.impulse_scale));
+        w.soft_rate = L::select(w.rigid, L::splat(RIGID_PUSH * inv_h), rate);
+        w.soft_ms = L::select(w.rigid, one, ms);
+        w.soft_is = L::select(w.rigid, zero, is);
         w.soft_keep = (one - w.soft_is) / w.soft_ms;
     }
 }
 
 /// Relative velocity along `d` with angular Jacobians `ja`, `jb`.
 #[inline(always)]
-fn rel<const SB: bool>(va: V4, wa: V4, vb: V4, wb: V4, d: V4, ja: V4, jb: V4) -> F4 {
+fn rel<L: Lanes, const SB: bool>(va: V<L>, wa: V<L>, vb: V<L>, wb: V<L>, d: V<L>, ja: V<L>, jb: V<L>) -> L {
     if SB {
         -(d.dot(va) + wa.dot(ja))
     } else {
@@ -627,26 +776,32 @@ fn rel<const SB: bool>(va: V4, wa: V4, vb: V4, wb: V4, d: V4, ja: V4, jb: V4) ->
     }
 }
 
-pub fn warm_start(vel: &mut [Velocity], batches: &[WideContact]) {
-    for w in batches {
+pub fn warm_start(vel: &mut [Velocity], batches: &mut Batches) {
+    dispatch!(&mut batches.sets, warm_start_all(vel))
+}
+
+#[inline(always)]
+#[allow(clippy::ptr_arg)] // all passes take the storage `pack_all` grows (see `dispatch!`)
+fn warm_start_all<L: Lanes>(batches: &mut Vec<WideContact<L>>, vel: &mut [Velocity]) {
+    for w in batches.iter() {
         match (w.count == 1, w.b_static) {
-            (true, true) => warm_start_batch::<1, true>(vel, w),
-            (true, false) => warm_start_batch::<1, false>(vel, w),
-            (false, true) => warm_start_batch::<MAXP, true>(vel, w),
-            (false, false) => warm_start_batch::<MAXP, false>(vel, w),
+            (true, true) => warm_start_batch::<L, 1, true>(vel, w),
+            (true, false) => warm_start_batch::<L, 1, false>(vel, w),
+            (false, true) => warm_start_batch::<L, MAXP, true>(vel, w),
+            (false, false) => warm_start_batch::<L, MAXP, false>(vel, w),
         }
     }
 }
 
 #[inline(always)]
-fn warm_start_batch<const N: usize, const SB: bool>(vel: &mut [Velocity], w: &WideContact) {
+fn warm_start_batch<L: Lanes, const N: usize, const SB: bool>(vel: &mut [Velocity], w: &WideContact<L>) {
     let (mut va, mut wa) = gather(vel, &w.a);
-    let mut lin = w.normal.scale(sum_impulses::<N>(w));
+    let mut lin = w.normal.scale(sum_impulses::<L, N>(w));
     let f = &w.friction;
     let (mut ang_a, mut ang_b) = if N > 1 {
         (f.ina.scale(f.twist_impulse), f.inb.scale(f.twist_impulse))
     } else {
-        (V4::zero(), V4::zero())
+        (V::zero(), V::zero())
     };
     for p in &w.points[..N] {
         ang_a = ang_a.add_scaled(p.ia, p.impulse);
@@ -673,8 +828,8 @@ fn warm_start_batch<const N: usize, const SB: bool>(vel: &mut [Velocity], w: &Wi
 }
 
 #[inline(always)]
-fn sum_impulses<const N: usize>(w: &WideContact) -> F4 {
-    w.points[..N].iter().fold(F4::zero(), |s, p| s + p.impulse)
+fn sum_impulses<L: Lanes, const N: usize>(w: &WideContact<L>) -> L {
+    w.points[..N].iter().fold(L::zero(), |s, p| s + p.impulse)
 }
 
 /// One sweep over real velocities: block-solved normal impulses (speculative points may close
@@ -694,36 +849,44 @@ pub struct SoftSweep {
 #[allow(clippy::needless_range_loop)] // index notation mirrors the matrix algebra
 /// One sweep: soft and biased (`Some`), or rigid without bias (`None`, the relax sweep).
 /// Speculative points (positive separation) may close their gap within the sub-step, no more.
-pub fn solve(vel: &mut [Velocity], batches: &mut [WideContact], inv_h: f32, forward: bool, bias: Option<&SoftSweep>) {
+pub fn solve(vel: &mut [Velocity], batches: &mut Batches, inv_h: f32, forward: bool, bias: Option<&SoftSweep>) {
+    dispatch!(&mut batches.sets, solve_all(vel, inv_h, forward, bias))
+}
+
+#[inline(always)]
+#[allow(clippy::ptr_arg)] // all passes take the storage `pack_all` grows (see `dispatch!`)
+fn solve_all<L: Lanes>(
+    batches: &mut Vec<WideContact<L>>,
+    vel: &mut [Velocity],
+    inv_h: f32,
+    forward: bool,
+    bias: Option<&SoftSweep>,
+) {
     for w in batches.iter_mut() {
         match (w.count == 1, w.b_static) {
-            (true, true) => solve_batch::<1, true>(vel, w, inv_h, forward, bias),
-            (true, false) => solve_batch::<1, false>(vel, w, inv_h, forward, bias),
-            (false, true) => solve_batch::<MAXP, true>(vel, w, inv_h, forward, bias),
-            (false, false) => solve_batch::<MAXP, false>(vel, w, inv_h, forward, bias),
+            (true, true) => solve_batch::<L, 1, true>(vel, w, inv_h, forward, bias),
+            (true, false) => solve_batch::<L, 1, false>(vel, w, inv_h, forward, bias),
+            (false, true) => solve_batch::<L, MAXP, true>(vel, w, inv_h, forward, bias),
+            (false, false) => solve_batch::<L, MAXP, false>(vel, w, inv_h, forward, bias),
         }
     }
 }
 
 #[allow(clippy::needless_range_loop)] // index notation mirrors the matrix algebra
 #[inline(always)]
-fn solve_batch<const N: usize, const SB: bool>(
+fn solve_batch<L: Lanes, const N: usize, const SB: bool>(
     vel: &mut [Velocity],
-    w: &mut WideContact,
+    w: &mut WideContact<L>,
     inv_h: f32,
     forward: bool,
     bias: Option<&SoftSweep>,
 ) {
-    let zero = F4::zero();
-    let one = F4::splat(1.0);
-    let inv_h = F4::splat(inv_h);
+    let zero = L::zero();
+    let one = L::splat(1.0);
+    let inv_h = L::splat(inv_h);
     let (mut va, mut wa) = gather(vel, &w.a);
     // A static B has no velocity and never moves.
-    let (mut vb, mut wb) = if SB {
-        (V4::zero(), V4::zero())
-    } else {
-        gather(vel, &w.b)
-    };
+    let (mut vb, mut wb) = if SB { (V::zero(), V::zero()) } else { gather(vel, &w.b) };
     let n = w.normal;
     // Per lane: the biased sweep's coefficients (see `set_softness`), or rigid without bias
     // for the relax sweep.
@@ -733,8 +896,8 @@ fn solve_batch<const N: usize, const SB: bool>(
             w.soft_ms,
             w.soft_is,
             w.soft_keep,
-            F4::splat(-b.max_push),
-            F4::splat(b.slop),
+            L::splat(-b.max_push),
+            L::splat(b.slop),
         ),
         None => (zero, one, zero, one, zero, zero),
     };
@@ -746,28 +909,28 @@ fn solve_batch<const N: usize, const SB: bool>(
         let p = &w.points[i];
         let spec = p.separation.gt(zero);
         let push = (rate * (p.separation + slop).min(zero)).max(max_push);
-        let b = F4::select(spec, p.separation * inv_h, push);
-        msp[i] = F4::select(spec, one, ms);
-        isp[i] = F4::select(spec, zero, is);
-        kp[i] = F4::select(spec, one, keep);
-        let v = rel::<SB>(va, wa, vb, wb, n, p.rna, p.rnb) + b;
-        rhs[i] = F4::select(p.active, v, zero);
+        let b = L::select(spec, p.separation * inv_h, push);
+        msp[i] = L::select(spec, one, ms);
+        isp[i] = L::select(spec, zero, is);
+        kp[i] = L::select(spec, one, keep);
+        let v = rel::<L, SB>(va, wa, vb, wb, n, p.rna, p.rnb) + b;
+        rhs[i] = L::select(p.active, v, zero);
     }
     // Solve K e = −rhs for e ≥ −(1 − is)λ/ms, then Δλ = ms·e − is·λ (soft update).
     // A batch touching without load, not approaching and without friction (side faces of
     // neighbours) would change nothing: every impulse is zero and stays zero.
-    let mut idle = F4::splat(f32::from_bits(u32::MAX));
+    let mut idle = L::splat(f32::from_bits(u32::MAX));
     for (p, r) in w.points[..N].iter().zip(&rhs) {
         idle = idle.and(p.impulse.le(zero)).and(r.ge(zero));
     }
-    if idle.bits() == 0b1111 {
+    if idle.bits() == L::ALL {
         let f = &w.friction;
         let still = f.tangent_impulse[0].ge(zero).and(f.tangent_impulse[0].le(zero));
         let still = still
             .and(f.tangent_impulse[1].ge(zero))
             .and(f.tangent_impulse[1].le(zero));
         let still = still.and(f.twist_impulse.ge(zero)).and(f.twist_impulse.le(zero));
-        if still.bits() == 0b1111 {
+        if still.bits() == L::ALL {
             return;
         }
     }
@@ -780,7 +943,7 @@ fn solve_batch<const N: usize, const SB: bool>(
         // Idle lanes (see above) need nothing. Exact solution with every point pushing: K e = −rhs, Δλ = ms·e − is·λ. (A clamped
         // exact solution is no good start: K of four coplanar points is nearly singular and
         // its exact solution may hold large self-cancelling parts.)
-        let mut ok = F4::splat(f32::from_bits(u32::MAX));
+        let mut ok = L::splat(f32::from_bits(u32::MAX));
         let mut lower = [zero; MAXP];
         for i in 0..N {
             let mut d = zero;
@@ -790,11 +953,11 @@ fn solve_batch<const N: usize, const SB: bool>(
             let p = &w.points[i];
             // e may not go below this, or the point would pull.
             lower[i] = -(kp[i] * p.impulse);
-            let e = F4::select(idle, zero, d);
+            let e = L::select(idle, zero, d);
             ok = ok.and(e.ge(lower[i]));
             delta[i] = msp[i] * e - isp[i] * p.impulse;
         }
-        if ok.bits() != 0b1111 {
+        if ok.bits() != L::ALL {
             // Some lane has a point that would pull: projected Gauss–Seidel on K there.
             let mut e = [zero; MAXP];
             for it in 0..BLOCK_ITERATIONS {
@@ -805,16 +968,16 @@ fn solve_batch<const N: usize, const SB: bool>(
                         r = r + w.k[i][j] * e[j];
                     }
                     let p = &w.points[i];
-                    e[i] = F4::select(p.active, (e[i] - p.normal_mass * r).max(lower[i]), zero);
+                    e[i] = L::select(p.active, (e[i] - p.normal_mass * r).max(lower[i]), zero);
                 }
             }
             for i in 0..N {
                 let soft = msp[i] * e[i] - isp[i] * w.points[i].impulse;
-                delta[i] = F4::select(ok, delta[i], soft);
+                delta[i] = L::select(ok, delta[i], soft);
             }
         }
     }
-    let (mut lin, mut ang_a, mut ang_b, mut total) = (zero, V4::zero(), V4::zero(), zero);
+    let (mut lin, mut ang_a, mut ang_b, mut total) = (zero, V::zero(), V::zero(), zero);
     for (p, d) in w.points[..N].iter_mut().zip(delta) {
         p.impulse = p.impulse + d;
         p.max_impulse = p.max_impulse.max(d);
@@ -837,7 +1000,7 @@ fn solve_batch<const N: usize, const SB: bool>(
     let old = f.tangent_impulse;
     let mut new = [zero; 2];
     for k in 0..2 {
-        let vt = rel::<SB>(va, wa, vb, wb, w.tangents[k], f.rta[k], f.rtb[k]);
+        let vt = rel::<L, SB>(va, wa, vb, wb, w.tangents[k], f.rta[k], f.rtb[k]);
         new[k] = old[k] - f.tangent_mass[k] * vt;
     }
     let old_twist = f.twist_impulse;
@@ -850,23 +1013,19 @@ fn solve_batch<const N: usize, const SB: bool>(
     // Stick or slide is decided per step from the tangential speed at its start (see
     // `prepare`): deciding mid-step would latch on the transient before the normal impulse
     // has built up.
-    let limit = F4::select(f.sliding, w.dynamic_friction, w.static_friction) * total;
+    let limit = L::select(f.sliding, w.dynamic_friction, w.static_friction) * total;
     let over = len2.gt(limit * limit);
-    let scale = F4::select(
-        over,
-        limit / F4::select(over, len2, F4::splat(1.0)).sqrt(),
-        F4::splat(1.0),
-    );
+    let scale = L::select(over, limit / L::select(over, len2, L::splat(1.0)).sqrt(), L::splat(1.0));
     new[0] = new[0] * scale;
     new[1] = new[1] * scale;
     let twist_limit = limit * f.twist_radius;
     let twist = twist.min(twist_limit).max(-twist_limit);
     let d_twist = twist - old_twist;
-    let mut lin = V4::zero();
+    let mut lin = V::zero();
     let (mut ang_a, mut ang_b) = if N > 1 {
         (f.ina.scale(d_twist), f.inb.scale(d_twist))
     } else {
-        (V4::zero(), V4::zero())
+        (V::zero(), V::zero())
     };
     for k in 0..2 {
         let d = new[k] - old[k];
@@ -890,36 +1049,39 @@ fn solve_batch<const N: usize, const SB: bool>(
 
 /// Bounces: points that approached faster than `threshold` and pushed leave at −e times their
 /// approach speed.
-pub fn restitution(vel: &mut [Velocity], batches: &mut [WideContact], threshold: f32) {
+pub fn restitution(vel: &mut [Velocity], batches: &mut Batches, threshold: f32) {
+    dispatch!(&mut batches.sets, restitution_all(vel, threshold))
+}
+
+#[inline(always)]
+#[allow(clippy::ptr_arg)] // all passes take the storage `pack_all` grows (see `dispatch!`)
+fn restitution_all<L: Lanes>(batches: &mut Vec<WideContact<L>>, vel: &mut [Velocity], threshold: f32) {
     for w in batches.iter_mut().filter(|w| w.has_restitution) {
         if w.b_static {
-            restitution_batch::<true>(vel, w, threshold);
+            restitution_batch::<L, true>(vel, w, threshold);
         } else {
-            restitution_batch::<false>(vel, w, threshold);
+            restitution_batch::<L, false>(vel, w, threshold);
         }
     }
 }
 
-fn restitution_batch<const SB: bool>(vel: &mut [Velocity], w: &mut WideContact, threshold: f32) {
-    let zero = F4::zero();
+fn restitution_batch<L: Lanes, const SB: bool>(vel: &mut [Velocity], w: &mut WideContact<L>, threshold: f32) {
+    let zero = L::zero();
     let (mut va, mut wa) = gather(vel, &w.a);
-    let (mut vb, mut wb) = if SB {
-        (V4::zero(), V4::zero())
-    } else {
-        gather(vel, &w.b)
-    };
+    let (mut vb, mut wb) = if SB { (V::zero(), V::zero()) } else { gather(vel, &w.b) };
     let n = w.normal;
     for p in w.points[..w.count].iter_mut() {
         let bounce = p
             .active
-            .and((-p.relative_velocity).gt(F4::splat(threshold)))
+            .and(w.restitution.gt(zero))
+            .and((-p.relative_velocity).gt(L::splat(threshold)))
             .and(p.max_impulse.gt(zero));
         if bounce.bits() == 0 {
             continue;
         }
-        let vn = rel::<SB>(va, wa, vb, wb, n, p.rna, p.rnb);
+        let vn = rel::<L, SB>(va, wa, vb, wb, n, p.rna, p.rnb);
         let new = (p.impulse - p.normal_mass * (vn + w.restitution * p.relative_velocity)).max(zero);
-        let d = F4::select(bounce, new - p.impulse, zero);
+        let d = L::select(bounce, new - p.impulse, zero);
         p.impulse = p.impulse + d;
         p.max_impulse = p.max_impulse.max(d);
         va = va.add_scaled(n, -(w.ma * d));
@@ -936,26 +1098,35 @@ fn restitution_batch<const SB: bool>(vel: &mut [Velocity], w: &mut WideContact, 
 }
 
 /// Writes each lane's impulses back to its scalar constraint.
-pub fn store(batches: &[WideContact], constraints: &mut [ContactConstraint]) {
-    for w in batches {
+pub fn store(batches: &mut Batches, constraints: &mut [ContactConstraint]) {
+    dispatch!(&mut batches.sets, store_all(constraints))
+}
+
+#[inline(always)]
+#[allow(clippy::ptr_arg)] // all passes take the storage `pack_all` grows (see `dispatch!`)
+fn store_all<L: Lanes>(batches: &mut Vec<WideContact<L>>, constraints: &mut [ContactConstraint]) {
+    for w in batches.iter() {
         let f = &w.friction;
         let (t0, t1, tw, sl) = (
-            f.tangent_impulse[0].to_array(),
-            f.tangent_impulse[1].to_array(),
-            f.twist_impulse.to_array(),
+            f.tangent_impulse[0].to_floats(),
+            f.tangent_impulse[1].to_floats(),
+            f.twist_impulse.to_floats(),
             f.sliding.bits(),
         );
-        let impulses: [[f32; 4]; MAXP] = std::array::from_fn(|p| w.points[p].impulse.to_array());
-        for lane in 0..4 {
-            if w.src[lane] == EMPTY {
+        let mut impulses = [L::Floats::default(); MAXP];
+        for (i, p) in impulses.iter_mut().zip(&w.points) {
+            *i = p.impulse.to_floats();
+        }
+        for (lane, &src) in w.src.as_ref().iter().enumerate() {
+            if src == EMPTY {
                 continue;
             }
-            let c = &mut constraints[w.src[lane] as usize];
+            let c = &mut constraints[src as usize];
             for (point, lanes) in c.points[..c.count].iter_mut().zip(&impulses) {
-                point.normal_impulse = lanes[lane];
+                point.normal_impulse = lanes.as_ref()[lane];
             }
-            c.friction.tangent_impulse = [t0[lane], t1[lane]];
-            c.friction.twist_impulse = tw[lane];
+            c.friction.tangent_impulse = [t0.as_ref()[lane], t1.as_ref()[lane]];
+            c.friction.twist_impulse = tw.as_ref()[lane];
             c.friction.sliding = sl & (1 << lane) != 0;
         }
     }

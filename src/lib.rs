@@ -33,5 +33,5 @@ pub use error::{Error, Result};
 pub use joints::{JointDef, JointHandle, JointKind};
 pub use math::{Quat, Transform, Vec3};
 pub use shape::{Geometry, ShapeDef};
-pub use world::{Integrator, World, WorldSettings};
+pub use world::{Integrator, LaneWidth, World, WorldSettings};
 pub mod capi;

@@ -395,7 +395,7 @@ pub fn solve(world: &mut World, dt: f32) {
     }
     scratch.batches.build(&scratch.constraints, &scratch.states);
     let (vel, states, sims) = (&mut scratch.vel, &mut scratch.states, &scratch.sims);
-    let batches = &mut scratch.batches.batches;
+    let batches = &mut scratch.batches;
     let inv_h = 1.0 / h;
     // Contacts stiffer than a quarter of the sub-step rate make Gauss–Seidel unstable.
     let hertz = settings.contact_hertz.min(0.25 / h);

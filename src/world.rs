@@ -4,6 +4,8 @@
 use crate::body::{Body, BodyDef, BodyHandle, BodyType, ShapeHandle, NONE};
 use crate::broad_phase::BroadPhase;
 use crate::contact::Contact;
+use crate::contact_wide::Batches;
+pub use crate::contact_wide::LaneWidth;
 use crate::error::{check_non_negative, check_positive, check_vec, invalid, Error, Result};
 use crate::math::{Transform, Vec3};
 use crate::pool::{next_world_tag, Handle, Pool};
@@ -45,6 +47,9 @@ pub struct WorldSettings {
     pub linear_slop: f32,
     /// Fastest speed a body may reach (m/s).
     pub max_linear_speed: f32,
+    /// Contact constraints solved at once: eight where the CPU has AVX2 (`Auto`), or four.
+    /// Results are bit for bit the same either way.
+    pub lane_width: LaneWidth,
 }
 
 impl Default for WorldSettings {
@@ -63,6 +68,7 @@ impl Default for WorldSettings {
             restitution_threshold: 1.0,
             linear_slop: 0.0002,
             max_linear_speed: 400.0,
+            lane_width: LaneWidth::Auto,
         }
     }
 }
@@ -146,7 +152,10 @@ impl World {
             awake_bodies: Vec::new(),
             awake_contacts: Vec::new(),
             islands: Pool::new(tag),
-            solver: SolverScratch::default(),
+            solver: SolverScratch {
+                batches: Batches::new(settings.lane_width),
+                ..SolverScratch::default()
+            },
             generated_contacts: Vec::new(),
             scratch_wake: Vec::new(),
             island_scratch: Default::default(),
@@ -683,6 +692,11 @@ impl World {
     /// Number of awake bodies (kinematic and dynamic).
     pub fn awake_body_count(&self) -> usize {
         self.awake_bodies.len()
+    }
+
+    /// Contact constraints the solver handles at once (4, or 8 with AVX2).
+    pub fn contact_lanes(&self) -> usize {
+        self.solver.batches.lanes()
     }
 
     pub fn contact_count(&self) -> usize {

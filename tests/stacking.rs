@@ -303,11 +303,16 @@ fn every_overlapping_pair_has_a_contact_like_brute_force() {
 fn pile_hash(steps: usize) -> u64 {
     let mut w = scenes::world(true);
     let ids = scenes::pile(&mut w, 400);
+    run_hash(&mut w, &ids, steps)
+}
+
+/// Steps `w` and hashes the bits of every body's transform.
+fn run_hash(w: &mut World, ids: &[BodyHandle], steps: usize) -> u64 {
     for _ in 0..steps {
         w.step(DT).unwrap();
     }
     let mut h: u64 = 0xcbf29ce484222325;
-    for &b in &ids {
+    for &b in ids {
         let t = w.transform(b).unwrap();
         for x in [t.p.x, t.p.y, t.p.z, t.q.x, t.q.y, t.q.z, t.q.w] {
             h = (h ^ x.to_bits() as u64).wrapping_mul(0x100000001b3);
@@ -319,4 +324,34 @@ fn pile_hash(steps: usize) -> u64 {
 #[test]
 fn same_calls_give_bit_identical_results() {
     assert_eq!(pile_hash(240), pile_hash(240));
+}
+
+#[cfg(target_arch = "x86_64")]
+/// Eight-lane (AVX2) and four-lane batches solve each constraint bit for bit alike: a pile
+/// (spheres and boxes, walls, one- and four-point manifolds, static and dynamic partners) and
+/// a pyramid (light refresh, block solve) end in identical states.
+#[test]
+fn eight_and_four_lane_batches_give_bit_identical_results() {
+    let run = |width: hearth::LaneWidth, scene: fn(&mut World) -> Vec<BodyHandle>| {
+        let mut w = World::new(hearth::WorldSettings {
+            lane_width: width,
+            ..hearth::WorldSettings::default()
+        })
+        .unwrap();
+        let ids = scene(&mut w);
+        (run_hash(&mut w, &ids, 180), w.contact_lanes())
+    };
+    let pile: fn(&mut World) -> Vec<BodyHandle> = |w| scenes::pile(w, 400);
+    let pyramid: fn(&mut World) -> Vec<BodyHandle> = |w| scenes::pyramid(w, 8);
+    for scene in [pile, pyramid] {
+        let (four, lanes4) = run(hearth::LaneWidth::Four, scene);
+        let (auto, lanes) = run(hearth::LaneWidth::Auto, scene);
+        assert_eq!(lanes4, 4);
+        if !std::arch::is_x86_feature_detected!("avx2") {
+            eprintln!("no AVX2 on this CPU: only the four-lane path ran");
+            continue;
+        }
+        assert_eq!(lanes, 8);
+        assert_eq!(four, auto, "eight-lane results differ from four-lane ones");
+    }
 }
