@@ -68,6 +68,21 @@ namespace Hearth
     /// </summary>
     public sealed class GeneratorCall
     {
+        // Field offsets of HearthGeneratorContext, read one by one so that a call allocates nothing.
+        private static readonly int DtOffset = (int)Marshal.OffsetOf(typeof(GeneratorContext), "Dt");
+        private static readonly int BodiesOffset = (int)Marshal.OffsetOf(typeof(GeneratorContext), "Bodies");
+        private static readonly int BodyCountOffset = (int)Marshal.OffsetOf(typeof(GeneratorContext), "BodyCount");
+        private static readonly int ParticlesOffset = (int)Marshal.OffsetOf(typeof(GeneratorContext), "Particles");
+        private static readonly int ParticleCountOffset = (int)Marshal.OffsetOf(typeof(GeneratorContext), "ParticleCount");
+
+        // Reinterprets the bits of a float (BitConverter.Int32BitsToSingle is not in every profile).
+        [StructLayout(LayoutKind.Explicit)]
+        private struct FloatBits
+        {
+            [FieldOffset(0)] public int Bits;
+            [FieldOffset(0)] public float Value;
+        }
+
         private readonly World world;
         private readonly GeneratorId generator;
         private GeneratorContext context;
@@ -81,7 +96,14 @@ namespace Hearth
 
         internal void Enter(IntPtr nativeContext)
         {
-            context = (GeneratorContext)Marshal.PtrToStructure(nativeContext, typeof(GeneratorContext));
+            context.Generator = generator;
+            var dt = new FloatBits();
+            dt.Bits = Marshal.ReadInt32(nativeContext, DtOffset);
+            context.Dt = dt.Value;
+            context.Bodies = Marshal.ReadIntPtr(nativeContext, BodiesOffset);
+            context.BodyCount = (UIntPtr)(ulong)(long)Marshal.ReadIntPtr(nativeContext, BodyCountOffset);
+            context.Particles = Marshal.ReadIntPtr(nativeContext, ParticlesOffset);
+            context.ParticleCount = (UIntPtr)(ulong)(long)Marshal.ReadIntPtr(nativeContext, ParticleCountOffset);
             active = true;
         }
 
@@ -212,6 +234,7 @@ namespace Hearth
         private readonly Dictionary<GeneratorId, Registration> registrations = new Dictionary<GeneratorId, Registration>();
         private ExceptionDispatchInfo callbackException;
         private int stepDepth;
+        private bool disposed; // set at once, while the handle may stay open until a running step returns
 
         /// <summary>A world with the library's default settings.</summary>
         public World() : this(WorldDef.Default()) { }
@@ -235,7 +258,7 @@ namespace Hearth
         {
             get
             {
-                if (handle.IsClosed)
+                if (disposed || handle.IsClosed)
                 {
                     throw new ObjectDisposedException("Hearth.World");
                 }
@@ -244,7 +267,7 @@ namespace Hearth
         }
 
         /// <summary>True after Dispose.</summary>
-        public bool IsDisposed { get { return handle.IsClosed; } }
+        public bool IsDisposed { get { return disposed || handle.IsClosed; } }
 
         /// <summary>Number of user generators whose callbacks this world keeps alive.</summary>
         public int RegisteredCallbackCount { get { return registrations.Count; } }
@@ -255,6 +278,7 @@ namespace Hearth
         /// </summary>
         public void Dispose()
         {
+            disposed = true;
             handle.Dispose();
             if (stepDepth == 0)
             {
@@ -289,7 +313,7 @@ namespace Hearth
             finally
             {
                 stepDepth--;
-                if (stepDepth == 0 && handle.IsClosed)
+                if (stepDepth == 0 && disposed)
                 {
                     registrations.Clear(); // Dispose was called from a callback
                 }

@@ -615,6 +615,37 @@ internal static class HearthTests
         }
     }
 
+    // Dispose from inside a callback: the native world outlives the running step (the
+    // SafeHandle is in use by it) and is destroyed when the step returns.
+    private static void TestDisposeInsideACallback()
+    {
+        var world = new World();
+        Body box = DynamicBox(world, new Vec3(0f, 5f, 0f), 0.5f);
+        int calls = 0;
+        Generator g = world.CreateUserForceGenerator(call =>
+        {
+            calls++;
+            call.World.Dispose();
+        });
+        g.AttachBody(box);
+        WorldHandle handle = world.Handle;
+        world.Step(Dt);
+        Equal(calls, 1, "callback ran");
+        Ensure(world.IsDisposed, "disposed");
+        Ensure(handle.IsClosed, "native world destroyed once the step returned");
+        Equal(world.RegisteredCallbackCount, 0, "callbacks released after the step");
+        Throws<ObjectDisposedException>(() => world.Step(Dt), "no more steps");
+
+        // An exception after the Dispose in the same callback still reaches the caller.
+        var second = new World();
+        second.CreateUserForceGenerator(call =>
+        {
+            call.World.Dispose();
+            call.World.Gravity = Vec3.Zero;
+        });
+        Throws<ObjectDisposedException>(() => second.Step(Dt), "use after Dispose inside the callback");
+    }
+
     // A contact generator holds a sphere on an invisible floor at y = 1.
     private static void TestContactGeneratorMakesAFloor()
     {
@@ -971,6 +1002,7 @@ internal static class HearthTests
             new KeyValuePair<string, Action>("force generator makes a body hover", TestForceGeneratorMakesABodyHover),
             new KeyValuePair<string, Action>("callback exception is rethrown from Step", TestCallbackExceptionIsRethrownFromStep),
             new KeyValuePair<string, Action>("generator call only valid inside the callback", TestGeneratorCallIsOnlyValidInsideTheCallback),
+            new KeyValuePair<string, Action>("dispose inside a callback", TestDisposeInsideACallback),
             new KeyValuePair<string, Action>("contact generator makes a floor", TestContactGeneratorMakesAFloor),
             new KeyValuePair<string, Action>("built-in generators", TestBuiltInGenerators),
             new KeyValuePair<string, Action>("joints", TestJoints),
