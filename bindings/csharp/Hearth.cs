@@ -704,7 +704,8 @@ namespace Hearth
         /// <summary>
         /// hearth_world_get_particles: every live particle's id, position and velocity (each
         /// array optional) in one call, the same order in all three; returns the count. Each
-        /// given array must hold at least ParticleCount elements (else BufferTooSmall).
+        /// given array must hold at least ParticleCount elements (else BufferTooSmall); with
+        /// no array, or only empty ones, it returns the count (hearth_world_get_particle_count).
         /// </summary>
         public int GetParticles(ParticleId[] ids, Vec3[] positions, Vec3[] velocities)
         {
@@ -712,7 +713,10 @@ namespace Hearth
             if (ids != null) capacity = Math.Min(capacity, ids.Length);
             if (positions != null) capacity = Math.Min(capacity, positions.Length);
             if (velocities != null) capacity = Math.Min(capacity, velocities.Length);
-            if (capacity == int.MaxValue) capacity = 0;
+            if (capacity == int.MaxValue || capacity == 0)
+            {
+                return ParticleCount; // the C function has no count-only mode
+            }
             UIntPtr count;
             Check(Native.hearth_world_get_particles(Handle, ids, positions, velocities, (UIntPtr)(uint)capacity, out count), "hearth_world_get_particles");
             return (int)(ulong)count;

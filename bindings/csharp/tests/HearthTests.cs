@@ -865,6 +865,7 @@ internal static class HearthTests
                 Equal(velocities[i], q.Velocity, "bulk velocity " + i);
             }
             Equal(world.GetParticles(null, positions, null), 33, "positions only");
+            Equal(world.GetParticles(null, null, null), 33, "count only");
             Fails(Result.BufferTooSmall, () => world.GetParticles(new ParticleId[3], null, null), "ids array too small");
             var byId = new Vec3[ids.Length];
             world.GetParticlePositions(ids, byId);
