@@ -1,0 +1,1031 @@
+// HearthTests.cs - tests of the C# binding against the real library: a console program with
+// its own small assert helpers. Exits with 1 if any test failed.
+//
+//   mono HearthTests.exe [layout.txt]
+//
+// layout.txt (written by a C program that tests/bindings_csharp.rs generates from
+// include/hearth.h) lists the size and field offsets of every struct and the value of every
+// constant as the C compiler sees them; the layout test compares them with the binding's.
+
+using System;
+using System.Collections.Generic;
+using System.Globalization;
+using System.IO;
+using System.Reflection;
+using System.Runtime.InteropServices;
+using Hearth;
+
+internal sealed class TestFailure : Exception
+{
+    public TestFailure(string message) : base(message) { }
+}
+
+internal static class HearthTests
+{
+    private const float Dt = 1.0f / 60.0f;
+    private static string layoutPath;
+    private static int checks;
+
+    // ---- assert helpers ---------------------------------------------------------------------
+
+    private static void Ensure(bool condition, string what)
+    {
+        checks++;
+        if (!condition)
+        {
+            throw new TestFailure(what);
+        }
+    }
+
+    private static void Near(float actual, float expected, float tolerance, string what)
+    {
+        Ensure(Math.Abs(actual - expected) <= tolerance,
+            string.Format(CultureInfo.InvariantCulture, "{0}: {1} is not within {2} of {3}", what, actual, tolerance, expected));
+    }
+
+    private static void Near(Vec3 actual, Vec3 expected, float tolerance, string what)
+    {
+        Ensure((actual - expected).Length <= tolerance,
+            string.Format(CultureInfo.InvariantCulture, "{0}: {1} is not within {2} of {3}", what, actual, tolerance, expected));
+    }
+
+    private static void Equal<T>(T actual, T expected, string what)
+    {
+        Ensure(EqualityComparer<T>.Default.Equals(actual, expected), what + ": got " + actual + ", expected " + expected);
+    }
+
+    /// <summary>Runs action, which must throw HearthException with code expected; returns it.</summary>
+    private static HearthException Fails(Result expected, Action action, string what)
+    {
+        try
+        {
+            action();
+        }
+        catch (HearthException e)
+        {
+            Equal(e.Result, expected, what + ": result");
+            Equal(e.ResultName, Native.ResultName(expected), what + ": result name");
+            Ensure(e.Detail.Length > 0, what + ": the exception carries the library's detail message");
+            Ensure(e.Message.Contains(e.Detail) && e.Message.Contains(e.ResultName), what + ": message " + e.Message);
+            return e;
+        }
+        throw new TestFailure(what + ": no HearthException (expected " + expected + ")");
+    }
+
+    private static T Throws<T>(Action action, string what) where T : Exception
+    {
+        try
+        {
+            action();
+        }
+        catch (T e)
+        {
+            checks++;
+            return e;
+        }
+        throw new TestFailure(what + ": no " + typeof(T).Name);
+    }
+
+    // ---- scene helpers ------------------------------------------------------------------------
+
+    private static Body Ground(World world)
+    {
+        Body ground = world.CreateBody(BodyDef.Default());
+        ground.CreatePlane(new Plane(new Vec3(0f, 1f, 0f), 0f));
+        return ground;
+    }
+
+    private static Body DynamicBox(World world, Vec3 position, float halfExtent)
+    {
+        Body body = world.CreateBody(BodyType.Dynamic, position);
+        body.CreateBox(new Box(new Vec3(halfExtent, halfExtent, halfExtent)));
+        return body;
+    }
+
+    private static Body DynamicSphere(World world, Vec3 position, float radius)
+    {
+        Body body = world.CreateBody(BodyType.Dynamic, position);
+        body.CreateSphere(new Sphere(Vec3.Zero, radius));
+        return body;
+    }
+
+    private static void Run(World world, int steps)
+    {
+        for (int i = 0; i < steps; i++)
+        {
+            world.Step(Dt);
+        }
+    }
+
+    // ---- layout, version, defaults ----------------------------------------------------------
+
+    private static string Pascal(string snake)
+    {
+        var parts = snake.Split('_');
+        var result = "";
+        foreach (var p in parts)
+        {
+            result += char.ToUpperInvariant(p[0]) + p.Substring(1);
+        }
+        return result;
+    }
+
+    private static Type BindingType(string cName)
+    {
+        Ensure(cName.StartsWith("Hearth", StringComparison.Ordinal), "C type name " + cName);
+        Type t = typeof(World).Assembly.GetType("Hearth." + cName.Substring("Hearth".Length));
+        Ensure(t != null, "the binding has no type for " + cName);
+        return t;
+    }
+
+    // The C# value of a HEARTH_* constant: an enum member or a Native constant.
+    private static long ConstantValue(string cName)
+    {
+        var families = new[]
+        {
+            new KeyValuePair<string, Type>("HEARTH_ERROR_", typeof(Result)),
+            new KeyValuePair<string, Type>("HEARTH_BODY_", typeof(BodyType)),
+            new KeyValuePair<string, Type>("HEARTH_GENERATOR_", typeof(GeneratorType)),
+            new KeyValuePair<string, Type>("HEARTH_JOINT_", typeof(JointType)),
+            new KeyValuePair<string, Type>("HEARTH_INTEGRATOR_", typeof(Integrator)),
+        };
+        if (cName == "HEARTH_OK")
+        {
+            return (long)Result.Ok;
+        }
+        foreach (var f in families)
+        {
+            if (cName.StartsWith(f.Key, StringComparison.Ordinal))
+            {
+                string member = Pascal(cName.Substring(f.Key.Length).ToLowerInvariant());
+                Ensure(Enum.IsDefined(f.Value, member), f.Value.Name + " has no member " + member + " for " + cName);
+                return Convert.ToInt64(Enum.Parse(f.Value, member), CultureInfo.InvariantCulture);
+            }
+        }
+        if (cName.StartsWith("HEARTH_VERSION_", StringComparison.Ordinal))
+        {
+            string field = "Version" + Pascal(cName.Substring("HEARTH_VERSION_".Length).ToLowerInvariant());
+            FieldInfo fi = typeof(Native).GetField(field);
+            Ensure(fi != null, "Native has no constant " + field + " for " + cName);
+            return Convert.ToInt64(fi.GetValue(null), CultureInfo.InvariantCulture);
+        }
+        throw new TestFailure("no C# counterpart known for the constant " + cName + " (extend the binding and this map)");
+    }
+
+    private static void TestLayoutMatchesC()
+    {
+        Ensure(layoutPath != null, "layout.txt path given on the command line");
+        int sizes = 0, offsets = 0, constants = 0;
+        foreach (string line in File.ReadAllLines(layoutPath))
+        {
+            string[] w = line.Split(' ');
+            if (w[0] == "size")
+            {
+                Type t = BindingType(w[1]);
+                Equal(Marshal.SizeOf(t), int.Parse(w[2], CultureInfo.InvariantCulture), "sizeof(" + w[1] + ")");
+                sizes++;
+            }
+            else if (w[0] == "offset")
+            {
+                Type t = BindingType(w[1]);
+                string field = Pascal(w[2]);
+                Ensure(t.GetField(field) != null, w[1] + "." + w[2] + " has no field " + field + " in " + t.Name);
+                Equal((int)Marshal.OffsetOf(t, field), int.Parse(w[3], CultureInfo.InvariantCulture), "offsetof(" + w[1] + ", " + w[2] + ")");
+                offsets++;
+            }
+            else if (w[0] == "const")
+            {
+                Equal(ConstantValue(w[1]), long.Parse(w[2], CultureInfo.InvariantCulture), w[1]);
+                constants++;
+            }
+        }
+        Ensure(sizes >= 30 && offsets >= 200 && constants >= 20, "layout.txt has " + sizes + " sizes, " + offsets + " offsets, " + constants + " constants");
+        // Every struct field of the binding is in the C layout too (no extra fields).
+        foreach (string line in File.ReadAllLines(layoutPath))
+        {
+            string[] w = line.Split(' ');
+            if (w[0] == "size")
+            {
+                Type t = BindingType(w[1]);
+                int fields = t.GetFields(BindingFlags.Public | BindingFlags.NonPublic | BindingFlags.Instance).Length;
+                int cFields = 0;
+                foreach (string l in File.ReadAllLines(layoutPath))
+                {
+                    if (l.StartsWith("offset " + w[1] + " ", StringComparison.Ordinal)) cFields++;
+                }
+                Equal(fields, cFields, "field count of " + t.Name);
+            }
+        }
+        Console.WriteLine("    layout: {0} struct sizes, {1} field offsets, {2} constants match C", sizes, offsets, constants);
+    }
+
+    private static void TestVersionAndResultNames()
+    {
+        Equal(Native.hearth_version(), Native.Version, "library version == binding's header version");
+        Equal(Native.ResultName(Result.Ok), "HEARTH_OK", "name of Ok");
+        Equal(Native.ResultName(Result.InvalidId), "HEARTH_ERROR_INVALID_ID", "name of InvalidId");
+        Equal(Native.ResultName(Result.BufferTooSmall), "HEARTH_ERROR_BUFFER_TOO_SMALL", "name of BufferTooSmall");
+        Equal(Native.ResultName((Result)12345), "HEARTH_ERROR_UNKNOWN", "name of an unknown code");
+        foreach (Result r in Enum.GetValues(typeof(Result)))
+        {
+            Ensure(Native.ResultName(r).StartsWith("HEARTH_", StringComparison.Ordinal), "name of " + r);
+        }
+    }
+
+    // Struct returns of every size class (12 bytes in registers up to large ones in memory)
+    // arrive with the documented defaults.
+    private static void TestDefaultsComeFromTheLibrary()
+    {
+        WorldDef w = WorldDef.Default();
+        Near(w.Gravity, new Vec3(0f, -9.81f, 0f), 0f, "world gravity");
+        Equal(w.Substeps, 6u, "world substeps");
+        Equal((bool)w.EnableSleep, true, "world sleep");
+        Equal(w.Integrator, Integrator.SemiImplicitEuler, "world integrator");
+        Ensure(w.InternalValue != 0, "world def cookie set");
+        BodyDef b = BodyDef.Default();
+        Equal(b.Type, BodyType.Static, "body type");
+        Equal(b.Transform, Transform.Identity, "body transform");
+        Equal((bool)b.AllowSleep, true, "body allow sleep");
+        Equal(b.GravityScale, 1f, "body gravity scale");
+        ShapeDef s = ShapeDef.Default();
+        Equal(s.Density, 1000f, "shape density");
+        Near(s.StaticFriction, 0.6f, 1e-6f, "shape friction");
+        DragGeneratorDef d = DragGeneratorDef.Default();
+        Near(d.K1, 0.1f, 1e-7f, "drag k1");
+        Near(d.K2, 0.01f, 1e-8f, "drag k2");
+        Near(GravityGeneratorDef.Default().Acceleration, new Vec3(0f, -9.81f, 0f), 0f, "gravity generator");
+        Equal(UserContactGeneratorDef.Default().Capacity, 16u, "contact generator capacity");
+        Equal(UserForceGeneratorDef.Default().Callback, IntPtr.Zero, "force generator callback");
+        Equal(SpringGeneratorDef.Default().RestLength, 1f, "spring rest length");
+        Equal(StiffSpringGeneratorDef.Default().Stiffness, 1000f, "stiff spring stiffness");
+        Equal(BuoyancyGeneratorDef.Default().LiquidDensity, 1000f, "buoyancy liquid density");
+        Equal(ExplosionGeneratorDef.Default().MaxRadius, 20f, "explosion max radius");
+        Equal(RodGeneratorDef.Default().Length, 1f, "rod length");
+        Equal(CableGeneratorDef.Default().MaxLength, 1f, "cable length");
+        Near(BallJointDef.Default().SwingLimit, (float)Math.PI / 4f, 1e-6f, "ball swing limit");
+        Equal(BallJointDef.Default().Base.BreakForce, float.MaxValue, "joint break force");
+        Near(HingeJointDef.Default().Upper, (float)Math.PI / 2f, 1e-6f, "hinge upper");
+        Ensure(FixedJointDef.Default().InternalValue != 0, "fixed joint cookie");
+        Equal(DistanceJointDef.Default().MaxLength, 1e6f, "distance max length");
+        Equal(SliderJointDef.Default().Lower, -1f, "slider lower");
+        ParticleDef p = ParticleDef.Default();
+        Equal(p.InverseMass, 1f, "particle inverse mass");
+        Equal(p.Radius, 0.05f, "particle radius");
+        Ensure(float.IsPositiveInfinity(p.Lifetime), "particle lives forever");
+        BurstDef burst = BurstDef.Default();
+        Equal(burst.Count, 16u, "burst count");
+        Equal(burst.Seed, 1UL, "burst seed");
+        Equal(burst.Particle.Radius, 0.05f, "burst particle radius");
+        SoftBodyDef soft = SoftBodyDef.Default();
+        Equal(soft.Substeps, 20u, "soft substeps");
+        Equal(soft.Mass, 1f, "soft mass");
+        Equal(soft.VertexRadius, 0.01f, "soft vertex radius");
+    }
+
+    // ---- rigid bodies -----------------------------------------------------------------------
+
+    private static void TestBoxFallsAndRestsOnThePlane()
+    {
+        using (var world = new World())
+        {
+            Ground(world);
+            Body box = DynamicBox(world, new Vec3(0f, 3f, 0f), 0.5f);
+            Body ball = DynamicSphere(world, new Vec3(3f, 2f, 0f), 0.25f);
+            Near(box.Mass, 1000f, 1e-2f, "1 m³ of water");
+            Equal(box.Type, BodyType.Dynamic, "type");
+            Run(world, 60);
+            WorldCounters c = world.Counters;
+            Equal(c.BodyCount, 3u, "body count");
+            Equal(c.TouchingContactCount, 2u, "both bodies touch the ground");
+            Run(world, 120);
+            Near(box.Position, new Vec3(0f, 0.5f, 0f), 0.005f, "box rests on its half extent");
+            Near(ball.Position, new Vec3(3f, 0.25f, 0f), 0.005f, "sphere rests on its radius");
+            Near(box.LinearVelocity, Vec3.Zero, 0.01f, "box at rest");
+            Near(box.Transform.Rotation.W, 1f, 1e-3f, "box not rotated");
+            Run(world, 120);
+            Ensure(!box.IsAwake && !ball.IsAwake, "resting bodies fall asleep");
+            box.IsAwake = true;
+            Ensure(box.IsAwake, "woken up");
+        }
+    }
+
+    private static void TestFreeFallMatchesGravity()
+    {
+        using (var world = new World())
+        {
+            Body box = DynamicBox(world, new Vec3(0f, 100f, 0f), 0.5f);
+            Run(world, 60);
+            // Semi-implicit Euler with h = dt/6 over n = 360 sub-steps: y0 - g h² n(n+1)/2.
+            double h = Dt / 6.0;
+            double expected = 100.0 - 9.81 * h * h * 360 * 361 / 2;
+            Near(box.Position.Y, (float)expected, 2e-3f, "free fall after 1 s");
+            Near(box.LinearVelocity.Y, -9.81f, 1e-3f, "velocity after 1 s");
+            world.Gravity = Vec3.Zero;
+            Equal(world.Gravity, Vec3.Zero, "gravity set");
+            Vec3 v = box.LinearVelocity;
+            Run(world, 10);
+            Near(box.LinearVelocity, v, 1e-5f, "no gravity: constant velocity");
+        }
+    }
+
+    private static void TestBodySettersAndForces()
+    {
+        using (var world = new World())
+        {
+            world.Gravity = Vec3.Zero;
+            BodyDef def = BodyDef.Default();
+            def.Type = BodyType.Dynamic;
+            def.UserData = 0xDEADBEEFCAFEUL;
+            def.AllowSleep = false;
+            Body body = world.CreateBody(def);
+            body.CreateSphere(new Sphere(Vec3.Zero, 0.5f));
+            Equal(body.UserData, 0xDEADBEEFCAFEUL, "user data");
+            var t = new Transform(new Vec3(1f, 2f, 3f), Quat.Identity);
+            body.Transform = t;
+            Equal(body.Transform, t, "transform set");
+            body.LinearVelocity = new Vec3(1f, 0f, 0f);
+            body.AngularVelocity = new Vec3(0f, 2f, 0f);
+            Equal(body.LinearVelocity, new Vec3(1f, 0f, 0f), "linear velocity set");
+            Equal(body.AngularVelocity, new Vec3(0f, 2f, 0f), "angular velocity set");
+            body.LinearVelocity = Vec3.Zero;
+            body.AngularVelocity = Vec3.Zero;
+            float m = body.Mass;
+            body.ApplyLinearImpulse(new Vec3(0f, m * 2f, 0f));
+            world.Step(Dt);
+            Near(body.LinearVelocity.Y, 2f, 1e-4f, "impulse / mass");
+            body.LinearVelocity = Vec3.Zero;
+            body.ApplyForce(new Vec3(m * 60f, 0f, 0f));
+            world.Step(Dt);
+            Near(body.LinearVelocity.X, 1f, 1e-4f, "force · dt / mass");
+            body.LinearVelocity = Vec3.Zero;
+            body.ApplyForceAtPoint(new Vec3(m, 0f, 0f), body.CenterOfMass + new Vec3(0f, 1f, 0f));
+            body.ApplyTorque(new Vec3(0f, 1f, 0f));
+            body.ApplyAngularImpulse(new Vec3(0f, 0f, 1f));
+            body.ApplyImpulseAtPoint(new Vec3(0f, 0f, 1f), body.CenterOfMass);
+            world.Step(Dt);
+            Ensure(body.AngularVelocity.Length > 0f, "torques and off-centre forces spin it");
+            body.SetDamping(0.5f, 0.5f);
+            Body kinematic = world.CreateBody(BodyType.Kinematic, Vec3.Zero);
+            kinematic.SetTargetTransform(new Transform(new Vec3(0f, 1f, 0f), Quat.Identity));
+            world.Step(Dt);
+            Near(kinematic.Position, new Vec3(0f, 1f, 0f), 1e-4f, "kinematic body reaches its target");
+            Equal(kinematic.Mass, 0f, "kinematic mass");
+            Shape shape = DynamicBox(world, new Vec3(5f, 0f, 0f), 0.5f).CreateSphere(new Sphere(new Vec3(1f, 0f, 0f), 0.1f));
+            Body owner = shape.Body;
+            Equal(owner.Position, new Vec3(5f, 0f, 0f), "shape's body");
+            float before = owner.Mass;
+            shape.Destroy();
+            Ensure(owner.Mass < before, "mass recomputed without the shape");
+            owner.CreateCapsule(new Capsule(new Vec3(0f, -0.5f, 0f), new Vec3(0f, 0.5f, 0f), 0.2f));
+            Ensure(owner.Mass > 1000f, "capsule adds mass");
+        }
+    }
+
+    private static void TestBulkTransformsEqualSingleReads()
+    {
+        using (var world = new World())
+        {
+            Ground(world);
+            var ids = new BodyId[20];
+            for (int i = 0; i < ids.Length; i++)
+            {
+                Body b = i % 2 == 0
+                    ? DynamicBox(world, new Vec3(i * 0.3f, 1f + i, 0f), 0.25f)
+                    : DynamicSphere(world, new Vec3(i * 0.3f, 1f + i, 0.1f), 0.25f);
+                ids[i] = b.Id;
+            }
+            Run(world, 50);
+            var transforms = new Transform[ids.Length];
+            world.GetTransforms(ids, transforms);
+            for (int i = 0; i < ids.Length; i++)
+            {
+                Equal(transforms[i], world.GetBody(ids[i]).Transform, "bulk transform " + i);
+            }
+            var partial = new Transform[ids.Length];
+            world.GetTransforms(ids, partial, 5);
+            Equal(partial[4], transforms[4], "first 5");
+            Equal(partial[5], default(Transform), "nothing past count");
+            Throws<ArgumentOutOfRangeException>(() => world.GetTransforms(ids, new Transform[3]), "results too short");
+        }
+    }
+
+    // ---- errors -------------------------------------------------------------------------------
+
+    private static void TestErrorPaths()
+    {
+        using (var world = new World())
+        using (var other = new World())
+        {
+            Ground(world);
+            Body box = DynamicBox(world, new Vec3(0f, 1f, 0f), 0.5f);
+            Body doomed = DynamicBox(world, new Vec3(3f, 1f, 0f), 0.5f);
+            BodyId stale = doomed.Id;
+            doomed.Destroy();
+            HearthException e = Fails(Result.InvalidId, () => { var p = doomed.Position; }, "stale id after destroy");
+            Equal(e.Function, "hearth_body_get_transform", "failing function named");
+            Ensure(e.Detail.Contains("body"), "detail names the body: " + e.Detail);
+            Fails(Result.InvalidId, () => doomed.Destroy(), "destroy twice");
+            Fails(Result.InvalidId, () => world.GetBody(BodyId.Null).ApplyForce(Vec3.Zero), "null id");
+            Fails(Result.InvalidId, () => { var p = other.GetBody(box.Id).Position; }, "id from another world");
+            Fails(Result.InvalidId, () => world.GetTransforms(new[] { box.Id, stale }, new Transform[2]), "bulk read with a stale id");
+            Equal(Native.LastErrorMessage().Length > 0, true, "last error message kept");
+
+            // NaN and friends: InvalidArgument, and nothing changes.
+            uint bodies = world.Counters.BodyCount;
+            BodyDef def = BodyDef.Default();
+            def.Type = BodyType.Dynamic;
+            def.Transform.Position = new Vec3(float.NaN, 0f, 0f);
+            Fails(Result.InvalidArgument, () => world.CreateBody(def), "NaN position");
+            def = BodyDef.Default();
+            def.Transform.Rotation = new Quat(0f, 0f, 0f, 0f);
+            Fails(Result.InvalidArgument, () => world.CreateBody(def), "zero quaternion");
+            def = BodyDef.Default();
+            def.AllowSleep = new Flag(2);
+            Fails(Result.InvalidArgument, () => world.CreateBody(def), "flag byte 2");
+            def = BodyDef.Default();
+            def.Type = (BodyType)7;
+            Fails(Result.InvalidArgument, () => world.CreateBody(def), "unknown body type");
+            Fails(Result.InvalidArgument, () => world.CreateBody(new BodyDef()), "def not from Default()");
+            Equal(world.Counters.BodyCount, bodies, "no body created by failing calls");
+
+            Vec3 v = box.LinearVelocity;
+            Transform t = box.Transform;
+            Fails(Result.InvalidArgument, () => box.LinearVelocity = new Vec3(float.NaN, 0f, 0f), "NaN velocity");
+            Fails(Result.InvalidArgument, () => box.ApplyForce(new Vec3(0f, float.PositiveInfinity, 0f)), "infinite force");
+            Fails(Result.InvalidArgument, () => box.Transform = new Transform(new Vec3(0f, float.NaN, 0f), Quat.Identity), "NaN transform");
+            Fails(Result.InvalidArgument, () => box.SetDamping(-1f, 0f), "negative damping");
+            Equal(box.LinearVelocity, v, "velocity unchanged");
+            Equal(box.Transform, t, "transform unchanged");
+            Fails(Result.InvalidArgument, () => box.CreateSphere(new Sphere(Vec3.Zero, -1f)), "negative radius");
+            Fails(Result.InvalidArgument, () => box.CreatePlane(new Plane(new Vec3(0f, 1f, 0f), 0f)), "plane on a dynamic body");
+            Fails(Result.InvalidArgument, () => world.Step(float.NaN), "NaN dt");
+            Fails(Result.InvalidArgument, () => world.Step(-1f), "negative dt");
+
+            WorldDef wd = WorldDef.Default();
+            wd.Substeps = 0;
+            Fails(Result.InvalidArgument, () => new World(wd), "world with 0 substeps");
+
+            // NULL pointers can only come through the raw layer.
+            Equal(Native.hearth_world_get_transforms(world.Handle, null, (UIntPtr)3, null), Result.NullPointer, "NULL arrays");
+            UIntPtr count;
+            Equal(Native.hearth_world_get_broken_joints(world.Handle, null, (UIntPtr)4, out count), Result.NullPointer, "NULL array with a capacity");
+            var contact = new GeneratedContact();
+            Equal(Native.hearth_contact_sink_add(IntPtr.Zero, ref contact), Result.NullPointer, "NULL sink");
+        }
+    }
+
+    // ---- SafeHandle and lifetime ------------------------------------------------------------
+
+    private static void TestDisposal()
+    {
+        var world = new World();
+        Body box = DynamicBox(world, Vec3.Zero, 0.5f);
+        WorldHandle handle = world.Handle;
+        Ensure(!handle.IsInvalid && !handle.IsClosed, "live handle");
+        world.Dispose();
+        Ensure(world.IsDisposed && handle.IsClosed, "disposed handle is closed");
+        Throws<ObjectDisposedException>(() => world.Step(Dt), "Step after Dispose");
+        Throws<ObjectDisposedException>(() => { var p = box.Position; }, "body of a disposed world");
+        Throws<ObjectDisposedException>(() => Native.hearth_world_step(handle, Dt), "raw call with the closed handle");
+        world.Dispose(); // twice is fine
+
+        // Worlds nobody disposes are destroyed by the handle's finalizer.
+        for (int i = 0; i < 50; i++)
+        {
+            var w = new World();
+            DynamicBox(w, Vec3.Zero, 0.5f);
+            w.Step(Dt);
+        }
+        GC.Collect();
+        GC.WaitForPendingFinalizers();
+        GC.Collect();
+        Ensure(true, "finalized worlds");
+
+        // A failed creation leaves no handle behind.
+        WorldDef bad = WorldDef.Default();
+        bad.Gravity = new Vec3(float.NaN, 0f, 0f);
+        Fails(Result.InvalidArgument, () => new World(bad), "NaN gravity");
+    }
+
+    // ---- callbacks ----------------------------------------------------------------------------
+
+    private static void TestForceGeneratorMakesABodyHover()
+    {
+        using (var world = new World())
+        {
+            Body box = DynamicBox(world, new Vec3(0f, 5f, 0f), 0.5f);
+            Body free = DynamicBox(world, new Vec3(3f, 5f, 0f), 0.5f);
+            int calls = 0;
+            float seenDt = 0f;
+            Generator hover = world.CreateUserForceGenerator(call =>
+            {
+                calls++;
+                seenDt = call.Dt;
+                for (int i = 0; i < call.BodyCount; i++)
+                {
+                    Body b = call.GetBody(i);
+                    b.ApplyForce(new Vec3(0f, b.Mass * 9.81f, 0f));
+                }
+            });
+            hover.AttachBody(box);
+            Equal(hover.Type, GeneratorType.UserForce, "generator type");
+            uint nb, np;
+            hover.GetAttachmentCount(out nb, out np);
+            Equal(nb, 1u, "one body attached");
+            Equal(world.RegisteredCallbackCount, 1, "callback registered");
+
+            // The world keeps the delegate alive although nothing else refers to it.
+            GC.Collect();
+            GC.WaitForPendingFinalizers();
+            Run(world, 120);
+            Equal(calls, 120, "called once per step");
+            Equal(seenDt, Dt, "dt passed through");
+            Near(box.Position, new Vec3(0f, 5f, 0f), 1e-3f, "hovering");
+            Ensure(free.Position.Y < 0f, "the other box fell");
+
+            hover.DetachBody(box);
+            Run(world, 10);
+            Ensure(box.Position.Y < 4.9f, "falls once detached");
+            Equal(calls, 130, "still called with no bodies");
+            hover.Destroy();
+            Equal(world.RegisteredCallbackCount, 0, "callback released by destroy");
+            Run(world, 5);
+            Equal(calls, 130, "not called after destroy");
+            Fails(Result.InvalidId, () => hover.Destroy(), "destroy twice");
+        }
+    }
+
+    private sealed class CallbackBoom : Exception
+    {
+        public CallbackBoom(string message) : base(message) { }
+    }
+
+    private static void ThrowFromHandler(int step)
+    {
+        throw new CallbackBoom("boom at step " + step);
+    }
+
+    private static void TestCallbackExceptionIsRethrownFromStep()
+    {
+        using (var world = new World())
+        {
+            Body box = DynamicBox(world, new Vec3(0f, 5f, 0f), 0.5f);
+            int steps = 0;
+            bool secondRan = false;
+            Generator g = world.CreateUserForceGenerator(call =>
+            {
+                steps++;
+                if (steps == 3)
+                {
+                    ThrowFromHandler(steps);
+                }
+            });
+            world.CreateUserForceGenerator(call => { secondRan = steps == 3; });
+            world.Step(Dt);
+            world.Step(Dt);
+            CallbackBoom e = Throws<CallbackBoom>(() => world.Step(Dt), "exception from the callback");
+            Equal(e.Message, "boom at step 3", "original exception");
+            Ensure(e.StackTrace.Contains("ThrowFromHandler"), "original stack trace kept: " + e.StackTrace);
+            Ensure(secondRan, "the other generators of the step still ran");
+            world.Step(Dt);
+            Equal(steps, 4, "world keeps stepping after the exception");
+            Ensure(box.Position.Y < 5f, "the step that threw was completed");
+
+            // Structural changes from a callback: WORLD_LOCKED, rethrown from Step.
+            g.Destroy();
+            world.CreateUserForceGenerator(call => call.World.CreateBody(BodyDef.Default()));
+            uint before = world.Counters.BodyCount;
+            Fails(Result.WorldLocked, () => world.Step(Dt), "create a body inside a callback");
+            Equal(world.Counters.BodyCount, before, "no body created");
+        }
+    }
+
+    private static void TestGeneratorCallIsOnlyValidInsideTheCallback()
+    {
+        using (var world = new World())
+        {
+            GeneratorCall saved = null;
+            ContactSink savedSink = null;
+            world.CreateUserForceGenerator(call => saved = call);
+            world.CreateUserContactGenerator((call, sink) => savedSink = sink);
+            world.Step(Dt);
+            Throws<InvalidOperationException>(() => { var dt = saved.Dt; }, "context after the callback");
+            Fails(Result.NullPointer, () => savedSink.Add(new GeneratedContact()), "sink after the callback");
+            Equal(saved.Generator.Type, GeneratorType.UserForce, "generator of the call");
+        }
+    }
+
+    // Dispose from inside a callback: the native world outlives the running step (the
+    // SafeHandle is in use by it) and is destroyed when the step returns.
+    private static void TestDisposeInsideACallback()
+    {
+        var world = new World();
+        Body box = DynamicBox(world, new Vec3(0f, 5f, 0f), 0.5f);
+        int calls = 0;
+        Generator g = world.CreateUserForceGenerator(call =>
+        {
+            calls++;
+            call.World.Dispose();
+        });
+        g.AttachBody(box);
+        WorldHandle handle = world.Handle;
+        world.Step(Dt);
+        Equal(calls, 1, "callback ran");
+        Ensure(world.IsDisposed, "disposed");
+        Ensure(handle.IsClosed, "native world destroyed once the step returned");
+        Equal(world.RegisteredCallbackCount, 0, "callbacks released after the step");
+        Throws<ObjectDisposedException>(() => world.Step(Dt), "no more steps");
+
+        // An exception after the Dispose in the same callback still reaches the caller.
+        var second = new World();
+        second.CreateUserForceGenerator(call =>
+        {
+            call.World.Dispose();
+            call.World.Gravity = Vec3.Zero;
+        });
+        Throws<ObjectDisposedException>(() => second.Step(Dt), "use after Dispose inside the callback");
+    }
+
+    // A contact generator holds a sphere on an invisible floor at y = 1.
+    private static void TestContactGeneratorMakesAFloor()
+    {
+        using (var world = new World())
+        {
+            Body ball = DynamicSphere(world, new Vec3(0f, 3f, 0f), 0.5f);
+            uint capacity = 0, added = 0;
+            Generator floor = world.CreateUserContactGenerator((call, sink) =>
+            {
+                capacity = sink.Capacity;
+                for (int i = 0; i < call.BodyCount; i++)
+                {
+                    Body b = call.GetBody(i);
+                    float bottom = b.Position.Y - 0.5f;
+                    if (bottom < 1.1f)
+                    {
+                        var c = new GeneratedContact();
+                        c.BodyB = b.Id; // side A: the world
+                        c.Point = new Vec3(b.Position.X, bottom, b.Position.Z);
+                        c.Normal = new Vec3(0f, 1f, 0f);
+                        c.Penetration = 1f - bottom;
+                        c.Friction = 0.5f;
+                        sink.Add(c);
+                    }
+                }
+                added = sink.Count;
+            }, 4);
+            floor.AttachBody(ball);
+            Run(world, 180);
+            Equal(capacity, 4u, "sink capacity from the def");
+            Equal(added, 1u, "one contact per step");
+            Near(ball.Position.Y, 1.5f, 0.02f, "ball rests on the generated floor");
+            Equal(floor.Type, GeneratorType.UserContact, "type");
+        }
+    }
+
+    // ---- built-in generators ------------------------------------------------------------------
+
+    private static void TestBuiltInGenerators()
+    {
+        using (var world = new World())
+        {
+            Body box = DynamicBox(world, new Vec3(0f, 10f, 0f), 0.5f);
+            GravityGeneratorDef gd = GravityGeneratorDef.Default();
+            gd.Acceleration = new Vec3(0f, 9.81f, 0f);
+            Generator antigravity = world.CreateGravityGenerator(gd);
+            antigravity.AttachBody(box);
+            Run(world, 30);
+            Near(box.Position, new Vec3(0f, 10f, 0f), 1e-4f, "extra gravity cancels world gravity");
+            Fails(Result.InvalidArgument, () => antigravity.AttachBody(box), "attached twice");
+            antigravity.Destroy();
+
+            var created = new List<Generator>
+            {
+                world.CreateDragGenerator(DragGeneratorDef.Default()),
+                world.CreateSpringGenerator(SpringGeneratorDef.Default()),
+                world.CreateBungeeGenerator(SpringGeneratorDef.Default()),
+                world.CreateStiffSpringGenerator(StiffSpringGeneratorDef.Default()),
+                world.CreateBuoyancyGenerator(BuoyancyGeneratorDef.Default()),
+                world.CreateExplosionGenerator(ExplosionGeneratorDef.Default()),
+            };
+            var types = new[] { GeneratorType.Drag, GeneratorType.Spring, GeneratorType.Bungee, GeneratorType.StiffSpring, GeneratorType.Buoyancy, GeneratorType.Explosion };
+            for (int i = 0; i < types.Length; i++)
+            {
+                Equal(created[i].Type, types[i], "generator type " + i);
+            }
+            RodGeneratorDef rod = RodGeneratorDef.Default();
+            rod.A = LinkEnd.OnBody(box.Id, Vec3.Zero);
+            rod.B = LinkEnd.AtWorldPoint(new Vec3(0f, 12f, 0f));
+            rod.Length = 2f;
+            Equal(world.CreateRodGenerator(rod).Type, GeneratorType.Rod, "rod");
+            CableGeneratorDef cable = CableGeneratorDef.Default();
+            cable.A = LinkEnd.OnBody(box.Id, Vec3.Zero);
+            cable.B = LinkEnd.AtWorldPoint(new Vec3(0f, 12f, 0f));
+            cable.MaxLength = 3f;
+            Generator cableGen = world.CreateCableGenerator(cable);
+            Fails(Result.InvalidArgument, () => cableGen.AttachBody(box), "cables take no attachments");
+            DragGeneratorDef bad = DragGeneratorDef.Default();
+            bad.K1 = -1f;
+            Fails(Result.InvalidArgument, () => world.CreateDragGenerator(bad), "negative drag");
+            Run(world, 60);
+            Near((box.Position - new Vec3(0f, 12f, 0f)).Length, 2f, 0.01f, "rod holds the box 2 m from its anchor");
+        }
+    }
+
+    // ---- joints -------------------------------------------------------------------------------
+
+    private static void TestJoints()
+    {
+        using (var world = new World())
+        {
+            Body bob = DynamicSphere(world, new Vec3(2f, 5f, 0f), 0.2f);
+            DistanceJointDef dd = DistanceJointDef.Default();
+            dd.Base.BodyA = bob.Id;
+            dd.Base.FrameB = new Transform(new Vec3(0f, 5f, 0f), Quat.Identity); // world anchor
+            dd.Length = 2f;
+            Joint pendulum = world.CreateDistanceJoint(dd);
+            Equal(pendulum.Type, JointType.Distance, "distance type");
+            Body a, b;
+            pendulum.GetBodies(out a, out b);
+            Equal(a.Id, bob.Id, "body A");
+            Ensure(b.Id.IsNull, "body B is the world");
+            Run(world, 120);
+            Near((bob.Position - new Vec3(0f, 5f, 0f)).Length, 2f, 0.02f, "pendulum keeps its length");
+            Ensure(bob.Position.Y < 4.5f, "pendulum swung down");
+            Vec3 force, torque;
+            pendulum.GetForce(out force, out torque);
+            Ensure(force.Length > 0f, "joint force read");
+            pendulum.SetSpring(true, 2f, 0.5f);
+            bool on;
+            float hz, ratio;
+            pendulum.GetSpring(out on, out hz, out ratio);
+            Ensure(on && hz == 2f && ratio == 0.5f, "distance spring round trip");
+
+            Body wheel = DynamicBox(world, new Vec3(10f, 5f, 0f), 0.5f);
+            HingeJointDef hd = HingeJointDef.Default();
+            hd.Base.BodyA = wheel.Id;
+            hd.Base.FrameB = new Transform(new Vec3(10f, 5f, 0f), Quat.Identity);
+            Joint hinge = world.CreateHingeJoint(hd);
+            hinge.SetMotor(true, 3f, 1e5f);
+            float speed, max, lower, upper;
+            hinge.GetMotor(out on, out speed, out max);
+            Ensure(on && speed == 3f && max == 1e5f, "motor round trip");
+            hinge.SetLimits(true, -1f, 1f);
+            hinge.GetLimits(out on, out lower, out upper);
+            Ensure(on && lower == -1f && upper == 1f, "limits round trip");
+            hinge.SetLimits(false, -1f, 1f);
+            Run(world, 30);
+            // The motor speed is B's (the world's) relative to A: the wheel turns at -3 rad/s.
+            Near(wheel.AngularVelocity.Z, -3f, 0.05f, "motor drives the wheel about Z");
+            Near(wheel.Position, new Vec3(10f, 5f, 0f), 0.01f, "hinge holds the wheel");
+            Fails(Result.InvalidArgument, () => hinge.SetConeLimit(true, 0.5f), "cone limit on a hinge");
+            Fails(Result.InvalidArgument, () => hinge.SetLimits(true, 1f, -1f), "lower > upper");
+
+            BallJointDef bd = BallJointDef.Default();
+            bd.Base.BodyA = DynamicBox(world, new Vec3(20f, 5f, 0f), 0.5f).Id;
+            bd.Base.FrameB = new Transform(new Vec3(20f, 6f, 0f), Quat.Identity);
+            bd.Base.FrameA = new Transform(new Vec3(0f, 1f, 0f), Quat.Identity);
+            Joint ball = world.CreateBallJoint(bd);
+            ball.SetConeLimit(true, 0.3f);
+            float angle;
+            ball.GetConeLimit(out on, out angle);
+            Ensure(on && angle == 0.3f, "cone round trip");
+
+            FixedJointDef fd = FixedJointDef.Default();
+            fd.Base.BodyA = DynamicBox(world, new Vec3(30f, 5f, 0f), 0.5f).Id;
+            fd.Base.FrameB = new Transform(new Vec3(30f, 5f, 0f), Quat.Identity);
+            fd.Base.BreakForce = 1f; // the box weighs ~9810 N: it breaks at once
+            Joint weak = world.CreateFixedJoint(fd);
+            SliderJointDef sd = SliderJointDef.Default();
+            sd.Base.BodyA = DynamicBox(world, new Vec3(40f, 5f, 0f), 0.5f).Id;
+            sd.Base.FrameB = new Transform(new Vec3(40f, 5f, 0f), Quat.Identity);
+            Joint slider = world.CreateSliderJoint(sd);
+            Equal(slider.Type, JointType.Slider, "slider type");
+            world.Step(Dt);
+            Ensure(weak.IsBroken, "weak joint broke");
+            JointId[] broken = world.GetBrokenJoints();
+            Equal(broken.Length, 1, "one broken joint");
+            Equal(broken[0], weak.Id, "the weak one");
+            Equal(world.GetBrokenJoints(null), 1, "count only");
+            weak.Destroy();
+            Fails(Result.InvalidId, () => { var x = weak.Type; }, "destroyed joint");
+
+            HingeJointDef badHinge = HingeJointDef.Default();
+            badHinge.Base.BodyA = wheel.Id;
+            badHinge.Lower = float.NaN;
+            Fails(Result.InvalidArgument, () => world.CreateHingeJoint(badHinge), "NaN hinge limit");
+        }
+    }
+
+    // ---- particles ----------------------------------------------------------------------------
+
+    private static void TestParticles()
+    {
+        using (var world = new World())
+        {
+            Ground(world);
+            ParticleDef pd = ParticleDef.Default();
+            pd.Position = new Vec3(0f, 2f, 0f);
+            pd.UserData = 77;
+            Particle p = world.CreateParticle(pd);
+            Equal(p.UserData, 77UL, "particle user data");
+            Run(world, 120);
+            Near(p.Position.Y, pd.Radius, 0.01f, "particle rests on the ground at its radius");
+            p.Velocity = new Vec3(1f, 0f, 0f);
+            Equal(p.Velocity, new Vec3(1f, 0f, 0f), "velocity set");
+            p.Position = new Vec3(0f, 3f, 0f);
+            Equal(p.Position, new Vec3(0f, 3f, 0f), "position set");
+            p.ApplyImpulse(new Vec3(0f, 1f, 0f));
+            p.ApplyForce(new Vec3(0f, 1f, 0f));
+            p.IsAwake = true;
+            Ensure(p.IsAwake, "awake");
+            Fails(Result.InvalidArgument, () => p.Position = new Vec3(float.NaN, 0f, 0f), "NaN particle position");
+
+            BurstDef burst = BurstDef.Default();
+            burst.Position = new Vec3(0f, 5f, 0f);
+            burst.Count = 32;
+            burst.LifetimeMin = 0.2f;
+            burst.LifetimeMax = 0.4f;
+            burst.Particle.UserData = 5;
+            ParticleId[] ids = world.EmitBurst(burst);
+            Equal(ids.Length, 32, "burst ids");
+            Equal(world.ParticleCount, 33, "particle count");
+            Fails(Result.BufferTooSmall, () => world.EmitBurst(burst, new ParticleId[4]), "burst ids array too small");
+            Equal(world.ParticleCount, 33, "nothing emitted on error");
+
+            Run(world, 3);
+            var all = new ParticleId[64];
+            var positions = new Vec3[64];
+            var velocities = new Vec3[64];
+            int n = world.GetParticles(all, positions, velocities);
+            Equal(n, 33, "bulk particles");
+            for (int i = 0; i < n; i++)
+            {
+                Particle q = world.GetParticle(all[i]);
+                Equal(positions[i], q.Position, "bulk position " + i);
+                Equal(velocities[i], q.Velocity, "bulk velocity " + i);
+            }
+            Equal(world.GetParticles(null, positions, null), 33, "positions only");
+            Equal(world.GetParticles(null, null, null), 33, "count only");
+            Fails(Result.BufferTooSmall, () => world.GetParticles(new ParticleId[3], null, null), "ids array too small");
+            var byId = new Vec3[ids.Length];
+            world.GetParticlePositions(ids, byId);
+            for (int i = 0; i < ids.Length; i++)
+            {
+                Equal(byId[i], world.GetParticle(ids[i]).Position, "position by id " + i);
+            }
+
+            Generator drag = world.CreateDragGenerator(DragGeneratorDef.Default());
+            drag.AttachParticles(ids);
+            uint nb, np;
+            drag.GetAttachmentCount(out nb, out np);
+            Equal(np, 32u, "particles attached at once");
+            drag.DetachParticle(ids[0]);
+            drag.AttachParticle(p.Id);
+            drag.DetachParticle(p);
+
+            int expired = 0;
+            for (int i = 0; i < 30; i++)
+            {
+                world.Step(Dt);
+                foreach (ExpiredParticle e in world.GetExpiredParticles())
+                {
+                    Equal(e.UserData, 5UL, "expired user data");
+                    expired++;
+                }
+            }
+            Equal(expired, 32, "every burst particle expired and was reported");
+            Equal(world.ParticleCount, 1, "only the long-lived particle is left");
+            Fails(Result.InvalidId, () => { var x = world.GetParticle(ids[0]).Position; }, "expired particle id is stale");
+            drag.GetAttachmentCount(out nb, out np);
+            Equal(np, 0u, "expired particles detached");
+            world.SetParticleIterations(4, 2);
+            Fails(Result.InvalidArgument, () => world.SetParticleIterations(0, 2), "0 iterations");
+            p.Destroy();
+            Equal(world.ParticleCount, 0, "destroyed");
+        }
+    }
+
+    // ---- soft bodies --------------------------------------------------------------------------
+
+    private static void TestSoftBodies()
+    {
+        using (var world = new World())
+        {
+            Ground(world);
+            SoftBodyDef def = SoftBodyDef.Default();
+            def.Transform.Position = new Vec3(0f, 2f, 0f);
+            def.Pressure = 10f;
+            def.UserData = 9;
+            SoftBody ball = world.CreateSoftBodyIcosphere(def, 0.5f, 1);
+            Equal(ball.VertexCount, 42, "icosphere vertices");
+            Equal(ball.TriangleCount, 80, "icosphere triangles");
+            Equal(ball.UserData, 9UL, "soft user data");
+            Near(ball.Mass, 1f, 1e-5f, "soft mass");
+            Near(ball.Pressure, 10f, 0f, "pressure");
+            Ensure(ball.RestVolume > 0.3f && ball.RestVolume < 4.2f * 0.125f, "rest volume of a r=0.5 icosphere");
+            Run(world, 300);
+            Near(ball.Center.Y, 0.5f, 0.05f, "soft ball (bouncing, then rolling) ends on the ground");
+            Ensure(ball.Volume > 0.5f * ball.RestVolume, "pressure keeps its volume");
+
+            var positions = new Vec3[ball.VertexCount];
+            Equal(ball.GetPositions(positions), 42, "bulk positions count");
+            for (uint i = 0; i < positions.Length; i++)
+            {
+                Equal(positions[i], ball.GetVertexPosition(i), "bulk vertex " + i);
+            }
+            Vec3[] normals = ball.GetNormals();
+            foreach (Vec3 nrm in normals)
+            {
+                Near(nrm.Length, 1f, 1e-4f, "unit normal");
+            }
+            uint[] indices = ball.GetIndices();
+            Equal(indices.Length, 240, "3 indices per triangle");
+            var small = new Vec3[3];
+            Fails(Result.BufferTooSmall, () => ball.GetPositions(small), "positions array too small");
+            Equal(small[0], Vec3.Zero, "nothing written on error");
+            Equal(ball.GetPositions(null), 42, "count only");
+            Fails(Result.InvalidArgument, () => ball.GetVertexPosition(42), "vertex out of range");
+            ball.GetVertexVelocity(0);
+            ball.Pressure = 20f;
+            Equal(ball.Pressure, 20f, "pressure set");
+            Fails(Result.InvalidArgument, () => ball.Pressure = -1f, "negative pressure");
+            ball.ApplyImpulse(0, new Vec3(0f, 0.01f, 0f));
+            ball.ApplyImpulseAll(new Vec3(0.1f, 0f, 0f));
+
+            // A cloth pinned by two corners hangs.
+            SoftBodyDef cd = SoftBodyDef.Default();
+            cd.Transform.Position = new Vec3(5f, 3f, 0f);
+            SoftBody cloth = world.CreateSoftBodyCloth(cd, 1f, 1f, 4, 4);
+            Equal(cloth.VertexCount, 25, "cloth vertices");
+            cloth.PinVertex(0);
+            Body hook = world.CreateBody(BodyType.Kinematic, new Vec3(5.5f, 3f, -0.5f));
+            cloth.PinVertex(4, hook.Id);
+            Ensure(cloth.IsVertexPinned(0) && cloth.IsVertexPinned(4) && !cloth.IsVertexPinned(5), "pins");
+            Vec3 corner = cloth.GetVertexPosition(0);
+            Run(world, 30); // half a swing: the free edge passes below the pinned one
+            Near(cloth.GetVertexPosition(0), corner, 1e-5f, "pinned corner stays");
+            Ensure(cloth.GetVertexPosition(24).Y < 2.5f, "free corner swings down");
+            cloth.UnpinVertex(4);
+            Ensure(!cloth.IsVertexPinned(4), "unpinned");
+
+            SoftBody box = world.CreateSoftBodyBox(SoftBodyDef.Default(), new Vec3(0.5f, 0.5f, 0.5f), 2, 2, 2);
+            Equal(box.VertexCount, 27, "soft box vertices");
+            var tetra = new[] { new Vec3(0f, 0f, 0f), new Vec3(1f, 0f, 0f), new Vec3(0f, 0f, 1f), new Vec3(0f, 1f, 0f) };
+            var tris = new uint[] { 0, 1, 2, 0, 3, 1, 0, 2, 3, 1, 3, 2 };
+            SoftBodyDef md = SoftBodyDef.Default();
+            md.Transform.Position = new Vec3(-5f, 1f, 0f);
+            SoftBody mesh = world.CreateSoftBodyMesh(md, tetra, tris, new[] { 1f, 2f, 3f, 4f });
+            Near(mesh.Mass, 10f, 1e-5f, "per-vertex masses");
+            Fails(Result.InvalidArgument, () => world.CreateSoftBodyMesh(md, tetra, new uint[] { 0, 1, 7 }, null), "index out of range");
+            Equal(world.SoftBodyCount, 4, "soft body count");
+            mesh.Destroy();
+            Equal(world.SoftBodyCount, 3, "destroyed");
+            Fails(Result.InvalidId, () => { var m = mesh.Mass; }, "destroyed soft body");
+        }
+    }
+
+    // ---- driver -------------------------------------------------------------------------------
+
+    private static int Main(string[] args)
+    {
+        layoutPath = args.Length > 0 ? args[0] : null;
+        var tests = new List<KeyValuePair<string, Action>>
+        {
+            new KeyValuePair<string, Action>("layout matches C", TestLayoutMatchesC),
+            new KeyValuePair<string, Action>("version and result names", TestVersionAndResultNames),
+            new KeyValuePair<string, Action>("defaults come from the library", TestDefaultsComeFromTheLibrary),
+            new KeyValuePair<string, Action>("box falls and rests on the plane", TestBoxFallsAndRestsOnThePlane),
+            new KeyValuePair<string, Action>("free fall matches gravity", TestFreeFallMatchesGravity),
+            new KeyValuePair<string, Action>("body setters and forces", TestBodySettersAndForces),
+            new KeyValuePair<string, Action>("bulk transforms equal single reads", TestBulkTransformsEqualSingleReads),
+            new KeyValuePair<string, Action>("error paths", TestErrorPaths),
+            new KeyValuePair<string, Action>("disposal", TestDisposal),
+            new KeyValuePair<string, Action>("force generator makes a body hover", TestForceGeneratorMakesABodyHover),
+            new KeyValuePair<string, Action>("callback exception is rethrown from Step", TestCallbackExceptionIsRethrownFromStep),
+            new KeyValuePair<string, Action>("generator call only valid inside the callback", TestGeneratorCallIsOnlyValidInsideTheCallback),
+            new KeyValuePair<string, Action>("dispose inside a callback", TestDisposeInsideACallback),
+            new KeyValuePair<string, Action>("contact generator makes a floor", TestContactGeneratorMakesAFloor),
+            new KeyValuePair<string, Action>("built-in generators", TestBuiltInGenerators),
+            new KeyValuePair<string, Action>("joints", TestJoints),
+            new KeyValuePair<string, Action>("particles", TestParticles),
+            new KeyValuePair<string, Action>("soft bodies", TestSoftBodies),
+        };
+        int passed = 0, failed = 0;
+        foreach (var test in tests)
+        {
+            try
+            {
+                test.Value();
+                passed++;
+                Console.WriteLine("ok   {0}", test.Key);
+            }
+            catch (Exception e)
+            {
+                failed++;
+                Console.WriteLine("FAIL {0}: {1}", test.Key, e is TestFailure ? e.Message : e.ToString());
+            }
+        }
+        Console.WriteLine("C# binding: {0} passed, {1} failed ({2} checks)", passed, failed, checks);
+        return failed == 0 ? 0 : 1;
+    }
+}
