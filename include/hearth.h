@@ -2459,10 +2459,11 @@ HearthResult hearth_world_get_particle_count(const struct HearthWorld *world, si
 /**
  * Reads every live particle into caller-owned arrays, one call per frame: ids, positions
  * and velocities, each array optional (NULL skips it), all in the same order (unspecified,
- * but the same for all three). `*out_count` receives the number written.
+ * but the same for all three). `*out_count` receives the number written. As every bulk read:
+ * `capacity == 0` only asks for the count (`*out_count` = live particles, nothing written).
  *
  * Errors: `HEARTH_ERROR_NULL_POINTER` (world, out_count), `HEARTH_ERROR_BUFFER_TOO_SMALL`
- * (`capacity` below `hearth_world_get_particle_count`; nothing is written).
+ * (`capacity` non-zero but below `hearth_world_get_particle_count`; nothing is written).
  *
  * # Safety
  * Each non-NULL array must hold `capacity` elements.

@@ -128,12 +128,16 @@ fn build(source: &str, cpp: bool, link: Link) -> PathBuf {
     exe
 }
 
+/// Runs a test program (and again under valgrind with `HEARTH_VALGRIND=1`). cargo puts
+/// `target/<profile>` first in `LD_LIBRARY_PATH`, which would win over the programs' rpath and
+/// load a possibly stale `libhearth.so` from an earlier `cargo build`: it is removed.
 fn run_program(exe: &Path) -> String {
-    let text = run(&mut Command::new(exe));
+    let text = run(Command::new(exe).env_remove("LD_LIBRARY_PATH"));
     assert!(text.contains(" 0 failed"), "{}:\n{text}", exe.display());
     print!("{text}");
     if std::env::var("HEARTH_VALGRIND").as_deref() == Ok("1") {
         let v = run(Command::new("valgrind")
+            .env_remove("LD_LIBRARY_PATH")
             .args([
                 "--error-exitcode=99",
                 "--leak-check=full",

@@ -715,7 +715,7 @@ namespace Hearth
             if (velocities != null) capacity = Math.Min(capacity, velocities.Length);
             if (capacity == int.MaxValue || capacity == 0)
             {
-                return ParticleCount; // the C function has no count-only mode
+                return ParticleCount; // count only (the C function at capacity 0)
             }
             UIntPtr count;
             Check(Native.hearth_world_get_particles(Handle, ids, positions, velocities, (UIntPtr)(uint)capacity, out count), "hearth_world_get_particles");

@@ -49,7 +49,7 @@ pub fn capacity(capacity: usize, needed: usize, what: &str) -> Result<(), Failur
     if capacity < needed {
         return Err(Failure::new(
             super::error::HEARTH_ERROR_BUFFER_TOO_SMALL,
-            format!("{what} holds {capacity} elements, {needed} are needed"),
+            format!("{what}: room for {capacity} elements, {needed} needed"),
         ));
     }
     Ok(())

@@ -277,6 +277,9 @@ static void test_bulk_read_and_expiry(void) {
     size_t n = 0;
     ENSURE_RESULT(hearth_world_get_particles(w, all_ids, pos, vel, 50, &n), HEARTH_ERROR_BUFFER_TOO_SMALL);
     ENSURE(n == 0);
+    /* capacity 0: count only, like every bulk read */
+    ENSURE_OK(hearth_world_get_particles(w, NULL, NULL, NULL, 0, &n));
+    ENSURE(n == 51);
     ENSURE_RESULT(hearth_world_get_particles(w, all_ids, pos, vel, 64, NULL), HEARTH_ERROR_NULL_POINTER);
     ENSURE_RESULT(hearth_world_get_particles(NULL, all_ids, pos, vel, 64, &n), HEARTH_ERROR_NULL_POINTER);
     ENSURE_OK(hearth_world_get_particles(w, all_ids, pos, vel, 64, &n));
