@@ -14,6 +14,7 @@ from enum import IntEnum
 
 from . import _ffi
 from ._convert import (
+    IDENTITY,
     c_view,
     fill,
     from_transform,
@@ -257,7 +258,7 @@ class Body(_Handle):
         """`hearth_shape_create_sphere`; `material`: density, static_friction, ... (HearthShapeDef)."""
         return self._add(lib.hearth_shape_create_sphere, _ffi.HearthSphere(to_vec3(center), radius), material)
 
-    def add_box(self, half_extents, center=(0.0, 0.0, 0.0), rotation=(0.0, 0.0, 0.0, 1.0), **material):
+    def add_box(self, half_extents, center=(0.0, 0.0, 0.0), rotation=IDENTITY, **material):
         """`hearth_shape_create_box`: half extents (m), centre and rotation in the body frame."""
         box = _ffi.HearthBox(to_vec3(center), to_quat(rotation), to_vec3(half_extents))
         return self._add(lib.hearth_shape_create_box, box, material)

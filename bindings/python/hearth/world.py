@@ -132,7 +132,7 @@ class World:
             self._stepping = False
             error, self._callback_error = self._callback_error, None
         if error is not None:
-            if failure is not None:
+            if failure is not None and hasattr(error, "add_note"):  # Python 3.11+
                 error.add_note(f"hearth_world_step also failed: {failure}")
             raise error
         if failure is not None:

@@ -212,3 +212,28 @@ def test_result_names_and_unknown_codes():
     assert hearth.result_name(999) == "HEARTH_ERROR_UNKNOWN"
     err = hearth.errors.error_for(999)
     assert type(err) is hearth.HearthError and err.code == 999
+
+
+def test_separate_worlds_step_on_separate_threads():
+    import threading
+
+    def simulate(results, key):
+        with hearth.World() as w:
+            ground(w)
+            boxes = []
+            for i in range(20):
+                b = w.create_body("dynamic", position=(0.0, 0.5 + 1.01 * i, 0.0))
+                b.add_box(half_extents=(0.5, 0.5, 0.5))
+                boxes.append(b)
+            for _ in range(120):
+                w.step(DT)
+            results[key] = w.get_transforms(boxes)
+
+    results = {}
+    threads = [threading.Thread(target=simulate, args=(results, k)) for k in range(2)]
+    for t in threads:
+        t.start()
+    for t in threads:
+        t.join()
+    simulate(results, "alone")
+    assert results[0] == results[1] == results["alone"]  # deterministic, independent worlds

@@ -37,7 +37,9 @@ def test_the_callback_is_told_its_context(world):
     body = world.create_body("dynamic")
     particle = world.create_particle()
     seen = []
-    gen = world.create_force_generator(lambda w, ctx: seen.append((w, ctx.generator, ctx.dt, ctx.bodies, ctx.particles)))
+    gen = world.create_force_generator(
+        lambda w, ctx: seen.append((w, ctx.generator, ctx.dt, ctx.bodies, ctx.particles))
+    )
     gen.attach(body)
     gen.attach(particle)
     world.step(0.02)

@@ -158,3 +158,8 @@ HearthResult hearth_world_cast_ray(const struct HearthWorld *world, const struct
     path = tmp_path / "hearth.h"
     path.write_text(text)
     assert sorted(unwrapped(c_header.parse(path))) == ["HearthRay", "hearth_world_cast_ray"]
+
+
+def test_package_metadata_version_is_the_binding_version():
+    pyproject = (PACKAGE.parent / "pyproject.toml").read_text()
+    assert re.search(r'^version = "([^"]+)"', pyproject, flags=re.M).group(1) == hearth.__version__
