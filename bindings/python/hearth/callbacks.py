@@ -19,21 +19,48 @@ from .handles import Body, Generator, Particle, _body_id, _particle_id
 
 class GeneratorContext:
     """What a generator callback is told (`HearthGeneratorContext`): the generator, the step's
-    dt and the live bodies and particles attached to it, in attachment order."""
+    dt and the live bodies and particles attached to it, in attachment order.
 
-    __slots__ = ("generator", "dt", "bodies", "particles")
+    The C arrays are copied (one memmove each) into `body_ids` and `particle_ids`, ctypes
+    arrays that bulk reads such as `World.get_particle_positions` take as they are; `bodies`
+    and `particles` make handles of them on first use.
+    """
+
+    __slots__ = ("world", "generator", "dt", "body_ids", "particle_ids", "_bodies", "_particles")
 
     def __init__(self, world, context):
+        self.world = world
         self.generator = Generator(world, context.generator)
         self.dt = context.dt
-        self.bodies = [Body(world, context.bodies[i]) for i in range(context.body_count)]
-        self.particles = [Particle(world, context.particles[i]) for i in range(context.particle_count)]
+        self.body_ids = _copy(context.bodies, context.body_count, _ffi.HearthBodyId)
+        self.particle_ids = _copy(context.particles, context.particle_count, _ffi.HearthParticleId)
+        self._bodies = self._particles = None
+
+    @property
+    def bodies(self):
+        if self._bodies is None:
+            self._bodies = [Body(self.world, i) for i in self.body_ids]
+        return self._bodies
+
+    @property
+    def particles(self):
+        if self._particles is None:
+            self._particles = [Particle(self.world, i) for i in self.particle_ids]
+        return self._particles
 
     def __repr__(self):
         return (
             f"GeneratorContext(generator={self.generator!r}, dt={self.dt}, "
-            f"bodies={len(self.bodies)}, particles={len(self.particles)})"
+            f"bodies={len(self.body_ids)}, particles={len(self.particle_ids)})"
         )
+
+
+def _copy(pointer, count, ctype):
+    """A ctypes array holding a copy of `count` items at a C pointer valid only for now."""
+    array = (ctype * count)()
+    if count:
+        ctypes.memmove(array, pointer, count * ctypes.sizeof(ctype))
+    return array
 
 
 def _side(target):

@@ -1,6 +1,7 @@
 """Python callables as force and contact generators, and what happens when they fail."""
 
 import gc
+from array import array
 
 import pytest
 from conftest import ground
@@ -211,3 +212,17 @@ def test_contact_sink_validates_in_the_library(world):
     world.create_contact_generator(zero_normal).attach(particle)
     with pytest.raises(hearth.InvalidArgument):
         world.step(DT)
+
+
+def test_context_ids_feed_bulk_reads(world):
+    particles = [world.create_particle(position=(float(i), 1.0, 0.0)) for i in range(5)]
+    read = []
+
+    def bulk(w, ctx):
+        read.append(w.get_particle_positions(ctx.particle_ids))
+
+    gen = world.create_force_generator(bulk)
+    gen.attach_particles(particles)
+    world.step(DT)
+    assert len(read[0]) == 15
+    assert read[0][0::3] == array("f", [0.0, 1.0, 2.0, 3.0, 4.0])
