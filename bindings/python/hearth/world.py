@@ -1,0 +1,447 @@
+"""The World: owner of everything in a simulation (`HearthWorld *`)."""
+
+import ctypes
+from collections import namedtuple
+from ctypes import POINTER, byref
+
+from . import _ffi
+from ._convert import c_view, check_format, fill, from_vec3, new_buffer, to_record, to_vec3
+from ._lib import lib
+from .callbacks import contact_trampoline, force_trampoline
+from .errors import HearthError
+from .handles import (
+    Body,
+    BodyType,
+    Generator,
+    Joint,
+    Particle,
+    SoftBody,
+    _body_id,
+    _particle_id,
+    body_ids,
+    particle_ids,
+)
+
+WorldCounters = namedtuple("WorldCounters", [name for name, _ in _ffi.HearthWorldCounters._fields_])
+ExpiredParticle = namedtuple("ExpiredParticle", "particle position velocity user_data")
+ParticleData = namedtuple("ParticleData", "count ids positions velocities")
+
+# hearth_particle_emit_burst takes at most this many particles per burst (HearthBurstDef.count);
+# the binding sizes its id buffer to the smaller of this and the def's count, so that an
+# absurd count is refused by the library instead of allocating gigabytes first.
+_MAX_BURST = 1 << 20
+
+
+def link_end(target=None, point=(0.0, 0.0, 0.0)):
+    """A `HearthLinkEnd`: a point on a Body (body frame), a Particle, or a world point (target
+    None)."""
+    end = _ffi.HearthLinkEnd()
+    if isinstance(target, Particle):
+        end.particle = target._id
+    elif target is not None:
+        end.body = target._id
+    end.point = to_vec3(point)
+    return end
+
+
+def _to_link_end(value):
+    """A link end from a HearthLinkEnd, a Body, a Particle, a (Body, point) pair or a world point."""
+    if isinstance(value, _ffi.HearthLinkEnd):
+        return value
+    if isinstance(value, (Body, Particle)):
+        return link_end(value)
+    if len(value) == 2 and isinstance(value[0], Body):
+        return link_end(value[0], value[1])
+    return link_end(None, value)
+
+
+# Field converters for defs: ids from handles (None is the null id), link ends from the forms above.
+_CONVERT = {
+    _ffi.HearthBodyId: _body_id,
+    _ffi.HearthParticleId: _particle_id,
+    _ffi.HearthLinkEnd: _to_link_end,
+}
+
+
+def _def(default_fn, fields, flatten=()):
+    """A def fresh from its `*_def_default()` with `fields` applied."""
+    return fill(default_fn(), fields, flatten=flatten, convert=_CONVERT)
+
+
+class World:
+    """A Hearth world. Keyword arguments are fields of `HearthWorldDef` (gravity, substeps,
+    enable_sleep, ...); the rest keep the values of `hearth_world_def_default()`.
+
+    Use it as a context manager or call `close()`; a world is used by one thread at a time.
+    """
+
+    def __init__(self, **settings):
+        self._ptr = None
+        self._callbacks = {}  # (index, generation) of a user generator -> its ctypes trampoline
+        self._stepping = False
+        self._callback_error = None
+        wd = _def(lib.hearth_world_def_default, settings)
+        ptr = POINTER(_ffi.HearthWorld)()
+        lib.hearth_world_create(byref(wd), byref(ptr))
+        self._ptr = ptr
+
+    # -- lifetime
+    def close(self):
+        """Destroys the world and everything in it; idempotent. Later calls through the world or
+        its handles fail with NullPointer."""
+        if self._stepping:
+            raise RuntimeError("a world cannot be closed from inside one of its own step callbacks")
+        if self._ptr is not None:
+            lib.hearth_world_destroy(self._ptr)
+            self._ptr = None
+        self._callbacks.clear()
+
+    @property
+    def closed(self):
+        return self._ptr is None
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, *exc):
+        self.close()
+
+    def __del__(self):
+        try:
+            self.close()
+        except Exception:  # noqa: BLE001 - interpreter shutdown may have torn down modules
+            pass
+
+    def __repr__(self):
+        return f"<hearth.World {'closed' if self.closed else hex(ctypes.addressof(self._ptr.contents))}>"
+
+    # -- stepping
+    def step(self, dt):
+        """Advances the world by `dt` seconds. An exception raised by a Python generator callback
+        during the step is re-raised here, after the step has completed."""
+        if self._stepping:  # from a callback: the library refuses it (WorldLocked)
+            lib.hearth_world_step(self._ptr, dt)
+            return
+        self._stepping = True
+        failure = None
+        try:
+            lib.hearth_world_step(self._ptr, dt)
+        except HearthError as e:
+            failure = e
+        finally:
+            self._stepping = False
+            error, self._callback_error = self._callback_error, None
+        if error is not None:
+            if failure is not None and hasattr(error, "add_note"):  # Python 3.11+
+                error.add_note(f"hearth_world_step also failed: {failure}")
+            raise error
+        if failure is not None:
+            raise failure
+
+    def _callback_failed(self, error):
+        if self._callback_error is None:
+            self._callback_error = error
+
+    def _release_callback(self, generator_id):
+        self._callbacks.pop((generator_id.index, generator_id.generation), None)
+
+    # -- settings and counters
+    @property
+    def gravity(self):
+        out = _ffi.HearthVec3()
+        lib.hearth_world_get_gravity(self._ptr, byref(out))
+        return from_vec3(out)
+
+    @gravity.setter
+    def gravity(self, value):
+        lib.hearth_world_set_gravity(self._ptr, to_vec3(value))
+
+    @property
+    def counters(self):
+        out = _ffi.HearthWorldCounters()
+        lib.hearth_world_get_counters(self._ptr, byref(out))
+        return to_record(out, WorldCounters)
+
+    def set_particle_iterations(self, velocity_iterations, position_iterations):
+        lib.hearth_world_set_particle_iterations(self._ptr, velocity_iterations, position_iterations)
+
+    # -- bodies
+    def create_body(self, type=None, **fields):
+        """`hearth_body_create`. `type`: a BodyType or its name ("dynamic"); other keywords are
+        fields of HearthBodyDef, plus `position` and `rotation` for the transform's parts."""
+        if isinstance(type, str):
+            type = BodyType[type.upper()]
+        if type is not None:
+            fields["type"] = type
+        bd = _def(lib.hearth_body_def_default, fields, flatten=("transform",))
+        out = _ffi.HearthBodyId()
+        lib.hearth_body_create(self._ptr, byref(bd), byref(out))
+        return Body(self, out)
+
+    def get_transforms(self, bodies, out=None):
+        """`hearth_world_get_transforms`: the transforms of `bodies` (Body handles, or an array from
+        `hearth.body_ids` to reuse every frame) in one call, into `out`: a writable float32
+        buffer of 7 numbers per body (position x, y, z, rotation x, y, z, w), or a new
+        array('f') when None. Returns `out`."""
+        ids = body_ids(bodies)
+        count = len(ids)
+        if out is None:
+            out = new_buffer("f", 7 * count)
+        view = c_view(out, _ffi.HearthTransform, "f")
+        if len(view) < count:
+            raise ValueError(f"out holds {len(view)} transforms (7 float32 each) but {count} bodies were given")
+        lib.hearth_world_get_transforms(self._ptr, ids, count, view)
+        return out
+
+    # -- joints
+    def _joint(self, default_fn, create_fn, body_a, body_b, fields):
+        fields = dict(fields, body_a=body_a, body_b=body_b)
+        jd = _def(default_fn, fields, flatten=("base",))
+        out = _ffi.HearthJointId()
+        create_fn(self._ptr, byref(jd), byref(out))
+        return Joint(self, out)
+
+    def create_ball_joint(self, body_a, body_b=None, **fields):
+        """`hearth_joint_create_ball`; body_b None joins body_a to the world. Keywords: fields of
+        HearthBallJointDef and of its base (frame_a, frame_b, collide_connected, ...)."""
+        return self._joint(lib.hearth_ball_joint_def_default, lib.hearth_joint_create_ball, body_a, body_b, fields)
+
+    def create_hinge_joint(self, body_a, body_b=None, **fields):
+        """`hearth_joint_create_hinge` (fields of HearthHingeJointDef and its base)."""
+        return self._joint(lib.hearth_hinge_joint_def_default, lib.hearth_joint_create_hinge, body_a, body_b, fields)
+
+    def create_fixed_joint(self, body_a, body_b=None, **fields):
+        """`hearth_joint_create_fixed` (fields of HearthFixedJointDef and its base)."""
+        return self._joint(lib.hearth_fixed_joint_def_default, lib.hearth_joint_create_fixed, body_a, body_b, fields)
+
+    def create_distance_joint(self, body_a, body_b=None, **fields):
+        """`hearth_joint_create_distance` (fields of HearthDistanceJointDef and its base)."""
+        return self._joint(
+            lib.hearth_distance_joint_def_default, lib.hearth_joint_create_distance, body_a, body_b, fields
+        )
+
+    def create_slider_joint(self, body_a, body_b=None, **fields):
+        """`hearth_joint_create_slider` (fields of HearthSliderJointDef and its base)."""
+        return self._joint(lib.hearth_slider_joint_def_default, lib.hearth_joint_create_slider, body_a, body_b, fields)
+
+    @property
+    def broken_joints(self):
+        """`hearth_world_get_broken_joints`: the joints that broke during the last step."""
+        count = ctypes.c_size_t()
+        lib.hearth_world_get_broken_joints(self._ptr, None, 0, byref(count))
+        ids = (_ffi.HearthJointId * count.value)()
+        if count.value:
+            lib.hearth_world_get_broken_joints(self._ptr, ids, len(ids), byref(count))
+        return [Joint(self, j) for j in ids[: count.value]]
+
+    # -- generators
+    def _generator(self, default_fn, create_fn, fields):
+        gd = _def(default_fn, fields)
+        out = _ffi.HearthGeneratorId()
+        create_fn(self._ptr, byref(gd), byref(out))
+        return Generator(self, out)
+
+    def create_gravity_generator(self, **fields):
+        """`hearth_generator_create_gravity` (fields of HearthGravityGeneratorDef); attach objects."""
+        return self._generator(lib.hearth_gravity_generator_def_default, lib.hearth_generator_create_gravity, fields)
+
+    def create_drag_generator(self, **fields):
+        """`hearth_generator_create_drag` (k1, k2)."""
+        return self._generator(lib.hearth_drag_generator_def_default, lib.hearth_generator_create_drag, fields)
+
+    def create_spring_generator(self, **fields):
+        """`hearth_generator_create_spring`. `other`: a Body, a Particle, a (Body, local point)
+        pair, a world point or a `link_end(...)`."""
+        return self._generator(lib.hearth_spring_generator_def_default, lib.hearth_generator_create_spring, fields)
+
+    def create_bungee_generator(self, **fields):
+        """`hearth_generator_create_bungee` (a spring that only pulls; HearthSpringGeneratorDef)."""
+        return self._generator(lib.hearth_spring_generator_def_default, lib.hearth_generator_create_bungee, fields)
+
+    def create_stiff_spring_generator(self, **fields):
+        """`hearth_generator_create_stiff_spring` (anchor, local_point, stiffness, damping)."""
+        return self._generator(
+            lib.hearth_stiff_spring_generator_def_default, lib.hearth_generator_create_stiff_spring, fields
+        )
+
+    def create_buoyancy_generator(self, **fields):
+        """`hearth_generator_create_buoyancy` (fields of HearthBuoyancyGeneratorDef)."""
+        return self._generator(
+            lib.hearth_buoyancy_generator_def_default, lib.hearth_generator_create_buoyancy, fields
+        )
+
+    def create_explosion_generator(self, **fields):
+        """`hearth_generator_create_explosion` (fields of HearthExplosionGeneratorDef)."""
+        return self._generator(
+            lib.hearth_explosion_generator_def_default, lib.hearth_generator_create_explosion, fields
+        )
+
+    def create_rod_generator(self, **fields):
+        """`hearth_generator_create_rod`: ends `a` and `b` (link ends as for springs), `length`."""
+        return self._generator(lib.hearth_rod_generator_def_default, lib.hearth_generator_create_rod, fields)
+
+    def create_cable_generator(self, **fields):
+        """`hearth_generator_create_cable`: ends `a` and `b`, `max_length`, `restitution`."""
+        return self._generator(lib.hearth_cable_generator_def_default, lib.hearth_generator_create_cable, fields)
+
+    def create_force_generator(self, callback):
+        """`hearth_generator_create_user_force` with a Python callable `callback(world, context)`,
+        run once per step; it may read anything and apply forces and torques. Attach the
+        bodies and particles it should be told about."""
+        trampoline = force_trampoline(self, callback)
+        gd = _def(lib.hearth_user_force_generator_def_default, {})
+        gd.callback = trampoline
+        out = _ffi.HearthGeneratorId()
+        lib.hearth_generator_create_user_force(self._ptr, byref(gd), byref(out))
+        self._callbacks[(out.index, out.generation)] = trampoline
+        return Generator(self, out)
+
+    def create_contact_generator(self, callback, **fields):
+        """`hearth_generator_create_user_contact` with a Python callable
+        `callback(world, context, sink)` that adds contacts with `sink.add(...)`. Keywords:
+        fields of HearthUserContactGeneratorDef (`capacity`)."""
+        trampoline = contact_trampoline(self, callback)
+        gd = _def(lib.hearth_user_contact_generator_def_default, fields)
+        gd.callback = trampoline
+        out = _ffi.HearthGeneratorId()
+        lib.hearth_generator_create_user_contact(self._ptr, byref(gd), byref(out))
+        self._callbacks[(out.index, out.generation)] = trampoline
+        return Generator(self, out)
+
+    # -- particles
+    def create_particle(self, **fields):
+        """`hearth_particle_create` (fields of HearthParticleDef)."""
+        pd = _def(lib.hearth_particle_def_default, fields)
+        out = _ffi.HearthParticleId()
+        lib.hearth_particle_create(self._ptr, byref(pd), byref(out))
+        return Particle(self, out)
+
+    def emit_burst(self, **fields):
+        """`hearth_particle_emit_burst` (fields of HearthBurstDef; `particle` takes a dict of
+        HearthParticleDef fields). Returns the new particles."""
+        bd = _def(lib.hearth_burst_def_default, fields)
+        ids = (_ffi.HearthParticleId * min(bd.count, _MAX_BURST))()
+        count = ctypes.c_size_t()
+        lib.hearth_particle_emit_burst(self._ptr, byref(bd), ids, len(ids), byref(count))
+        return [Particle(self, p) for p in ids[: count.value]]
+
+    @property
+    def particle_count(self):
+        out = ctypes.c_size_t()
+        lib.hearth_world_get_particle_count(self._ptr, byref(out))
+        return out.value
+
+    def get_particles(self, positions=True, velocities=False, ids=False):
+        """`hearth_world_get_particles`: every live particle in one call. Each argument is True
+        (a new array sized to the particle count), False (skip it) or a writable buffer:
+        float32, 3 per particle, for positions and velocities; uint32, 2 per particle
+        (index, generation; see `Particle.from_id`), for ids. The buffers given decide the
+        capacity. Returns ParticleData(count, ids, positions, velocities)."""
+        count_needed = None
+        buffers, views = [], []
+        for arg, ctype, typecode, per in (
+            (ids, _ffi.HearthParticleId, "I", 2),
+            (positions, _ffi.HearthVec3, "f", 3),
+            (velocities, _ffi.HearthVec3, "f", 3),
+        ):
+            if arg is False or arg is None:
+                buffers.append(None)
+                views.append(None)
+                continue
+            if arg is True:
+                if count_needed is None:
+                    count_needed = self.particle_count
+                arg = new_buffer(typecode, per * count_needed)
+            buffers.append(arg)
+            views.append(c_view(arg, ctype, typecode))
+        capacity = min((len(v) for v in views if v is not None), default=0)
+        count = ctypes.c_size_t()
+        lib.hearth_world_get_particles(self._ptr, *views, capacity, byref(count))
+        return ParticleData(count.value, *buffers)
+
+    def get_particle_positions(self, particles, out=None):
+        """`hearth_world_get_particle_positions`: positions of the given particles (handles or a
+        `hearth.particle_ids` array) into `out` (float32, 3 each; new array('f') when None)."""
+        ids = particle_ids(particles)
+        count = len(ids)
+        if out is None:
+            out = new_buffer("f", 3 * count)
+        view = c_view(out, _ffi.HearthVec3, "f")
+        if len(view) < count:
+            raise ValueError(f"out holds {len(view)} positions (3 float32 each) but {count} particles were given")
+        lib.hearth_world_get_particle_positions(self._ptr, ids, count, view)
+        return out
+
+    @property
+    def expired_particles(self):
+        """`hearth_world_get_expired_particles`: the particles that expired in the last step, as
+        ExpiredParticle(particle, position, velocity, user_data) (the particle ids are stale)."""
+        array = POINTER(_ffi.HearthExpiredParticle)()
+        count = ctypes.c_size_t()
+        lib.hearth_world_get_expired_particles(self._ptr, byref(array), byref(count))
+        return [
+            ExpiredParticle(Particle(self, e.id), from_vec3(e.position), from_vec3(e.velocity), e.user_data)
+            for e in (array[: count.value] if count.value else ())
+        ]
+
+    # -- soft bodies
+    def _soft(self, create, fields, *args):
+        sd = _def(lib.hearth_soft_body_def_default, fields, flatten=("transform",))
+        out = _ffi.HearthSoftBodyId()
+        create(self._ptr, byref(sd), *args, byref(out))
+        return SoftBody(self, out)
+
+    def create_soft_body_mesh(self, vertices, indices, masses=None, **fields):
+        """`hearth_soft_body_create_mesh`: `vertices` (3-sequences, or a flat float32 buffer),
+        `indices` (three per triangle, flat or as triples, or a uint32 buffer), optional
+        per-vertex `masses`. Keywords: fields of HearthSoftBodyDef, plus `position`/`rotation`."""
+        verts = _input_array(vertices, _ffi.HearthVec3, "f", 3)
+        idx = _input_array(indices, ctypes.c_uint32, "I", 1)
+        mass = None
+        if masses is not None:
+            mass = _input_array(masses, ctypes.c_float, "f", 1)
+            if len(mass) != len(verts):  # the library reads one mass per vertex
+                raise ValueError(f"{len(mass)} masses for {len(verts)} vertices")
+        return self._soft(lib.hearth_soft_body_create_mesh, fields, verts, len(verts), idx, len(idx), mass)
+
+    def create_soft_body_icosphere(self, radius, subdivisions, **fields):
+        """`hearth_soft_body_create_icosphere`: a ball of `radius`, `subdivisions` 0..=6."""
+        return self._soft(lib.hearth_soft_body_create_icosphere, fields, radius, subdivisions)
+
+    def create_soft_body_box(self, half_extents, cells, **fields):
+        """`hearth_soft_body_create_box`: half extents (m) and `cells` = (x, y, z) lattice cells."""
+        cx, cy, cz = cells
+        return self._soft(lib.hearth_soft_body_create_box, fields, to_vec3(half_extents), cx, cy, cz)
+
+    def create_soft_body_cloth(self, width, height, columns, rows, **fields):
+        """`hearth_soft_body_create_cloth`: `width × height` (m) in the XZ plane, `columns × rows`."""
+        return self._soft(lib.hearth_soft_body_create_cloth, fields, width, height, columns, rows)
+
+    @property
+    def soft_body_count(self):
+        out = ctypes.c_size_t()
+        lib.hearth_world_get_soft_body_count(self._ptr, byref(out))
+        return out.value
+
+
+def _input_array(values, ctype, typecode, per):
+    """A ctypes array of `ctype` copied from a buffer (float32/uint32 items or bytes) or from a
+    sequence of numbers or of `per`-sequences."""
+    try:
+        mv = memoryview(values)
+    except TypeError:
+        flat = []
+        for v in values:
+            if isinstance(v, (int, float)):
+                flat.append(v)
+            else:
+                flat.extend(v)
+        if len(flat) % per:
+            raise ValueError(f"{len(flat)} numbers do not make whole groups of {per}") from None
+        data = ctypes.c_float * len(flat) if typecode == "f" else ctypes.c_uint32 * len(flat)
+        return (ctype * (len(flat) // per)).from_buffer_copy(data(*flat)) if flat else (ctype * 0)()
+    check_format(mv, typecode, "input")
+    size = ctypes.sizeof(ctype)
+    if mv.nbytes % size:
+        raise ValueError(f"a buffer of {mv.nbytes} bytes does not hold whole {ctype.__name__} items")
+    return (ctype * (mv.nbytes // size)).from_buffer_copy(mv.tobytes())
