@@ -62,9 +62,7 @@ fn compiler(cpp: bool) -> Command {
 }
 
 fn run(cmd: &mut Command) -> String {
-    let out = cmd
-        .output()
-        .unwrap_or_else(|e| panic!("cannot run {cmd:?}: {e}"));
+    let out = cmd.output().unwrap_or_else(|e| panic!("cannot run {cmd:?}: {e}"));
     let text = format!(
         "{}{}",
         String::from_utf8_lossy(&out.stdout),
@@ -74,12 +72,10 @@ fn run(cmd: &mut Command) -> String {
     text
 }
 
-#[derive(Clone, Copy, PartialEq)]
+#[derive(Clone, Copy)]
 enum Link {
     Shared,
     Static,
-    /// No library: the program uses only engine-independent headers.
-    None,
 }
 
 /// Compiles `source` (relative to the repository root) into `exe_name`.
@@ -99,7 +95,6 @@ fn build(source: &str, exe_name: &str, cpp: bool, link: Link, extra: &[&str]) ->
         Link::Static => {
             cmd.arg(lib.join("libhearth.a")).args(["-lpthread", "-ldl"]);
         }
-        Link::None => {}
     }
     cmd.arg("-lm");
     run(&mut cmd);
@@ -146,11 +141,7 @@ fn run_test_program(exe: &Path, min_passed: u32) {
         .and_then(|s| s.split(' ').next())
         .and_then(|n| n.parse().ok())
         .unwrap_or_else(|| panic!("cannot read the pass count in {line:?}"));
-    assert!(
-        passed >= min_passed,
-        "{}: only {passed} checks ran",
-        exe.display()
-    );
+    assert!(passed >= min_passed, "{}: only {passed} checks ran", exe.display());
 }
 
 const TEST_HEARTH: &str = "tests/cpp/test_hearth.cpp";
@@ -194,4 +185,41 @@ fn cpp_wrapper_without_exceptions() {
         text.contains("(no exceptions): ") && text.trim_end().ends_with(" 0 failed"),
         "{text}"
     );
+}
+
+#[test]
+fn cpp_pyramid_prints_what_the_c_pyramid_prints() {
+    let c = build("examples/c/pyramid.c", "pyramid_c", false, Link::Shared, &[]);
+    let cpp = build("examples/cpp/pyramid.cpp", "pyramid_cpp", true, Link::Shared, &[]);
+    let c_out = run(&mut Command::new(&c));
+    let cpp_out = run_program(&cpp);
+    print!("{cpp_out}");
+    let c_lines: Vec<&str> = c_out.lines().collect();
+    let cpp_lines: Vec<&str> = cpp_out.lines().collect();
+    assert_eq!(c_lines.len(), cpp_lines.len(), "C:\n{c_out}\nC++:\n{cpp_out}");
+    assert!(c_lines.len() >= 8, "too short:\n{c_out}");
+    assert!(c_lines[0].contains(" C example: "), "{}", c_lines[0]);
+    assert_eq!(
+        cpp_lines[0],
+        c_lines[0].replace(" C example: ", " C++ example: "),
+        "first line"
+    );
+    for (i, (a, b)) in c_lines.iter().zip(&cpp_lines).enumerate().skip(1) {
+        assert_eq!(a, b, "line {} differs", i + 1);
+    }
+    assert_eq!(cpp_lines.last(), Some(&"done"));
+}
+
+#[test]
+fn unreal_conversion_header_passes() {
+    let public = root().join("bindings/unreal/HearthPhysics/Source/HearthPhysics/Public");
+    let include = format!("-I{}", public.display());
+    let exe = build(
+        "tests/cpp/test_unreal_conversion.cpp",
+        "test_unreal_conversion",
+        true,
+        Link::Shared,
+        &[&include],
+    );
+    run_test_program(&exe, 3000);
 }
