@@ -61,6 +61,15 @@ fn compiler(cpp: bool) -> Command {
     cmd
 }
 
+/// A command for a built program. Cargo's LD_LIBRARY_PATH lists `target/<profile>` first,
+/// where an older `cargo build` may have left a stale libhearth.so; it would win over the
+/// program's RUNPATH, so it is removed and the program loads the library it was linked for.
+fn program(exe: &Path) -> Command {
+    let mut cmd = Command::new(exe);
+    cmd.env_remove("LD_LIBRARY_PATH");
+    cmd
+}
+
 fn run(cmd: &mut Command) -> String {
     let out = cmd.output().unwrap_or_else(|e| panic!("cannot run {cmd:?}: {e}"));
     let text = format!(
@@ -104,9 +113,10 @@ fn build(source: &str, exe_name: &str, cpp: bool, link: Link, extra: &[&str]) ->
 /// Runs a program (and, with `HEARTH_VALGRIND=1`, runs it again under valgrind); returns
 /// its output.
 fn run_program(exe: &Path) -> String {
-    let text = run(&mut Command::new(exe));
+    let text = run(&mut program(exe));
     if std::env::var("HEARTH_VALGRIND").as_deref() == Ok("1") {
         let v = run(Command::new("valgrind")
+            .env_remove("LD_LIBRARY_PATH")
             .args([
                 "--error-exitcode=99",
                 "--leak-check=full",
@@ -149,6 +159,10 @@ const TEST_HEARTH: &str = "tests/cpp/test_hearth.cpp";
 #[test]
 fn cpp_wrapper_with_the_shared_library() {
     let exe = build(TEST_HEARTH, "test_hearth_shared", true, Link::Shared, &[]);
+    // It loads this build's library, not a copy elsewhere.
+    let ldd = run(Command::new("ldd").env_remove("LD_LIBRARY_PATH").arg(&exe));
+    let line = ldd.lines().find(|l| l.contains("libhearth.so")).unwrap_or_default();
+    assert!(line.contains(&lib_dir().display().to_string()), "{ldd}");
     run_test_program(&exe, 300);
 }
 
@@ -180,7 +194,7 @@ fn cpp_wrapper_without_exceptions() {
         Link::Static,
         &["-DHEARTH_CPP_NO_EXCEPTIONS"],
     );
-    let text = run(&mut Command::new(&exe));
+    let text = run(&mut program(&exe));
     assert!(
         text.contains("(no exceptions): ") && text.trim_end().ends_with(" 0 failed"),
         "{text}"
@@ -191,7 +205,7 @@ fn cpp_wrapper_without_exceptions() {
 fn cpp_pyramid_prints_what_the_c_pyramid_prints() {
     let c = build("examples/c/pyramid.c", "pyramid_c", false, Link::Shared, &[]);
     let cpp = build("examples/cpp/pyramid.cpp", "pyramid_cpp", true, Link::Shared, &[]);
-    let c_out = run(&mut Command::new(&c));
+    let c_out = run(&mut program(&c));
     let cpp_out = run_program(&cpp);
     print!("{cpp_out}");
     let c_lines: Vec<&str> = c_out.lines().collect();
