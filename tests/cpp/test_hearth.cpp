@@ -1,0 +1,768 @@
+// The C++ wrapper (bindings/cpp/hearth.hpp) tested on real behaviour: a box resting on a plane
+// at its analytic height, every error kind as an exception with its code and message (and as
+// a Result in the nothrow API) leaving the world unchanged, move-only RAII ownership, lambdas
+// as force and contact generators (a hovering body, a lambda floor, exceptions and failed
+// Statuses reported by step(), boxes released), bulk read-back equal to single reads, joints,
+// particles, soft bodies and built-in generators.
+//
+// Compiled by tests/bindings_cpp.rs with -std=c++17 -Wall -Wextra -Wpedantic -Werror, linked
+// shared and static, and once more with -fno-exceptions (only the nothrow half is built then);
+// run under valgrind when HEARTH_VALGRIND=1. Prints "N passed, M failed".
+#include "hearth.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <memory>
+#include <string>
+#include <type_traits>
+#include <vector>
+
+static int g_passed = 0;
+static int g_failed = 0;
+
+#define CHECK(cond)                                                                             \
+    do {                                                                                        \
+        if (cond) {                                                                             \
+            g_passed++;                                                                         \
+        } else {                                                                                \
+            g_failed++;                                                                         \
+            std::fprintf(stderr, "%s:%d: CHECK(%s) failed\n", __FILE__, __LINE__, #cond);       \
+        }                                                                                       \
+    } while (0)
+
+#define CHECK_NEAR(a, b, tol)                                                                   \
+    do {                                                                                        \
+        const double a_ = (a), b_ = (b);                                                        \
+        if (std::fabs(a_ - b_) <= (tol)) {                                                      \
+            g_passed++;                                                                         \
+        } else {                                                                                \
+            g_failed++;                                                                         \
+            std::fprintf(stderr, "%s:%d: |%s - %s| = |%g - %g| > %g\n", __FILE__, __LINE__, #a, \
+                         #b, a_, b_, (double)(tol));                                            \
+        }                                                                                       \
+    } while (0)
+
+// A Result that must have succeeded.
+#define CHECK_OK(result)                                                                        \
+    do {                                                                                        \
+        const auto &r_ = (result);                                                              \
+        if (r_.ok()) {                                                                          \
+            g_passed++;                                                                         \
+        } else {                                                                                \
+            g_failed++;                                                                         \
+            std::fprintf(stderr, "%s:%d: %s failed: %s: %s\n", __FILE__, __LINE__, #result,     \
+                         hearth::code_name(r_.code()), r_.message().c_str());                   \
+        }                                                                                       \
+    } while (0)
+
+// A Result that must have failed with `code` and a message.
+#define CHECK_CODE(result, expected)                                                            \
+    do {                                                                                        \
+        const auto &r_ = (result);                                                              \
+        if (r_.code() == (expected) && !r_.message().empty() && !r_.ok()) {                     \
+            g_passed++;                                                                         \
+        } else {                                                                                \
+            g_failed++;                                                                         \
+            std::fprintf(stderr, "%s:%d: %s gave %s (\"%s\"), expected %s\n", __FILE__,         \
+                         __LINE__, #result, hearth::code_name(r_.code()), r_.message().c_str(), \
+                         hearth::code_name(expected));                                          \
+        }                                                                                       \
+    } while (0)
+
+#if HEARTH_CPP_EXCEPTIONS
+// A statement that must throw hearth::Error with `code` and a message naming it.
+#define CHECK_THROWS(stmt, expected)                                                            \
+    do {                                                                                        \
+        bool thrown_ = false;                                                                   \
+        try {                                                                                   \
+            stmt;                                                                               \
+        } catch (const hearth::Error &e_) {                                                     \
+            thrown_ = e_.code() == (expected) && !e_.message().empty() &&                       \
+                      std::string(e_.what()).find(hearth::code_name(expected)) == 0;            \
+            if (!thrown_) {                                                                     \
+                std::fprintf(stderr, "%s:%d: threw %s\n", __FILE__, __LINE__, e_.what());       \
+            }                                                                                   \
+        }                                                                                       \
+        if (thrown_) {                                                                          \
+            g_passed++;                                                                         \
+        } else {                                                                                \
+            g_failed++;                                                                         \
+            std::fprintf(stderr, "%s:%d: %s did not throw %s\n", __FILE__, __LINE__, #stmt,     \
+                         hearth::code_name(expected));                                          \
+        }                                                                                       \
+    } while (0)
+#endif
+
+static const float DT = 1.0f / 60.0f;
+static const float NaN = std::nanf("");
+
+static bool same_transform(const hearth::Transform &a, const hearth::Transform &b) {
+    return std::memcmp(&a, &b, sizeof a) == 0;
+}
+
+// ============================================================== the throwing API (default)
+#if HEARTH_CPP_EXCEPTIONS
+
+static hearth::World make_world(bool sleep = false) {
+    hearth::WorldDef def = hearth::world_def();
+    def.enable_sleep = sleep ? 1 : 0;
+    return hearth::World(def);
+}
+
+static hearth::Body add_ground(hearth::World &w) {
+    hearth::Body ground = w.create_body(hearth::BodyType::Static);
+    ground.add(hearth::plane(hearth::vec3(0, 1, 0), 0.0f));
+    return ground;
+}
+
+static hearth::Body add_ball(hearth::World &w, hearth::Vec3 p, float radius = 0.25f) {
+    hearth::Body b = w.create_body(hearth::BodyType::Dynamic, p);
+    b.add(hearth::sphere(radius));
+    return b;
+}
+
+static void test_box_rests_on_plane() {
+    hearth::World w = make_world(true);
+    add_ground(w);
+    hearth::Body box = w.create_body(hearth::BodyType::Dynamic, hearth::vec3(0.3f, 2.0f, -0.2f));
+    hearth::Shape s = box.add(hearth::box(hearth::vec3(0.5f, 0.25f, 0.75f)));
+    CHECK(s.body() == box);
+    CHECK(box.type() == hearth::BodyType::Dynamic);
+    // 1 x 0.5 x 1.5 m of water density: 750 kg.
+    CHECK_NEAR(box.mass(), 750.0, 0.01);
+    for (int i = 0; i < 360; i++) { // it settles in 1 s and falls asleep by 4.5 s
+        w.step(DT);
+    }
+    const hearth::Transform t = box.transform();
+    CHECK_NEAR(t.position.y, 0.25, 0.005); // rests on its face: half height above the plane
+    CHECK_NEAR(t.position.x, 0.3, 0.005);
+    CHECK_NEAR(t.position.z, -0.2, 0.005);
+    CHECK_NEAR(std::fabs(t.rotation.w), 1.0, 1e-4);
+    CHECK(!box.is_awake()); // it fell asleep
+    const hearth::WorldCounters c = w.counters();
+    CHECK(c.body_count == 2 && c.awake_body_count == 0);
+}
+
+static void test_errors_as_exceptions() {
+    hearth::World w = make_world();
+    hearth::Body b = add_ball(w, hearth::vec3(0, 5, 0));
+    hearth::Body doomed = add_ball(w, hearth::vec3(3, 5, 0));
+    const hearth::Transform before = b.transform();
+    doomed.destroy();
+
+    // Stale id: INVALID_ID with the C layer's message; the exception is a runtime_error.
+    CHECK_THROWS(doomed.transform(), hearth::Code::InvalidId);
+    CHECK_THROWS(doomed.destroy(), hearth::Code::InvalidId);
+    CHECK_THROWS(hearth::Body().mass(), hearth::Code::NullPointer); // default handle: no world
+    try {
+        doomed.set_linear_velocity(hearth::vec3(1, 0, 0));
+        CHECK(false);
+    } catch (const std::runtime_error &e) {
+        CHECK(std::string(e.what()).find("HEARTH_ERROR_INVALID_ID: ") == 0);
+        CHECK(std::strlen(e.what()) > std::strlen("HEARTH_ERROR_INVALID_ID: "));
+    }
+    // NaN and other bad numbers: INVALID_ARGUMENT, and the world is unchanged.
+    hearth::Transform bad = before;
+    bad.position.y = NaN;
+    CHECK_THROWS(b.set_transform(bad), hearth::Code::InvalidArgument);
+    CHECK_THROWS(b.set_linear_velocity(hearth::vec3(NaN, 0, 0)), hearth::Code::InvalidArgument);
+    CHECK_THROWS(w.step(NaN), hearth::Code::InvalidArgument);
+    CHECK_THROWS(w.step(-1.0f), hearth::Code::InvalidArgument);
+    CHECK_THROWS(b.add(hearth::sphere(-1.0f)), hearth::Code::InvalidArgument);
+    CHECK_THROWS(b.add(hearth::plane(hearth::vec3(0, 1, 0), 0)), hearth::Code::InvalidArgument);
+    hearth::BodyDef garbage;
+    std::memset(&garbage, 0, sizeof garbage); // not from body_def(): cookie missing
+    CHECK_THROWS(w.create_body(garbage), hearth::Code::InvalidArgument);
+    CHECK(same_transform(b.transform(), before));
+    CHECK(w.counters().body_count == 1);
+    CHECK_NEAR(b.linear_velocity().y, 0.0, 0.0);
+    // A world def with bad numbers: no world is made.
+    hearth::WorldDef wd = hearth::world_def();
+    wd.substeps = 0;
+    CHECK_THROWS(hearth::World bad_world(wd), hearth::Code::InvalidArgument);
+    // Buffers too small (checked by the wrapper before the C call).
+    std::vector<hearth::BodyId> ids{b.id(), b.id()};
+    std::vector<hearth::Transform> one(1);
+    CHECK_THROWS(w.transforms(ids, one), hearth::Code::BufferTooSmall);
+    // Structural change from inside a lambda: WORLD_LOCKED, rethrown by step().
+    int calls = 0;
+    hearth::Generator g = w.add_force_generator([&](hearth::ForceContext &ctx) {
+        calls++;
+        ctx.world().create_body(hearth::BodyType::Dynamic);
+    });
+    CHECK_THROWS(w.step(DT), hearth::Code::WorldLocked);
+    CHECK(calls == 1);
+    CHECK(w.counters().body_count == 1);
+    w.destroy_generator(g);
+    CHECK_THROWS(w.destroy_generator(g), hearth::Code::InvalidId); // stale now
+    CHECK(hearth::code_name(hearth::Code::Panic) == std::string("HEARTH_ERROR_PANIC"));
+}
+
+static void test_move_semantics() {
+    static_assert(!std::is_copy_constructible<hearth::World>::value, "World is move-only");
+    static_assert(!std::is_copy_assignable<hearth::World>::value, "World is move-only");
+    static_assert(std::is_nothrow_move_constructible<hearth::World>::value, "World moves");
+    static_assert(std::is_nothrow_move_assignable<hearth::World>::value, "World moves");
+    static_assert(std::is_trivially_copyable<hearth::Body>::value, "handles are values");
+
+    auto counter = std::make_shared<int>(0);
+    hearth::World a = make_world();
+    hearth::Body ball = add_ball(a, hearth::vec3(0, 10, 0));
+    hearth::Generator g = a.add_force_generator([counter](hearth::ForceContext &) { (*counter)++; });
+    HearthWorld *raw = a.get();
+
+    hearth::World b(std::move(a)); // move construction: the C world and its lambdas move along
+    CHECK(!a && a.get() == nullptr && b.get() == raw);
+    CHECK(a.lambda_count() == 0 && b.lambda_count() == 1);
+    CHECK_THROWS(a.step(DT), hearth::Code::NullPointer); // the moved-from World is empty
+    CHECK_THROWS(a.create_body(hearth::body_def()), hearth::Code::NullPointer);
+    b.step(DT);
+    CHECK(*counter == 1);
+    CHECK(ball.position().y < 10.0f); // handles stay valid across the move
+
+    hearth::World c = make_world();
+    add_ball(c, hearth::vec3(0, 1, 0));
+    c = std::move(b); // move assignment destroys c's old world
+    CHECK(c.get() == raw && c.counters().body_count == 1);
+    c.step(DT);
+    CHECK(*counter == 2);
+    CHECK(c.generator(g.id()).type() == hearth::GeneratorType::UserForce);
+
+    // The lambda (and its captures) is released by destroy_generator and with the World.
+    CHECK(counter.use_count() == 2);
+    c.destroy_generator(g);
+    CHECK(counter.use_count() == 1 && c.lambda_count() == 0);
+    c.step(DT);
+    CHECK(*counter == 2);
+    {
+        hearth::World d = make_world();
+        d.add_force_generator([counter](hearth::ForceContext &) {});
+        d.add_contact_generator([counter](hearth::ContactContext &) {});
+        CHECK(counter.use_count() == 3 && d.lambda_count() == 2);
+    }
+    CHECK(counter.use_count() == 1);
+    // A generator that fails to be made keeps nothing.
+    hearth::World e;
+    CHECK_THROWS(e.add_force_generator([counter](hearth::ForceContext &) {}), hearth::Code::NullPointer);
+    CHECK(counter.use_count() == 1);
+}
+
+static void test_lambda_force_hovers() {
+    hearth::World w = make_world();
+    hearth::Body hover = add_ball(w, hearth::vec3(0, 5, 0));
+    hearth::Body falls = add_ball(w, hearth::vec3(2, 5, 0));
+    hearth::Particle p = w.create_particle([] {
+        hearth::ParticleDef d = hearth::particle_def();
+        d.position = hearth::vec3(-2, 5, 0);
+        return d;
+    }());
+    int calls = 0;
+    float seen_dt = 0.0f;
+    size_t seen_bodies = 0, seen_particles = 0;
+    hearth::Generator lift = w.add_force_generator([&](hearth::ForceContext &ctx) {
+        calls++;
+        seen_dt = ctx.dt();
+        seen_bodies = ctx.bodies().size();
+        seen_particles = ctx.particles().size();
+        const hearth::Vec3 g = ctx.world().gravity();
+        for (hearth::Body b : ctx.bodies()) {
+            const float m = b.mass();
+            b.apply_force(hearth::vec3(-g.x * m, -g.y * m, -g.z * m));
+        }
+        for (hearth::Particle q : ctx.particles()) {
+            q.apply_force(hearth::vec3(0, 9.81f, 0)); // 1 kg
+        }
+    });
+    lift.attach(hover);
+    lift.attach(p);
+    CHECK(lift.type() == hearth::GeneratorType::UserForce);
+    const hearth::Attachments a = lift.attachments();
+    CHECK(a.bodies == 1 && a.particles == 1);
+    for (int i = 0; i < 60; i++) {
+        w.step(DT);
+    }
+    CHECK(calls == 60 && seen_bodies == 1 && seen_particles == 1);
+    CHECK_NEAR(seen_dt, DT, 1e-7);
+    CHECK_NEAR(hover.position().y, 5.0, 1e-3);
+    CHECK_NEAR(p.position().y, 5.0, 1e-3);
+    CHECK_NEAR(falls.position().y, 5.0 - 0.5 * 9.81, 0.1); // free fall for 1 s
+    lift.detach(hover);
+    CHECK(lift.attachments().bodies == 0);
+    w.step(DT);
+    CHECK(hover.linear_velocity().y < 0.0f);
+}
+
+static void test_lambda_exception_rethrown_by_step() {
+    hearth::World w = make_world();
+    hearth::Body b = add_ball(w, hearth::vec3(0, 5, 0));
+    int first = 0, second = 0;
+    bool explode = true;
+    w.add_force_generator([&](hearth::ForceContext &) {
+        first++;
+        if (explode) {
+            throw std::runtime_error("boom from a lambda");
+        }
+    });
+    w.add_force_generator([&](hearth::ForceContext &) { second++; });
+    bool caught = false;
+    try {
+        w.step(DT);
+    } catch (const std::runtime_error &e) {
+        caught = std::string(e.what()) == "boom from a lambda"; // the original exception
+    }
+    CHECK(caught);
+    CHECK(first == 1 && second == 0); // the rest of that step's lambdas were skipped
+    CHECK(b.position().y < 5.0f);     // the step itself ran
+    explode = false;
+    w.step(DT); // the failure was reported once; the next step is clean
+    CHECK(first == 2 && second == 1);
+    // A non-standard exception type comes back as itself too.
+    w.add_force_generator([](hearth::ForceContext &) { throw 42; });
+    int thrown = 0;
+    try {
+        w.step(DT);
+    } catch (int v) {
+        thrown = v;
+    }
+    CHECK(thrown == 42);
+    // A lambda returning a failed Status: step() throws hearth::Error with its code.
+    hearth::World w2 = make_world();
+    w2.add_force_generator([](hearth::ForceContext &) -> hearth::Status {
+        return hearth::Status(hearth::Code::InvalidArgument, "rejected by the lambda");
+    });
+    CHECK_THROWS(w2.step(DT), hearth::Code::InvalidArgument);
+}
+
+static void test_lambda_contact_floor() {
+    // No plane: a contact lambda is the floor, at y = 0, for one ball and one particle.
+    hearth::World w = make_world();
+    hearth::Body ball = add_ball(w, hearth::vec3(0, 1, 0));
+    hearth::ParticleDef pd = hearth::particle_def();
+    pd.position = hearth::vec3(2, 1, 0);
+    hearth::Particle p = w.create_particle(pd);
+    uint32_t seen_capacity = 0;
+    bool refused = false;
+    hearth::Generator floor = w.add_contact_generator(
+        [&](hearth::ContactContext &ctx) {
+            const hearth::Vec3 bp = ball.position();
+            hearth::GeneratedContact c{};
+            c.body_b = ball.id();
+            c.point = hearth::vec3(bp.x, 0, bp.z);
+            c.normal = hearth::vec3(0, 1, 0);
+            c.penetration = 0.25f - bp.y;
+            c.friction = 0.5f;
+            ctx.add(c);
+            const hearth::Vec3 pp = p.position();
+            hearth::GeneratedContact pc{};
+            pc.particle_b = p.id();
+            pc.point = hearth::vec3(pp.x, 0, pp.z);
+            pc.normal = hearth::vec3(0, 1, 0);
+            pc.penetration = 0.05f - pp.y;
+            ctx.add(pc);
+            seen_capacity = ctx.capacity();
+            try {
+                ctx.add(c); // capacity 2: the third is refused
+            } catch (const hearth::Error &e) {
+                refused = e.code() == hearth::Code::BufferTooSmall;
+            }
+        },
+        2);
+    CHECK(floor.type() == hearth::GeneratorType::UserContact);
+    for (int i = 0; i < 180; i++) {
+        w.step(DT);
+    }
+    CHECK(seen_capacity == 2 && refused);
+    CHECK_NEAR(ball.position().y, 0.25, 0.01);
+    CHECK_NEAR(p.position().y, 0.05, 0.01);
+}
+
+static void test_bulk_equals_single_reads() {
+    hearth::World w = make_world();
+    add_ground(w);
+    std::vector<hearth::Body> bodies;
+    for (int i = 0; i < 12; i++) {
+        hearth::Body b = w.create_body(hearth::BodyType::Dynamic,
+                                       hearth::vec3(0.3f * (float)(i % 3), 1.0f + 1.1f * (float)i, 0.1f * (float)i));
+        if (i % 2 == 0) {
+            b.add(hearth::box(hearth::vec3(0.5f, 0.5f, 0.5f)));
+        } else {
+            b.add(hearth::capsule(hearth::vec3(0, -0.3f, 0), hearth::vec3(0, 0.3f, 0), 0.2f));
+        }
+        b.set_angular_velocity(hearth::vec3(0.1f * (float)i, 0.2f, 0.0f));
+        bodies.push_back(b);
+    }
+    for (int i = 0; i < 90; i++) {
+        w.step(DT);
+    }
+    std::vector<hearth::BodyId> ids;
+    for (const hearth::Body &b : bodies) {
+        ids.push_back(b.id());
+    }
+    std::vector<hearth::Transform> span_out(ids.size());
+    w.transforms(ids, span_out);
+    const std::vector<hearth::Transform> vec_out = w.transforms(bodies);
+    bool all_equal = vec_out.size() == bodies.size();
+    for (size_t i = 0; i < bodies.size() && all_equal; i++) {
+        const hearth::Transform single = bodies[i].transform();
+        all_equal = same_transform(single, span_out[i]) && same_transform(single, vec_out[i]);
+    }
+    CHECK(all_equal);
+    // A stale id anywhere: nothing written, INVALID_ID.
+    bodies[5].destroy();
+    std::vector<hearth::Transform> untouched(ids.size(), hearth::transform(hearth::vec3(7, 7, 7)));
+    CHECK_THROWS(w.transforms(ids, untouched), hearth::Code::InvalidId);
+    CHECK(untouched[0].position.x == 7.0f && untouched[11].position.x == 7.0f);
+}
+
+static void test_joints() {
+    hearth::World w = make_world();
+    // A 1 m pendulum on a distance joint to a world anchor at (0, 3, 0).
+    hearth::Body bob = add_ball(w, hearth::vec3(1, 3, 0), 0.1f);
+    hearth::DistanceJointDef dd = hearth::distance_joint_def();
+    dd.base.body_a = bob.id();
+    dd.base.frame_b = hearth::transform(hearth::vec3(0, 3, 0));
+    dd.length = 1.0f;
+    hearth::Joint rope = w.create_joint(dd);
+    CHECK(rope.type() == hearth::JointType::Distance);
+    const auto pair = rope.bodies();
+    CHECK(pair.first == bob && pair.second.is_null());
+    float worst = 0.0f;
+    for (int i = 0; i < 120; i++) {
+        w.step(DT);
+        const hearth::Vec3 p = bob.position();
+        const float len = std::sqrt(p.x * p.x + (p.y - 3) * (p.y - 3) + p.z * p.z);
+        worst = std::fmax(worst, std::fabs(len - 1.0f));
+    }
+    CHECK(worst < 0.01f);
+    CHECK(bob.position().y < 2.5f); // it swung down
+    // The rope pulls its world end (body B) toward the bob: along anchor -> bob.
+    const hearth::Vec3 f = rope.force().force, bp = bob.position();
+    CHECK(f.x * bp.x + f.y * (bp.y - 3.0f) + f.z * bp.z > 0.0f);
+    CHECK(!rope.is_broken());
+    CHECK(w.broken_joints().empty());
+    // A motorised hinge: set and read back, limits round trip, a wrong-type call throws.
+    hearth::Body door = w.create_body(hearth::BodyType::Dynamic, hearth::vec3(5, 1, 0));
+    door.add(hearth::box(hearth::vec3(0.5f, 1.0f, 0.05f)));
+    hearth::HingeJointDef hd = hearth::hinge_joint_def();
+    hd.base.body_a = door.id();
+    hd.base.frame_b = hearth::transform(hearth::vec3(5, 1, 0));
+    hearth::Joint hinge = w.create_joint(hd);
+    hinge.set_motor(true, 1.5f, 100.0f);
+    const hearth::Motor m = hinge.motor();
+    CHECK(m.enabled && m.speed == 1.5f && m.max == 100.0f);
+    hinge.set_limits(true, -0.5f, 0.75f);
+    const hearth::Limits l = hinge.limits();
+    CHECK(l.enabled && l.lower == -0.5f && l.upper == 0.75f);
+    CHECK_THROWS(hinge.set_cone_limit(true, 0.3f), hearth::Code::InvalidArgument);
+    CHECK_THROWS(hinge.set_limits(true, 1.0f, -1.0f), hearth::Code::InvalidArgument);
+    CHECK(hinge.limits().upper == 0.75f); // unchanged by the failed call
+    hinge.destroy();
+    CHECK_THROWS(hinge.type(), hearth::Code::InvalidId);
+    // Destroying a body destroys its joints.
+    bob.destroy();
+    CHECK_THROWS(rope.type(), hearth::Code::InvalidId);
+}
+
+static void test_particles() {
+    hearth::World w = make_world();
+    hearth::ParticleDef pd = hearth::particle_def();
+    pd.position = hearth::vec3(0, 20, 0);
+    pd.collide = 0;
+    pd.user_data = 77;
+    hearth::Particle p = w.create_particle(pd);
+    CHECK(p.user_data() == 77);
+    for (int i = 0; i < 60; i++) {
+        w.step(DT);
+    }
+    CHECK_NEAR(p.position().y, 20.0 - 0.5 * 9.81, 0.1);
+    CHECK_NEAR(p.velocity().y, -9.81, 0.01);
+    hearth::BurstDef bd = hearth::burst_def();
+    bd.position = hearth::vec3(0, 5, 0);
+    bd.count = 10;
+    bd.lifetime_min = 0.5f;
+    bd.lifetime_max = 0.5f;
+    const std::vector<hearth::Particle> burst = w.emit_burst(bd);
+    CHECK(burst.size() == 10 && w.particle_count() == 11);
+    w.step(DT);
+    // Bulk reads equal single reads.
+    std::vector<hearth::ParticleId> ids(11);
+    std::vector<hearth::Vec3> pos(11), vel(11);
+    CHECK(w.particles(ids, pos, vel) == 11);
+    bool equal = true;
+    for (size_t i = 0; i < ids.size(); i++) {
+        const hearth::Particle q = w.particle(ids[i]);
+        const hearth::Vec3 sp = q.position(), sv = q.velocity();
+        equal = equal && std::memcmp(&sp, &pos[i], sizeof sp) == 0 && std::memcmp(&sv, &vel[i], sizeof sv) == 0;
+    }
+    CHECK(equal);
+    std::vector<hearth::Vec3> by_id(ids.size());
+    w.particle_positions(ids, by_id);
+    CHECK(std::memcmp(by_id.data(), pos.data(), sizeof(hearth::Vec3) * pos.size()) == 0);
+    std::vector<hearth::Vec3> short_buffer(3);
+    CHECK_THROWS(w.particles({}, short_buffer, {}), hearth::Code::BufferTooSmall);
+    // The burst expires after 0.5 s and is reported for one step.
+    size_t expired = 0;
+    for (int i = 0; i < 40; i++) {
+        w.step(DT);
+        expired += w.expired_particles().size();
+    }
+    CHECK(expired == 10 && w.particle_count() == 1);
+    CHECK_THROWS(burst[0].position(), hearth::Code::InvalidId);
+    p.destroy();
+    CHECK(w.particle_count() == 0);
+}
+
+static void test_soft_bodies() {
+    hearth::World w = make_world();
+    add_ground(w);
+    hearth::SoftBodyDef sd = hearth::soft_body_def();
+    sd.transform.position = hearth::vec3(0, 2, 0);
+    sd.pressure = 50.0f;
+    hearth::SoftBody ball = w.create_soft_icosphere(sd, 0.5f, 2);
+    CHECK(ball.vertex_count() == 162);
+    CHECK(ball.indices().size() == 3 * ball.triangle_count());
+    CHECK_NEAR(ball.mass(), 1.0, 1e-5);
+    for (int i = 0; i < 30; i++) {
+        w.step(DT);
+    }
+    const std::vector<hearth::Vec3> pos = ball.positions();
+    bool equal = pos.size() == 162;
+    for (uint32_t v = 0; v < pos.size() && equal; v++) {
+        const hearth::Vec3 single = ball.vertex_position(v);
+        equal = std::memcmp(&single, &pos[v], sizeof single) == 0;
+    }
+    CHECK(equal);
+    std::vector<hearth::Vec3> normals(162);
+    CHECK(ball.normals(normals) == 162);
+    CHECK_NEAR(std::sqrt(normals[0].x * normals[0].x + normals[0].y * normals[0].y + normals[0].z * normals[0].z),
+               1.0, 1e-4);
+    CHECK(ball.center().y < 2.0f);
+    CHECK_THROWS(ball.vertex_position(162), hearth::Code::InvalidArgument);
+    std::vector<hearth::Vec3> tiny(5);
+    CHECK_THROWS(ball.positions(tiny), hearth::Code::BufferTooSmall);
+    // A tetrahedron from a mesh, a pinned cloth.
+    const hearth::Vec3 tet_v[4] = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+    const uint32_t tet_i[12] = {0, 2, 1, 0, 1, 3, 0, 3, 2, 1, 2, 3};
+    hearth::SoftBodyDef td = hearth::soft_body_def();
+    td.transform.position = hearth::vec3(5, 5, 0);
+    hearth::SoftBody tet = w.create_soft_body(td, tet_v, tet_i);
+    CHECK_NEAR(tet.rest_volume(), 1.0 / 6.0, 1e-5);
+    const uint32_t bad_i[3] = {0, 1, 9};
+    CHECK_THROWS(w.create_soft_body(td, tet_v, bad_i), hearth::Code::InvalidArgument);
+    hearth::SoftBody cloth = w.create_cloth(td, 1.0f, 1.0f, 4, 4);
+    cloth.pin_vertex(0);
+    CHECK(cloth.is_vertex_pinned(0) && !cloth.is_vertex_pinned(1));
+    cloth.unpin_vertex(0);
+    CHECK(!cloth.is_vertex_pinned(0));
+    CHECK(w.soft_body_count() == 3);
+    tet.destroy();
+    CHECK_THROWS(tet.volume(), hearth::Code::InvalidId);
+    CHECK(w.soft_body_count() == 2);
+}
+
+static void test_builtin_generators() {
+    hearth::World w = make_world();
+    hearth::Body b = add_ball(w, hearth::vec3(0, 10, 0));
+    hearth::GravityGeneratorDef gd = hearth::gravity_generator_def();
+    gd.acceleration = hearth::vec3(0, 9.81f, 0); // cancels world gravity
+    hearth::Generator anti = w.create_gravity_generator(gd);
+    anti.attach(b);
+    CHECK_THROWS(anti.attach(b), hearth::Code::InvalidArgument); // already attached
+    CHECK(anti.type() == hearth::GeneratorType::Gravity);
+    for (int i = 0; i < 30; i++) {
+        w.step(DT);
+    }
+    CHECK_NEAR(b.position().y, 10.0, 1e-3);
+    w.destroy_generator(anti);
+    hearth::RodGeneratorDef rd = hearth::rod_generator_def();
+    rd.a = hearth::link_body(b.id());
+    rd.b = hearth::link_world(hearth::vec3(0, 11, 0));
+    rd.length = 1.0f;
+    hearth::Generator rod = w.create_rod(rd);
+    CHECK(rod.type() == hearth::GeneratorType::Rod);
+    CHECK_THROWS(rod.attach(b), hearth::Code::InvalidArgument);
+    for (int i = 0; i < 60; i++) {
+        w.step(DT);
+    }
+    CHECK_NEAR(b.position().y, 10.0, 0.01); // hangs on the rod
+}
+
+static void run_throwing_tests() {
+    test_box_rests_on_plane();
+    test_errors_as_exceptions();
+    test_move_semantics();
+    test_lambda_force_hovers();
+    test_lambda_exception_rethrown_by_step();
+    test_lambda_contact_floor();
+    test_bulk_equals_single_reads();
+    test_joints();
+    test_particles();
+    test_soft_bodies();
+    test_builtin_generators();
+}
+#endif // HEARTH_CPP_EXCEPTIONS
+
+// ======================================================================= the nothrow API
+
+namespace nt = hearth::nothrow;
+
+static void test_nothrow_results() {
+    static_assert(std::is_same<decltype(std::declval<nt::Body>().mass()), hearth::Result<float>>::value,
+                  "nothrow calls return Result");
+    hearth::WorldDef def = hearth::world_def();
+    def.enable_sleep = 1;
+    hearth::Result<nt::World> created = nt::World::create(def);
+    CHECK_OK(created);
+    nt::World w = std::move(created).value();
+    CHECK(static_cast<bool>(w));
+
+    def.substeps = 1000;
+    CHECK_CODE(nt::World::create(def), hearth::Code::InvalidArgument);
+
+    nt::Body ground = w.create_body(hearth::BodyType::Static).value();
+    CHECK_OK(ground.add(hearth::plane(hearth::vec3(0, 1, 0), 0.0f)));
+    hearth::Result<nt::Body> made = w.create_body(hearth::BodyType::Dynamic, hearth::vec3(0, 2, 0));
+    CHECK_OK(made);
+    nt::Body box = *made;
+    CHECK_OK(box.add(hearth::box(hearth::vec3(0.5f, 0.5f, 0.5f))));
+    for (int i = 0; i < 240; i++) {
+        if (!w.step(DT)) {
+            CHECK(false);
+            break;
+        }
+    }
+    CHECK_NEAR(box.position().value().y, 0.5, 0.005);
+
+    // Every error kind as a Result, the world unchanged.
+    const hearth::Transform before = box.transform().value();
+    hearth::Transform bad = before;
+    bad.rotation = hearth::Quat{0, 0, 0, 0};
+    CHECK_CODE(box.set_transform(bad), hearth::Code::InvalidArgument);
+    CHECK_CODE(box.apply_force(hearth::vec3(0, NaN, 0)), hearth::Code::InvalidArgument);
+    CHECK_CODE(w.step(NaN), hearth::Code::InvalidArgument);
+    CHECK(same_transform(box.transform().value(), before));
+    nt::Body gone = w.create_body(hearth::BodyType::Dynamic).value();
+    CHECK_OK(gone.destroy());
+    CHECK_CODE(gone.transform(), hearth::Code::InvalidId);
+    CHECK(gone.mass().value_or(-1.0f) == -1.0f);
+    CHECK_CODE(nt::Body().mass(), hearth::Code::NullPointer);
+    std::vector<hearth::BodyId> ids{box.id(), gone.id()};
+    std::vector<hearth::Transform> out(2);
+    CHECK_CODE(w.transforms(ids, out), hearth::Code::InvalidId);
+    CHECK(w.counters().value().body_count == 2);
+
+    // Move: the moved-from world is empty and says so.
+    nt::World moved(std::move(w));
+    CHECK_CODE(w.step(DT), hearth::Code::NullPointer);
+    CHECK_OK(moved.step(DT));
+    nt::World empty;
+    CHECK_CODE(empty.add_force_generator([](nt::ForceContext &) {}), hearth::Code::NullPointer);
+}
+
+static void test_nothrow_lambdas() {
+    hearth::WorldDef def = hearth::world_def();
+    def.enable_sleep = 0;
+    nt::World w = nt::World::create(def).value();
+    nt::Body b = w.create_body(hearth::BodyType::Dynamic, hearth::vec3(0, 5, 0)).value();
+    CHECK_OK(b.add(hearth::sphere(0.25f)));
+    // A hovering body: the lambda reads and applies through Results and returns a Status.
+    hearth::Result<nt::Generator> lift = w.add_force_generator([](nt::ForceContext &ctx) -> hearth::Status {
+        for (nt::Body body : ctx.bodies()) {
+            const hearth::Result<float> m = body.mass();
+            if (!m) {
+                return hearth::Status(m.code(), m.message());
+            }
+            hearth::Status s = body.apply_force(hearth::vec3(0, 9.81f * *m, 0));
+            if (!s) {
+                return s;
+            }
+        }
+        return hearth::Status();
+    });
+    CHECK_OK(lift);
+    CHECK_OK(lift->attach(b));
+    for (int i = 0; i < 60; i++) {
+        CHECK_OK(w.step(DT));
+    }
+    CHECK_NEAR(b.position().value().y, 5.0, 1e-3);
+    // A structural change from the lambda fails with WORLD_LOCKED; the lambda passes the
+    // Status on and step() returns it (once).
+    int calls = 0;
+    hearth::Result<nt::Generator> bad = w.add_force_generator([&](nt::ForceContext &ctx) -> hearth::Status {
+        calls++;
+        hearth::Result<nt::Body> nb = ctx.world().create_body(hearth::body_def());
+        return nb ? hearth::Status() : hearth::Status(nb.code(), nb.message());
+    });
+    CHECK_OK(bad);
+    CHECK_CODE(w.step(DT), hearth::Code::WorldLocked);
+    CHECK(calls == 1);
+    CHECK_OK(w.destroy_generator(*bad));
+    CHECK_OK(w.step(DT));
+    CHECK(w.lambda_count() == 1);
+    // Contact lambda in the nothrow API: a floor at y = 1.
+    nt::Body ball = w.create_body(hearth::BodyType::Dynamic, hearth::vec3(3, 3, 0)).value();
+    CHECK_OK(ball.add(hearth::sphere(0.25f)));
+    hearth::Result<nt::Generator> floor = w.add_contact_generator([ball](nt::ContactContext &ctx) {
+        const hearth::Vec3 p = ball.position().value_or(hearth::vec3(0, 0, 0));
+        hearth::GeneratedContact c{};
+        c.body_b = ball.id();
+        c.point = hearth::vec3(p.x, 1, p.z);
+        c.normal = hearth::vec3(0, 1, 0);
+        c.penetration = 1.25f - p.y;
+        return ctx.add(c);
+    });
+    CHECK_OK(floor);
+    for (int i = 0; i < 120; i++) {
+        CHECK_OK(w.step(DT));
+    }
+    CHECK_NEAR(ball.position().value().y, 1.25, 0.01);
+#if HEARTH_CPP_EXCEPTIONS
+    // With exceptions compiled in, a throwing lambda in the nothrow API becomes a Status.
+    w.add_force_generator([](nt::ForceContext &) { throw std::runtime_error("nothrow boom"); }).value();
+    const hearth::Status s = w.step(DT);
+    CHECK(s.code() == hearth::Code::CallbackException && s.message() == "nothrow boom");
+#endif
+}
+
+static void test_nothrow_handles() {
+    nt::World w = nt::World::create().value();
+    nt::Body a = w.create_body(hearth::BodyType::Dynamic, hearth::vec3(0, 5, 0)).value();
+    CHECK_OK(a.add(hearth::sphere(0.2f)));
+    hearth::BallJointDef bd = hearth::ball_joint_def();
+    bd.base.body_a = a.id();
+    bd.base.frame_b = hearth::transform(hearth::vec3(0, 6, 0));
+    bd.base.frame_a = hearth::transform(hearth::vec3(0, 1, 0));
+    hearth::Result<nt::Joint> j = w.create_joint(bd);
+    CHECK_OK(j);
+    CHECK_OK(j->set_cone_limit(true, 0.5f));
+    CHECK(j->cone_limit().value().enabled && j->cone_limit().value().angle == 0.5f);
+    CHECK_CODE(j->motor(), hearth::Code::InvalidArgument); // a ball joint has no motor
+    hearth::ParticleDef pd = hearth::particle_def();
+    pd.position = hearth::vec3(1, 1, 1);
+    hearth::Result<nt::Particle> p = w.create_particle(pd);
+    CHECK_OK(p);
+    pd.radius = -1.0f;
+    CHECK_CODE(w.create_particle(pd), hearth::Code::InvalidArgument);
+    CHECK(w.particle_count().value() == 1);
+    hearth::Result<nt::SoftBody> s = w.create_soft_box(hearth::soft_body_def(), hearth::vec3(0.5f, 0.5f, 0.5f), 2, 2, 2);
+    CHECK_OK(s);
+    CHECK(s->vertex_count().value() == 27);
+    CHECK_CODE(w.create_soft_icosphere(hearth::soft_body_def(), 1.0f, 7), hearth::Code::InvalidArgument);
+    CHECK(hearth::version_matches());
+    CHECK(hearth::version() == HEARTH_VERSION);
+}
+
+int main() {
+#if HEARTH_CPP_EXCEPTIONS
+    run_throwing_tests();
+    const char *mode = "exceptions";
+#else
+    const char *mode = "no exceptions";
+#endif
+    test_nothrow_results();
+    test_nothrow_lambdas();
+    test_nothrow_handles();
+    std::printf("test_hearth (%s): %d passed, %d failed\n", mode, g_passed, g_failed);
+    return g_failed == 0 ? 0 : 1;
+}
