@@ -167,7 +167,7 @@ mod eight {
     }
 
     entry! {
-        pack_all(members: &mut [Vec<u32>], singles: &[u32], constraints: &[ContactConstraint]);
+        pack_all(members: &[Vec<u32>], singles: &[u32], constraints: &[ContactConstraint]);
         set_softness_all(soft: &SoftSweep, inv_h: f32);
         refresh_all(states: &[BodyState], first: bool);
         warm_start_all(vel: &mut [Velocity]);
@@ -183,6 +183,8 @@ pub struct Batches {
     color_bits: Vec<Vec<u64>>,
     color_members: Vec<Vec<u32>>,
     singles: Vec<u32>,
+    /// A colour's members ordered by `order_key` (reused).
+    ordered: Vec<u32>,
 }
 
 impl Default for Batches {
@@ -209,6 +211,7 @@ impl Batches {
             color_bits: Vec::new(),
             color_members: Vec::new(),
             singles: Vec::new(),
+            ordered: Vec::new(),
         }
     }
 
@@ -251,9 +254,12 @@ impl Batches {
             }
             self.singles.push(ci as u32);
         }
+        for members in self.color_members.iter_mut() {
+            order(members, &mut self.ordered, constraints);
+        }
         dispatch!(
             &mut self.sets,
-            pack_all(&mut self.color_members, &self.singles, constraints)
+            pack_all(&self.color_members, &self.singles, constraints)
         )
     }
 }
@@ -264,25 +270,46 @@ fn kind(c: &ContactConstraint) -> (bool, bool) {
     (c.count > 1, c.b != 0)
 }
 
-/// Packs each colour's constraints, kind by kind, into batches of `L::N` lanes, then the
-/// constraints that fit no colour one per batch. Batches are packed in place over last step's
-/// storage: no zeroing, no copies.
+/// Like with like: the kinds, then whether the constraint carried load last step (batches
+/// of idle constraints end their sweep early). Three bits.
+fn order_key(c: &ContactConstraint) -> usize {
+    let loaded = c.points[..c.count].iter().any(|p| p.normal_impulse > 0.0);
+    let (multi, dynamic_b) = kind(c);
+    usize::from(multi) << 2 | usize::from(dynamic_b) << 1 | usize::from(loaded)
+}
+
+/// Orders a colour's members by `order_key`, keeping their order within a key (a counting
+/// sort: linear, stable, no allocation once `scratch` has grown).
+fn order(members: &mut [u32], scratch: &mut Vec<u32>, constraints: &[ContactConstraint]) {
+    let mut start = [0usize; 9];
+    for &i in members.iter() {
+        start[order_key(&constraints[i as usize]) + 1] += 1;
+    }
+    for k in 1..9 {
+        start[k] += start[k - 1];
+    }
+    scratch.clear();
+    scratch.resize(members.len(), 0);
+    for &i in members.iter() {
+        let k = order_key(&constraints[i as usize]);
+        scratch[start[k]] = i;
+        start[k] += 1;
+    }
+    members.copy_from_slice(scratch);
+}
+
+/// Packs each colour's constraints (ordered, see `order`), kind by kind, into batches of
+/// `L::N` lanes, then the constraints that fit no colour one per batch. Batches are packed in
+/// place over last step's storage: no zeroing, no copies.
 #[inline(always)]
 fn pack_all<L: Lanes + Default>(
     batches: &mut Vec<WideContact<L>>,
-    members: &mut [Vec<u32>],
+    members: &[Vec<u32>],
     singles: &[u32],
     constraints: &[ContactConstraint],
 ) {
     let mut used = 0;
-    for members in members.iter_mut() {
-        // Like with like: the kinds, then whether they carried load (idle batches end their
-        // sweep early).
-        members.sort_by_key(|&i| {
-            let c = &constraints[i as usize];
-            let loaded = c.points[..c.count].iter().any(|p| p.normal_impulse > 0.0);
-            (kind(c), loaded)
-        });
+    for members in members {
         for group in members.chunk_by(|&x, &y| kind(&constraints[x as usize]) == kind(&constraints[y as usize])) {
             for chunk in group.chunks(L::N) {
                 next_slot(batches, used);
@@ -513,6 +540,7 @@ fn safe_inverse<L: Lanes>(k: L) -> L {
 #[allow(clippy::needless_range_loop)] // index notation mirrors the matrix algebra
 /// Inverts each lane's K (symmetric positive definite after regularisation, identity rows
 /// for missing points) by Cholesky: K = L Lᵀ, K⁻¹ = L⁻ᵀ L⁻¹.
+#[inline(always)]
 fn invert_spd<L: Lanes>(k: &[[L; MAXP]; MAXP], n: usize, out: &mut [[L; MAXP]; MAXP]) {
     let mut l = [[L::zero(); MAXP]; MAXP];
     let mut inv_diag = [L::zero(); MAXP];
@@ -1065,6 +1093,7 @@ fn restitution_all<L: Lanes>(batches: &mut Vec<WideContact<L>>, vel: &mut [Veloc
     }
 }
 
+#[inline(always)]
 fn restitution_batch<L: Lanes, const SB: bool>(vel: &mut [Velocity], w: &mut WideContact<L>, threshold: f32) {
     let zero = L::zero();
     let (mut va, mut wa) = gather(vel, &w.a);

@@ -120,6 +120,11 @@ pub struct BodySim {
     pub torque: Vec3,
     pub lin_damping: f32,
     pub ang_damping: f32,
+    /// What damping keeps of the velocities per sub-step: 1 / (1 + h·damping).
+    pub lin_keep: f32,
+    pub ang_keep: f32,
+    /// A torque is applied (else the sub-steps skip the inverse-inertia product).
+    pub has_torque: bool,
     pub q0: Quat,
     /// Inertia in the body frame; used for gyroscopic motion and RK4.
     pub inertia: Mat3,
@@ -203,7 +208,7 @@ pub fn gyroscopic_step(w: Vec3, q: Quat, inertia: &Mat3, inv_inertia: &Mat3, h: 
 
 /// Builds the solver's body arrays for the awake bodies. Returns nothing; sets
 /// `body.solver_index` on each awake body (static bodies use state 0).
-pub fn prepare_bodies(world: &mut World, dt: f32) {
+pub fn prepare_bodies(world: &mut World, dt: f32, h: f32) {
     let gravity = world.settings.gravity;
     let scratch = &mut world.solver;
     scratch.states.clear();
@@ -217,6 +222,9 @@ pub fn prepare_bodies(world: &mut World, dt: f32) {
         torque: Vec3::ZERO,
         lin_damping: 0.0,
         ang_damping: 0.0,
+        lin_keep: 1.0,
+        ang_keep: 1.0,
+        has_torque: false,
         q0: Quat::IDENTITY,
         inertia: Mat3::ZERO,
         inv_inertia: Mat3::ZERO,
@@ -260,6 +268,9 @@ pub fn prepare_bodies(world: &mut World, dt: f32) {
             torque: if dynamic { body.torque } else { Vec3::ZERO },
             lin_damping: body.linear_damping,
             ang_damping: body.angular_damping,
+            lin_keep: 1.0 / (1.0 + h * body.linear_damping),
+            ang_keep: 1.0 / (1.0 + h * body.angular_damping),
+            has_torque: dynamic && body.torque != Vec3::ZERO,
             q0: body.xf.q,
             inertia: body.inertia_local,
             inv_inertia: body.inv_inertia_local,
@@ -276,12 +287,15 @@ fn integrate_velocities(vel: &mut [Velocity], states: &[BodyState], sims: &[Body
             continue;
         }
         let mut v = u.v + h * sim.lin_accel;
-        let mut w = u.w + h * (s.inv_i * sim.torque);
+        let mut w = u.w;
+        if sim.has_torque {
+            w += h * (s.inv_i * sim.torque);
+        }
         if sim.gyroscopic {
             w = gyroscopic_step(w, s.dq * sim.q0, &sim.inertia, &sim.inv_inertia, h);
         }
-        v *= 1.0 / (1.0 + h * sim.lin_damping);
-        w *= 1.0 / (1.0 + h * sim.ang_damping);
+        v *= sim.lin_keep;
+        w *= sim.ang_keep;
         let speed2 = v.length_squared();
         if speed2 > max_speed * max_speed {
             v *= max_speed / speed2.sqrt();
@@ -373,9 +387,9 @@ fn rk4_step(u: &mut Velocity, s: &mut BodyState, sim: &BodySim, h: f32) {
 /// Runs the sub-stepped solve over awake bodies and touching contacts, then writes the new
 /// velocities and transforms back to the bodies.
 pub fn solve(world: &mut World, dt: f32) {
-    prepare_bodies(world, dt);
     let substeps = world.settings.substeps;
     let h = dt / substeps as f32;
+    prepare_bodies(world, dt, h);
     contact_solver::prepare(world);
     crate::joints::solver::prepare(world, h);
 
