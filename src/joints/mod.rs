@@ -25,8 +25,10 @@ pub mod ball;
 pub mod distance;
 pub mod fixed;
 pub mod hinge;
+pub mod rows;
 pub mod slider;
 pub mod solver;
+pub mod tree;
 
 use crate::body::NONE;
 use crate::error::{check_finite, check_non_negative, check_positive, check_quat, check_vec, invalid, Error, Result};
@@ -330,7 +332,7 @@ pub struct Joints {
     pub pool: Pool<Joint>,
     /// Joints of each body, by body slot index (grown on demand; short lists).
     pub(crate) per_body: Vec<Vec<u32>>,
-    pub(crate) constraints: Vec<solver::JointConstraint>,
+    pub(crate) constraints: solver::JointSet,
     /// Joints that broke in the last step (valid until the next step).
     pub broken: Vec<JointHandle>,
 }
@@ -340,7 +342,7 @@ impl Joints {
         Joints {
             pool: Pool::new(tag),
             per_body: Vec::new(),
-            constraints: Vec::new(),
+            constraints: solver::JointSet::default(),
             broken: Vec::new(),
         }
     }
