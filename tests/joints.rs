@@ -727,11 +727,18 @@ fn weld_holds_an_arm_out_sideways() {
         Vec3::Z,
     ))
     .unwrap();
+    let j = joint_handles(&w)[0];
     run(&mut w, 3.0);
     let xf = w.transform(arm).unwrap();
     let droop = 5.0 - xf.p.y;
-    println!("weld: arm tip droops {droop:.4} m");
+    // The weld carries the arm's weight and its moment about the anchor 1 m away (the force
+    // and torque on B, the world; the angular rows' impulses are booked and warm started).
+    let weight = w.body(arm).unwrap().mass * G;
+    let (force, torque) = w.joint_force(j).unwrap();
+    println!("weld: arm tip droops {droop:.4} m, force {force}, torque {torque} (weight {weight:.2} N)");
     assert!(droop.abs() < 0.02 && w.angular_velocity(arm).unwrap().length() < 1e-3);
+    assert!((force.y + weight).abs() < 0.01 * weight, "force {force}");
+    assert!((torque.z.abs() - weight).abs() < 0.01 * weight, "torque {torque}");
 }
 
 #[test]

@@ -226,6 +226,37 @@ impl Bodies {
     }
 }
 
+impl Bodies {
+    /// The point rows as one 3×3 block (the anchors coincide), for a ball joint outside the
+    /// forest; the same as `Eq::solve_block` on its three rows.
+    fn solve_point(&mut self, f: &Frames, acc: &mut Vec3, ctx: &Ctx) {
+        let cdot = self.vb + self.wb.cross(f.rb) - self.va - self.wa.cross(f.ra);
+        let bias = Vec3::new(ctx.rigid_bias(f.d.x), ctx.rigid_bias(f.d.y), ctx.rigid_bias(f.d.z));
+        let (sa, sb) = (skew(f.ra), skew(f.rb));
+        let k = Mat3::from_diagonal(Vec3::splat(self.ma + self.mb)) - sa * self.ia * sa - sb * self.ib * sb;
+        let det = k.determinant();
+        if !(det.abs() > f32::MIN_POSITIVE && det.is_finite()) {
+            return;
+        }
+        let imp = ctx.respond_vec(-(k.inverse() * (cdot + bias)), *acc);
+        *acc += imp;
+        self.va -= self.ma * imp;
+        self.wa -= self.ia * f.ra.cross(imp);
+        self.vb += self.mb * imp;
+        self.wb += self.ib * f.rb.cross(imp);
+    }
+}
+
+/// The cross-product matrix: `skew(r) v = r × v`.
+#[inline]
+fn skew(r: Vec3) -> Mat3 {
+    Mat3::from_cols(
+        Vec3::new(0.0, r.z, -r.y),
+        Vec3::new(-r.z, 0.0, r.x),
+        Vec3::new(r.y, -r.x, 0.0),
+    )
+}
+
 /// Adds `imp` to a non-negative accumulated impulse; returns the change actually applied.
 #[inline]
 pub fn clamp_positive(acc: &mut f32, imp: f32) -> f32 {
@@ -425,6 +456,14 @@ pub fn solve(set: &mut JointSet, vel: &mut [Velocity], states: &[BodyState], h: 
         for c in set.list.iter_mut() {
             let scalars = has_scalar_rows(&c.kind);
             if c.tree && !scalars {
+                continue;
+            }
+            if !scalars && matches!(c.kind, JointKind::Ball(_)) {
+                // A plain ball joint closing a loop (the joint grid's cross links): the 3×3
+                // point block in glam, the hot path of large joint meshes.
+                let (mut b, f) = load(c, vel, states);
+                b.solve_point(&f, &mut c.imp.linear, &ctx);
+                write(c, &b, vel);
                 continue;
             }
             let (mut b, f) = load(c, vel, states);
