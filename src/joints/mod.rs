@@ -11,14 +11,18 @@
 //!
 //! Joints are solved by the same sub-stepped solver as contacts (`solver.rs`): prepared next
 //! to the contacts, warm started, solved before the contacts in the biased sweep and in the
-//! relax sweep, their impulses stored after the sub-steps. Unlike contacts, joint rows are
-//! rigid (full effective mass, no impulse leak) with a Baumgarte position bias in the biased
-//! sweep only, so chains do not sag; springs are soft by definition.
+//! relax sweep, their impulses stored after the sub-steps. The equality rows of a spanning
+//! forest of the joints are solved exactly (`tree.rs`), so heavy loads on light chains do not
+//! stretch them; limits, motors and springs are coupled with their joint's equality rows
+//! (`rows.rs`); springs are soft by definition.
 //!
 //! Destroying a body destroys every joint attached to it (their ids become stale; the other
 //! body is woken).
 //!
-//! * `solver.rs` — prepare, warm start, solve, store; the shared row helpers.
+//! * `solver.rs` — prepare, warm start, solve, store; the sweep's helpers.
+//! * `tree.rs` — the spanning forest and its exact solve of the equality rows.
+//! * `rows.rs` — rows in one form: equality rows per joint, coupled scalar rows, small
+//!   Cholesky.
 //! * `ball.rs`, `hinge.rs`, `fixed.rs`, `distance.rs`, `slider.rs` — one joint type each.
 
 pub mod ball;

@@ -14,6 +14,9 @@
 //!   about the hinge, not about its centre of mass: solved alone, the limit row's impulse is
 //!   undone by the point row that follows it and the arm overshoots by the inertia ratio.
 
+// Small dense linear algebra reads best with index loops over rows and columns.
+#![allow(clippy::needless_range_loop)]
+
 use super::solver::{Bodies, Ctx, Frames};
 use super::{Impulses, JointKind};
 use crate::math::Vec3;

@@ -5,17 +5,20 @@
 //!
 //! Anchors and axes are recomputed from each body's motion since the step start (`dp`, `dq`
 //! of its `BodyState`) every time a joint is solved, so joints stay stiff while bodies turn.
+//! Each sweep solves, joint by joint, the limits, motors and springs (coupled with the joint's
+//! equality rows, `rows.rs`) and the equality rows of joints outside the forest as one block
+//! each; then the equality rows of the spanning forest exactly (`tree.rs`).
+//!
 //! Rows are fully rigid in the relax sweep. In the biased sweep they are Box2D v3's stiff
 //! soft constraint ([`JOINT_STIFFNESS`] of the sub-step rate, damping ratio
 //! [`JOINT_DAMPING_RATIO`], correction at most [`MAX_BIAS_SPEED`]): a rigid row with a
 //! Baumgarte bias was tried first and a 20-link chain hanging at rest went unstable with any
 //! bias (the warm-started impulses pump the chain's axial mode); the soft row's leak damps it.
-//! The price is a sag of `load / (effective mass · ω²)`, which sub-steps reduce quadratically. Limits are one-sided rows that act
-//! speculatively (a gap may close within the sub-step, no more). Motors are velocity rows
-//! clamped by their largest force or torque times the sub-step. Springs are soft rows
-//! ([`Softness`]) with the spring's own frequency and damping.
-//!
-//! Plain scalar code on glam types: joints are few next to contacts.
+//! The price is a sag of `load / (effective mass · ω²)`, tiny where the forest's exact
+//! effective mass applies. Limits are one-sided rows that act speculatively (a gap may close
+//! within the sub-step, no more). Motors are velocity rows clamped by their largest force or
+//! torque times the sub-step. Springs are soft rows ([`Softness`]) with the spring's own
+//! frequency and damping.
 
 use super::rows::Eq;
 use super::tree::Forest;

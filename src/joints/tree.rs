@@ -25,13 +25,16 @@
 //! joint `j` (the articulated mass of the subtree seen through the joint). Solve: backwards
 //! `u_b = D_b⁻¹ g_b`, `z_j = S_j⁻¹ (r_j − J_jb u_b)`, `g_parent += J_jpᵀ z_j`; forwards
 //! `λ_j = z_j − S_j⁻¹ J_jp x_parent`, `x_b = u_b + D_b⁻¹ J_jbᵀ λ_j`. Every pivot is positive
-//! (or negative) definite, so no pivoting. Factored in f64 (a link's inertia next to a heavy
-//! subtree's articulated mass spans many decades) once per position: lazily before the first
-//! biased sweep, and after each position update (before the relax sweep, reused by the next
-//! sub-step's biased sweep).
+//! definite, so no pivoting. Factored once per position: lazily before the first biased
+//! sweep, and after each position update (before the relax sweep, reused by the next
+//! sub-step's biased sweep). `D_b` and its Cholesky factor are kept in f64 (a link's inertia
+//! next to a heavy subtree's articulated mass spans many decades); the per-row data in f32.
 //!
 //! No allocation once the buffers have grown; the order is that of the joint constraints, so
 //! the result is deterministic.
+
+// Small dense linear algebra reads best with index loops over rows and columns.
+#![allow(clippy::needless_range_loop)]
 
 use super::rows::{Eq, Row, Slot};
 use super::solver::{load, write, Ctx, Frames, JointConstraint};
