@@ -1,7 +1,9 @@
-//! Ball-and-socket: the anchors coincide (a 3×3 point block); optionally B's Z axis stays
+//! Ball-and-socket: the anchors coincide (three point rows); optionally B's Z axis stays
 //! within a cone around A's Z axis (swing limit) and B's twist about Z stays within limits.
-//! A ragdoll's shoulders and hips.
+//! A ragdoll's shoulders and hips. The limit rows are coupled with the point rows
+//! (`rows.rs`), so they see the limb's inertia about the joint.
 
+use super::rows::{Eq, Row, Spd};
 use super::solver::{Bodies, Ctx, Frames, Wrench};
 use super::{BallParams, Impulses};
 use crate::math::Vec3;
@@ -46,21 +48,28 @@ pub fn wrench(p: &BallParams, imp: &Impulses, f: &Frames) -> Wrench {
     }
 }
 
-pub fn solve(p: &BallParams, imp: &mut Impulses, f: &Frames, b: &mut Bodies, ctx: &Ctx) {
+/// True when the joint has rows beyond its point lock.
+pub fn has_limits(p: &BallParams) -> bool {
+    p.enable_swing_limit || p.enable_twist_limit
+}
+
+/// The cone and twist limits (the point rows are solved by the caller).
+pub fn solve(p: &BallParams, imp: &mut Impulses, f: &Frames, b: &mut Bodies, ctx: &Ctx, eq: &Eq, k: Option<&Spd>) {
     match cone_row(f) {
         Some((j, angle)) if p.enable_swing_limit => {
-            b.solve_angular_limit(j, p.swing_limit - angle, &mut imp.cone, ctx);
+            let row = eq.couple(k, b, Row::angular(j));
+            let d = ctx.limit(row.mass, b.cdot(&row.row), p.swing_limit - angle, &mut imp.cone);
+            row.apply(eq, b, imp, d);
         }
         _ => imp.cone = 0.0,
     }
     if p.enable_twist_limit {
-        let a = twist_axis(f);
         let angle = f.twist_angle();
-        b.solve_angular_limit(a, angle - p.lower_twist, &mut imp.lower, ctx);
-        b.solve_angular_limit(-a, p.upper_twist - angle, &mut imp.upper, ctx);
-    } else {
-        imp.lower = 0.0;
-        imp.upper = 0.0;
+        let lower = eq.couple(k, b, Row::angular(twist_axis(f)));
+        let d = ctx.limit(lower.mass, b.cdot(&lower.row), angle - p.lower_twist, &mut imp.lower);
+        lower.apply(eq, b, imp, d);
+        let upper = lower.neg();
+        let d = ctx.limit(upper.mass, b.cdot(&upper.row), p.upper_twist - angle, &mut imp.upper);
+        upper.apply(eq, b, imp, d);
     }
-    b.solve_point(f, &mut imp.linear, ctx);
 }

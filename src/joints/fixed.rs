@@ -1,7 +1,7 @@
-//! Fixed (weld): the anchors coincide and the frames keep their relative rotation; a 3×3
-//! angular block, then a 3×3 point block.
+//! Fixed (weld): the anchors coincide and the frames keep their relative rotation: three
+//! point rows and three angular rows, all equality rows (`rows.rs`).
 
-use super::solver::{Bodies, Ctx, Frames, Wrench};
+use super::solver::{Frames, Wrench};
 use super::Impulses;
 
 pub fn wrench(imp: &Impulses, f: &Frames) -> Wrench {
@@ -10,9 +10,4 @@ pub fn wrench(imp: &Impulses, f: &Frames) -> Wrench {
         ta: f.ra.cross(imp.linear) + imp.angular,
         tb: f.rb.cross(imp.linear) + imp.angular,
     }
-}
-
-pub fn solve(imp: &mut Impulses, f: &Frames, b: &mut Bodies, ctx: &Ctx) {
-    b.solve_angular_lock(f, &mut imp.angular, ctx);
-    b.solve_point(f, &mut imp.linear, ctx);
 }

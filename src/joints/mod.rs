@@ -11,22 +11,28 @@
 //!
 //! Joints are solved by the same sub-stepped solver as contacts (`solver.rs`): prepared next
 //! to the contacts, warm started, solved before the contacts in the biased sweep and in the
-//! relax sweep, their impulses stored after the sub-steps. Unlike contacts, joint rows are
-//! rigid (full effective mass, no impulse leak) with a Baumgarte position bias in the biased
-//! sweep only, so chains do not sag; springs are soft by definition.
+//! relax sweep, their impulses stored after the sub-steps. The equality rows of a spanning
+//! forest of the joints are solved exactly (`tree.rs`), so heavy loads on light chains do not
+//! stretch them; limits, motors and springs are coupled with their joint's equality rows
+//! (`rows.rs`); springs are soft by definition.
 //!
 //! Destroying a body destroys every joint attached to it (their ids become stale; the other
 //! body is woken).
 //!
-//! * `solver.rs` — prepare, warm start, solve, store; the shared row helpers.
+//! * `solver.rs` — prepare, warm start, solve, store; the sweep's helpers.
+//! * `tree.rs` — the spanning forest and its exact solve of the equality rows.
+//! * `rows.rs` — rows in one form: equality rows per joint, coupled scalar rows, small
+//!   Cholesky.
 //! * `ball.rs`, `hinge.rs`, `fixed.rs`, `distance.rs`, `slider.rs` — one joint type each.
 
 pub mod ball;
 pub mod distance;
 pub mod fixed;
 pub mod hinge;
+pub mod rows;
 pub mod slider;
 pub mod solver;
+pub mod tree;
 
 use crate::body::NONE;
 use crate::error::{check_finite, check_non_negative, check_positive, check_quat, check_vec, invalid, Error, Result};
@@ -330,7 +336,7 @@ pub struct Joints {
     pub pool: Pool<Joint>,
     /// Joints of each body, by body slot index (grown on demand; short lists).
     pub(crate) per_body: Vec<Vec<u32>>,
-    pub(crate) constraints: Vec<solver::JointConstraint>,
+    pub(crate) constraints: solver::JointSet,
     /// Joints that broke in the last step (valid until the next step).
     pub broken: Vec<JointHandle>,
 }
@@ -340,7 +346,7 @@ impl Joints {
         Joints {
             pool: Pool::new(tag),
             per_body: Vec::new(),
-            constraints: Vec::new(),
+            constraints: solver::JointSet::default(),
             broken: Vec::new(),
         }
     }

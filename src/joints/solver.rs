@@ -5,18 +5,23 @@
 //!
 //! Anchors and axes are recomputed from each body's motion since the step start (`dp`, `dq`
 //! of its `BodyState`) every time a joint is solved, so joints stay stiff while bodies turn.
+//! Each sweep solves, joint by joint, the limits, motors and springs (coupled with the joint's
+//! equality rows, `rows.rs`) and the equality rows of joints outside the forest as one block
+//! each; then the equality rows of the spanning forest exactly (`tree.rs`).
+//!
 //! Rows are fully rigid in the relax sweep. In the biased sweep they are Box2D v3's stiff
 //! soft constraint ([`JOINT_STIFFNESS`] of the sub-step rate, damping ratio
 //! [`JOINT_DAMPING_RATIO`], correction at most [`MAX_BIAS_SPEED`]): a rigid row with a
 //! Baumgarte bias was tried first and a 20-link chain hanging at rest went unstable with any
 //! bias (the warm-started impulses pump the chain's axial mode); the soft row's leak damps it.
-//! The price is a sag of `load / (effective mass · ω²)`, which sub-steps reduce quadratically. Limits are one-sided rows that act
-//! speculatively (a gap may close within the sub-step, no more). Motors are velocity rows
-//! clamped by their largest force or torque times the sub-step. Springs are soft rows
-//! ([`Softness`]) with the spring's own frequency and damping.
-//!
-//! Plain scalar code on glam types: joints are few next to contacts.
+//! The price is a sag of `load / (effective mass · ω²)`, tiny where the forest's exact
+//! effective mass applies. Limits are one-sided rows that act speculatively (a gap may close
+//! within the sub-step, no more). Motors are velocity rows clamped by their largest force or
+//! torque times the sub-step. Springs are soft rows ([`Softness`]) with the spring's own
+//! frequency and damping.
 
+use super::rows::Eq;
+use super::tree::Forest;
 use super::{Impulses, JointKind};
 use crate::body::NONE;
 use crate::math::{Mat3, Quat, Transform, Vec3};
@@ -53,6 +58,15 @@ pub struct JointConstraint {
     pub imp: Impulses,
     /// The spring's soft coefficients for this step's sub-step (hinge, distance).
     pub spring: Softness,
+    /// The equality rows are solved by the direct tree solve (`tree.rs`), not here.
+    pub tree: bool,
+}
+
+/// This step's joint constraints and the spanning forest of their direct solve.
+#[derive(Default)]
+pub struct JointSet {
+    pub list: Vec<JointConstraint>,
+    pub forest: Forest,
 }
 
 /// The joint frames now: arms from the centres of mass, the anchor separation
@@ -67,7 +81,7 @@ pub struct Frames {
 }
 
 impl Frames {
-    fn new(c: &JointConstraint, sa: &BodyState, sb: &BodyState) -> Frames {
+    pub(crate) fn new(c: &JointConstraint, sa: &BodyState, sb: &BodyState) -> Frames {
         let ra = sa.dq * c.frame_a.p;
         let rb = sb.dq * c.frame_b.p;
         Frames {
@@ -213,110 +227,30 @@ impl Bodies {
         self.vb += self.mb * w.p;
         self.wb += self.ib * w.tb;
     }
+}
 
-    /// Relative velocity of the anchors.
-    #[inline]
-    pub fn point_velocity(&self, f: &Frames) -> Vec3 {
-        self.vb + self.wb.cross(f.rb) - self.va - self.wa.cross(f.ra)
-    }
-
-    /// Applies a point impulse `p` at the anchors (on B, −p on A).
-    #[inline]
-    pub fn apply_point(&mut self, f: &Frames, p: Vec3) {
-        self.va -= self.ma * p;
-        self.wa -= self.ia * f.ra.cross(p);
-        self.vb += self.mb * p;
-        self.wb += self.ib * f.rb.cross(p);
-    }
-
-    /// Applies an angular impulse `t` (on B, −t on A).
-    #[inline]
-    pub fn apply_angular(&mut self, t: Vec3) {
-        self.wa -= self.ia * t;
-        self.wb += self.ib * t;
-    }
-
-    /// Effective mass of an angular row along unit `j`.
-    #[inline]
-    pub fn angular_mass(&self, j: Vec3) -> f32 {
-        let k = j.dot(self.ia * j) + j.dot(self.ib * j);
-        if k > 0.0 {
-            1.0 / k
-        } else {
-            0.0
+impl Bodies {
+    /// The point rows as one 3×3 block (the anchors coincide), for a ball joint outside the
+    /// forest; the same as `Eq::solve_block` on its three rows.
+    fn solve_point(&mut self, f: &Frames, acc: &mut Vec3, ctx: &Ctx) {
+        let cdot = self.vb + self.wb.cross(f.rb) - self.va - self.wa.cross(f.ra);
+        let bias = Vec3::new(ctx.rigid_bias(f.d.x), ctx.rigid_bias(f.d.y), ctx.rigid_bias(f.d.z));
+        let (sa, sb) = (skew(f.ra), skew(f.rb));
+        let k = Mat3::from_diagonal(Vec3::splat(self.ma + self.mb)) - sa * self.ia * sa - sb * self.ib * sb;
+        let det = k.determinant();
+        if !(det.abs() > f32::MIN_POSITIVE && det.is_finite()) {
+            return;
         }
-    }
-
-    /// Effective mass of a linear row: direction `n`, angular arms `sa` (A) and `sb` (B).
-    #[inline]
-    pub fn linear_mass(&self, n: Vec3, sa: Vec3, sb: Vec3) -> f32 {
-        let k = (self.ma + self.mb) * n.length_squared() + sa.dot(self.ia * sa) + sb.dot(self.ib * sb);
-        if k > 0.0 {
-            1.0 / k
-        } else {
-            0.0
-        }
-    }
-
-    #[inline]
-    pub fn linear_cdot(&self, n: Vec3, sa: Vec3, sb: Vec3) -> f32 {
-        n.dot(self.vb - self.va) + sb.dot(self.wb) - sa.dot(self.wa)
-    }
-
-    #[inline]
-    pub fn apply_linear(&mut self, n: Vec3, sa: Vec3, sb: Vec3, lambda: f32) {
-        self.va -= self.ma * lambda * n;
-        self.wa -= self.ia * (lambda * sa);
-        self.vb += self.mb * lambda * n;
-        self.wb += self.ib * (lambda * sb);
-    }
-
-    /// The rigid point constraint, solved as a 3×3 block: the anchors coincide.
-    pub fn solve_point(&mut self, f: &Frames, acc: &mut Vec3, ctx: &Ctx) {
-        let cdot = self.point_velocity(f);
-        let bias = ctx.rigid_bias_vec(f.d);
-        let k = point_mass_matrix(self, f.ra, f.rb);
-        let imp = ctx.respond_vec(-solve3(&k, cdot + bias), *acc);
+        let imp = ctx.respond_vec(-(k.inverse() * (cdot + bias)), *acc);
         *acc += imp;
-        self.apply_point(f, imp);
-    }
-
-    /// The rigid angular lock, solved as a 3×3 block: the frames keep their relative rotation.
-    pub fn solve_angular_lock(&mut self, f: &Frames, acc: &mut Vec3, ctx: &Ctx) {
-        let cdot = self.wb - self.wa;
-        let bias = ctx.rigid_bias_vec(f.rotation_error());
-        let k = self.ia + self.ib;
-        let imp = ctx.respond_vec(-solve3(&k, cdot + bias), *acc);
-        *acc += imp;
-        self.apply_angular(imp);
-    }
-
-    /// A one-sided angular row along `j` keeping position `c >= 0` (impulse >= 0).
-    pub fn solve_angular_limit(&mut self, j: Vec3, c: f32, acc: &mut f32, ctx: &Ctx) {
-        let mass = self.angular_mass(j);
-        let cdot = j.dot(self.wb - self.wa);
-        let delta = ctx.limit(mass, cdot, c, acc);
-        self.apply_angular(delta * j);
-    }
-
-    /// An angular motor row along `j`: relative speed `speed`, impulse within ±`max_impulse`.
-    pub fn solve_angular_motor(&mut self, j: Vec3, speed: f32, max_impulse: f32, acc: &mut f32) {
-        let mass = self.angular_mass(j);
-        let cdot = j.dot(self.wb - self.wa);
-        let old = *acc;
-        *acc = (old - mass * (cdot - speed)).clamp(-max_impulse, max_impulse);
-        self.apply_angular((*acc - old) * j);
+        self.va -= self.ma * imp;
+        self.wa -= self.ia * f.ra.cross(imp);
+        self.vb += self.mb * imp;
+        self.wb += self.ib * f.rb.cross(imp);
     }
 }
 
-/// `(ma + mb)·I − [ra]× Ia [ra]× − [rb]× Ib [rb]×`: velocity change of the anchors per unit
-/// impulse.
-fn point_mass_matrix(b: &Bodies, ra: Vec3, rb: Vec3) -> Mat3 {
-    let sa = skew(ra);
-    let sb = skew(rb);
-    Mat3::from_diagonal(Vec3::splat(b.ma + b.mb)) - sa * b.ia * sa - sb * b.ib * sb
-}
-
+/// The cross-product matrix: `skew(r) v = r × v`.
 #[inline]
 fn skew(r: Vec3) -> Mat3 {
     Mat3::from_cols(
@@ -324,17 +258,6 @@ fn skew(r: Vec3) -> Mat3 {
         Vec3::new(-r.z, 0.0, r.x),
         Vec3::new(r.y, -r.x, 0.0),
     )
-}
-
-/// Solves `k x = b`; zero when `k` is singular (both bodies without mass on this block).
-#[inline]
-pub fn solve3(k: &Mat3, b: Vec3) -> Vec3 {
-    let det = k.determinant();
-    if det.abs() > f32::MIN_POSITIVE && det.is_finite() {
-        k.inverse() * b
-    } else {
-        Vec3::ZERO
-    }
 }
 
 /// Adds `imp` to a non-negative accumulated impulse; returns the change actually applied.
@@ -362,7 +285,8 @@ pub fn prepare(world: &mut World, h: f32) {
         joints, bodies, solver, ..
     } = world;
     joints.broken.clear();
-    joints.constraints.clear();
+    let set = &mut joints.constraints;
+    set.list.clear();
     let states = &solver.states;
     for (handle, joint) in joints.pool.iter() {
         if joint.broken {
@@ -396,7 +320,9 @@ pub fn prepare(world: &mut World, h: f32) {
             JointKind::Distance(p) if p.enable_spring => Softness::new(p.spring_hertz, p.spring_damping_ratio, h),
             _ => Softness::default(),
         };
-        joints.constraints.push(JointConstraint {
+        let mut imp = joint.impulses;
+        clear_disabled(&joint.def.kind, &mut imp);
+        set.list.push(JointConstraint {
             joint: handle.index,
             ia,
             ib,
@@ -404,22 +330,78 @@ pub fn prepare(world: &mut World, h: f32) {
             frame_b,
             delta_center: center_b - ba.center,
             kind: joint.def.kind,
-            imp: joint.impulses,
+            imp,
             spring,
+            tree: false,
         });
+    }
+    set.forest.build(&mut set.list, states);
+}
+
+/// Zeroes the impulses of rows that are switched off (a limit, motor or spring disabled
+/// since the last step).
+fn clear_disabled(kind: &JointKind, imp: &mut Impulses) {
+    match kind {
+        JointKind::Ball(p) => {
+            if !p.enable_swing_limit {
+                imp.cone = 0.0;
+            }
+            if !p.enable_twist_limit {
+                (imp.lower, imp.upper) = (0.0, 0.0);
+            }
+        }
+        JointKind::Hinge(p) => {
+            if !(p.enable_spring && p.spring_hertz > 0.0) {
+                imp.axial = 0.0;
+            }
+            if !p.enable_motor {
+                imp.motor = 0.0;
+            }
+            if !p.enable_limit {
+                (imp.lower, imp.upper) = (0.0, 0.0);
+            }
+        }
+        JointKind::Fixed => {}
+        JointKind::Distance(p) => {
+            if p.enable_spring && p.spring_hertz == 0.0 {
+                imp.axial = 0.0;
+            }
+            if !(p.enable_spring && p.enable_limit) {
+                (imp.lower, imp.upper) = (0.0, 0.0);
+            }
+        }
+        JointKind::Slider(p) => {
+            if !p.enable_motor {
+                imp.motor = 0.0;
+            }
+            if !p.enable_limit {
+                (imp.lower, imp.upper) = (0.0, 0.0);
+            }
+        }
+    }
+}
+
+/// True when the joint has rows besides its equality rows (limits, motor, spring).
+fn has_scalar_rows(kind: &JointKind) -> bool {
+    match kind {
+        JointKind::Ball(p) => super::ball::has_limits(p),
+        JointKind::Hinge(p) => super::hinge::has_axial_rows(p),
+        JointKind::Fixed => false,
+        JointKind::Distance(p) => p.enable_spring,
+        JointKind::Slider(p) => super::slider::has_axial_rows(p),
     }
 }
 
 /// Bodies touched by a joint are not integrated by RK4 (they are constrained).
-pub fn mark_constrained(constraints: &[JointConstraint], sims: &mut [BodySim]) {
-    for c in constraints {
+pub fn mark_constrained(set: &JointSet, sims: &mut [BodySim]) {
+    for c in &set.list {
         sims[c.ia as usize].rk4 = false;
         sims[c.ib as usize].rk4 = false;
     }
 }
 
 #[inline]
-fn load(c: &JointConstraint, vel: &[Velocity], states: &[BodyState]) -> (Bodies, Frames) {
+pub(crate) fn load(c: &JointConstraint, vel: &[Velocity], states: &[BodyState]) -> (Bodies, Frames) {
     let (sa, sb) = (&states[c.ia as usize], &states[c.ib as usize]);
     let (ua, ub) = (&vel[c.ia as usize], &vel[c.ib as usize]);
     (
@@ -439,7 +421,7 @@ fn load(c: &JointConstraint, vel: &[Velocity], states: &[BodyState]) -> (Bodies,
 
 /// Writes the velocities back; index 0 (static, the world) is never written.
 #[inline]
-fn write(c: &JointConstraint, b: &Bodies, vel: &mut [Velocity]) {
+pub(crate) fn write(c: &JointConstraint, b: &Bodies, vel: &mut [Velocity]) {
     if c.ia != 0 {
         vel[c.ia as usize] = Velocity::new(b.va, b.wa);
     }
@@ -459,8 +441,8 @@ fn wrench(c: &JointConstraint, f: &Frames) -> Wrench {
 }
 
 /// Applies the accumulated impulses at the current anchors (start of each sub-step).
-pub fn warm_start(constraints: &[JointConstraint], vel: &mut [Velocity], states: &[BodyState]) {
-    for c in constraints {
+pub fn warm_start(set: &JointSet, vel: &mut [Velocity], states: &[BodyState]) {
+    for c in &set.list {
         let (mut b, f) = load(c, vel, states);
         b.apply(&wrench(c, &f));
         write(c, &b, vel);
@@ -468,21 +450,45 @@ pub fn warm_start(constraints: &[JointConstraint], vel: &mut [Velocity], states:
 }
 
 /// One sweep over the joints: with position bias (`use_bias`, the biased sweep) or without
-/// (the relax sweep).
-pub fn solve(constraints: &mut [JointConstraint], vel: &mut [Velocity], states: &[BodyState], h: f32, use_bias: bool) {
+/// (the relax sweep, which follows a position update). Limits, motors and springs first, and
+/// the equality rows of joints outside the forest as one block each; then the forest's
+/// equality rows by the direct solve.
+pub fn solve(set: &mut JointSet, vel: &mut [Velocity], states: &[BodyState], h: f32, use_bias: bool) {
     let ctx = Ctx::new(h, use_bias);
-    for _ in 0..JOINT_ITERATIONS {
-        for c in constraints.iter_mut() {
+    for iteration in 0..JOINT_ITERATIONS {
+        for c in set.list.iter_mut() {
+            let scalars = has_scalar_rows(&c.kind);
+            if c.tree && !scalars {
+                continue;
+            }
+            if !scalars && matches!(c.kind, JointKind::Ball(_)) {
+                // A plain ball joint closing a loop (the joint grid's cross links): the 3×3
+                // point block in glam, the hot path of large joint meshes.
+                let (mut b, f) = load(c, vel, states);
+                b.solve_point(&f, &mut c.imp.linear, &ctx);
+                write(c, &b, vel);
+                continue;
+            }
             let (mut b, f) = load(c, vel, states);
+            let eq = Eq::of(&c.kind, &f);
+            let k = eq.factor(&b);
+            let imp = &mut c.imp;
             match c.kind {
-                JointKind::Ball(p) => super::ball::solve(&p, &mut c.imp, &f, &mut b, &ctx),
-                JointKind::Hinge(p) => super::hinge::solve(&p, &c.spring, &mut c.imp, &f, &mut b, &ctx),
-                JointKind::Fixed => super::fixed::solve(&mut c.imp, &f, &mut b, &ctx),
-                JointKind::Distance(p) => super::distance::solve(&p, &c.spring, &mut c.imp, &f, &mut b, &ctx),
-                JointKind::Slider(p) => super::slider::solve(&p, &mut c.imp, &f, &mut b, &ctx),
+                JointKind::Ball(p) => super::ball::solve(&p, imp, &f, &mut b, &ctx, &eq, k.as_ref()),
+                JointKind::Hinge(p) => super::hinge::solve(&p, &c.spring, imp, &f, &mut b, &ctx, &eq, k.as_ref()),
+                JointKind::Fixed => {}
+                JointKind::Distance(p) => super::distance::solve(&p, &c.spring, imp, &f, &mut b, &ctx),
+                JointKind::Slider(p) => super::slider::solve(&p, imp, &f, &mut b, &ctx, &eq, k.as_ref()),
+            }
+            if !c.tree {
+                if let Some(k) = &k {
+                    eq.solve_block(k, &mut b, &mut c.imp, &ctx);
+                }
             }
             write(c, &b, vel);
         }
+        set.forest
+            .solve(&mut set.list, vel, states, &ctx, !use_bias && iteration == 0);
     }
 }
 
@@ -491,7 +497,7 @@ pub fn solve(constraints: &mut [JointConstraint], vel: &mut [Velocity], states: 
 pub fn store(world: &mut World, h: f32) {
     let World { joints, solver, .. } = world;
     let inv_h = 1.0 / h;
-    for c in &joints.constraints {
+    for c in &joints.constraints.list {
         let (_, f) = load(c, &solver.vel, &solver.states);
         let w = wrench(c, &f);
         let joint = joints.pool.at_mut(c.joint);

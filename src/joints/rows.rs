@@ -1,0 +1,415 @@
+//! Joint rows in one form: a [`Row`] is one scalar constraint's Jacobian on the two bodies,
+//! an [`Eq`] is a joint's equality rows (the point lock, the axis alignment, the angular lock,
+//! the slider's cross-axis rows, the rigid distance) with their position errors and where
+//! their accumulated impulses live, and [`Spd`] is a small dense Cholesky factor.
+//!
+//! Two uses:
+//!
+//! * A joint's equality rows are solved together as one block (`Eq::solve_block`) when the
+//!   joint is not in the direct tree solve (`tree.rs`), e.g. it closes a loop.
+//! * A limit, motor or spring row is **coupled** with its joint's equality rows
+//!   (`Eq::couple`): the row is replaced by itself plus the equality impulses that keep the
+//!   equality rows' velocities unchanged (`row − K_El·K_EE⁻¹·E`), whose effective mass is the
+//!   Schur complement `1 / (K_ll − K_lE K_EE⁻¹ K_El)`. A hinge limit then sees the arm's inertia
+//!   about the hinge, not about its centre of mass: solved alone, the limit row's impulse is
+//!   undone by the point row that follows it and the arm overshoots by the inertia ratio.
+
+// Small dense linear algebra reads best with index loops over rows and columns.
+#![allow(clippy::needless_range_loop)]
+
+use super::solver::{Bodies, Ctx, Frames};
+use super::{Impulses, JointKind};
+use crate::math::Vec3;
+
+/// Most equality rows a joint has (fixed: 3 linear + 3 angular).
+pub const MAX_ROWS: usize = 6;
+
+/// One scalar row: `cdot = la·va + aa·wa + lb·vb + ab·wb`; an impulse `λ` changes the
+/// velocities by `M⁻¹ Jᵀ λ`.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Row {
+    pub la: Vec3,
+    pub aa: Vec3,
+    pub lb: Vec3,
+    pub ab: Vec3,
+}
+
+impl Row {
+    /// The anchors' relative velocity along unit `n`: B's anchor at `rb` from its centre,
+    /// A's at `arm_a`.
+    #[inline]
+    pub fn linear(n: Vec3, arm_a: Vec3, rb: Vec3) -> Row {
+        Row {
+            la: -n,
+            aa: -arm_a.cross(n),
+            lb: n,
+            ab: rb.cross(n),
+        }
+    }
+
+    /// Relative angular velocity `wb − wa` along unit `e`.
+    #[inline]
+    pub fn angular(e: Vec3) -> Row {
+        Row {
+            la: Vec3::ZERO,
+            aa: -e,
+            lb: Vec3::ZERO,
+            ab: e,
+        }
+    }
+
+    #[inline]
+    pub fn dot(&self, o: &Row) -> f32 {
+        self.la.dot(o.la) + self.aa.dot(o.aa) + self.lb.dot(o.lb) + self.ab.dot(o.ab)
+    }
+
+    #[inline]
+    pub fn neg(&self) -> Row {
+        Row {
+            la: -self.la,
+            aa: -self.aa,
+            lb: -self.lb,
+            ab: -self.ab,
+        }
+    }
+
+    /// `self + s·o`.
+    #[inline]
+    pub fn add_scaled(&self, o: &Row, s: f32) -> Row {
+        Row {
+            la: self.la + s * o.la,
+            aa: self.aa + s * o.aa,
+            lb: self.lb + s * o.lb,
+            ab: self.ab + s * o.ab,
+        }
+    }
+}
+
+impl Bodies {
+    /// The row's velocity.
+    #[inline]
+    pub fn cdot(&self, r: &Row) -> f32 {
+        r.la.dot(self.va) + r.aa.dot(self.wa) + r.lb.dot(self.vb) + r.ab.dot(self.wb)
+    }
+
+    /// Applies impulse `l` along the row.
+    #[inline]
+    pub fn apply_row(&mut self, r: &Row, l: f32) {
+        self.va += (self.ma * l) * r.la;
+        self.wa += self.ia * (l * r.aa);
+        self.vb += (self.mb * l) * r.lb;
+        self.wb += self.ib * (l * r.ab);
+    }
+
+    /// `M⁻¹ Jᵀ` of the row: the velocity change per unit impulse.
+    #[inline]
+    pub fn response(&self, r: &Row) -> Row {
+        Row {
+            la: self.ma * r.la,
+            aa: self.ia * r.aa,
+            lb: self.mb * r.lb,
+            ab: self.ib * r.ab,
+        }
+    }
+}
+
+/// Where a row's accumulated impulse is kept in [`Impulses`]: the component along the row's
+/// (unit) B-side direction of the linear or angular vector, or the axial scalar.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Slot {
+    #[default]
+    Linear,
+    Angular,
+    Axial,
+}
+
+/// A joint's equality rows now.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Eq {
+    pub n: usize,
+    pub rows: [Row; MAX_ROWS],
+    /// Position error of each row (the row drives it to 0).
+    pub err: [f32; MAX_ROWS],
+    pub slots: [Slot; MAX_ROWS],
+}
+
+impl Eq {
+    #[inline]
+    fn push(&mut self, row: Row, err: f32, slot: Slot) {
+        self.rows[self.n] = row;
+        self.err[self.n] = err;
+        self.slots[self.n] = slot;
+        self.n += 1;
+    }
+
+    /// The point lock: three rows along the world axes (impulse: `Impulses::linear`).
+    fn point(&mut self, f: &Frames) {
+        for (k, e) in [Vec3::X, Vec3::Y, Vec3::Z].into_iter().enumerate() {
+            self.push(Row::linear(e, f.ra, f.rb), f.d[k], Slot::Linear);
+        }
+    }
+
+    /// The angular lock: three rows along the world axes (impulse: `Impulses::angular`).
+    fn angular_lock(&mut self, f: &Frames) {
+        let err = f.rotation_error();
+        for (k, e) in [Vec3::X, Vec3::Y, Vec3::Z].into_iter().enumerate() {
+            self.push(Row::angular(e), err[k], Slot::Angular);
+        }
+    }
+
+    /// The equality rows of a joint of `kind` with frames `f`.
+    pub fn of(kind: &JointKind, f: &Frames) -> Eq {
+        let mut eq = Eq::default();
+        match kind {
+            JointKind::Ball(_) => eq.point(f),
+            JointKind::Hinge(_) => {
+                eq.point(f);
+                // The Z axes stay aligned: rows along A's X and Y with the error `za × zb`.
+                let (za, zb) = f.axes();
+                let err = za.cross(zb);
+                for e in [f.qa * Vec3::X, f.qa * Vec3::Y] {
+                    eq.push(Row::angular(e), err.dot(e), Slot::Angular);
+                }
+            }
+            JointKind::Fixed => {
+                eq.point(f);
+                eq.angular_lock(f);
+            }
+            JointKind::Slider(_) => {
+                // B's anchor stays on A's Z axis: A's arm reaches to B's anchor, exact while
+                // the anchors are apart along the axis.
+                let arm_a = f.ra + f.d;
+                for e in [f.qa * Vec3::X, f.qa * Vec3::Y] {
+                    eq.push(Row::linear(e, arm_a, f.rb), e.dot(f.d), Slot::Linear);
+                }
+                eq.angular_lock(f);
+            }
+            JointKind::Distance(p) if !p.enable_spring => {
+                let (n, len) = super::distance::axis(f);
+                eq.push(Row::linear(n, f.ra, f.rb), len - p.length, Slot::Axial);
+            }
+            JointKind::Distance(_) => {}
+        }
+        eq
+    }
+
+    /// The accumulated impulses of the rows.
+    #[inline]
+    pub fn acc(&self, imp: &Impulses) -> [f32; MAX_ROWS] {
+        let mut a = [0.0; MAX_ROWS];
+        for i in 0..self.n {
+            a[i] = match self.slots[i] {
+                Slot::Linear => imp.linear.dot(self.rows[i].lb),
+                Slot::Angular => imp.angular.dot(self.rows[i].ab),
+                Slot::Axial => imp.axial,
+            };
+        }
+        a
+    }
+
+    /// Adds `s·d[i]` to each row's accumulated impulse.
+    #[inline]
+    pub fn add(&self, imp: &mut Impulses, d: &[f32; MAX_ROWS], s: f32) {
+        for i in 0..self.n {
+            let x = s * d[i];
+            match self.slots[i] {
+                Slot::Linear => imp.linear += x * self.rows[i].lb,
+                Slot::Angular => imp.angular += x * self.rows[i].ab,
+                Slot::Axial => imp.axial += x,
+            }
+        }
+    }
+
+    /// `K = J M⁻¹ Jᵀ` of the rows with the two bodies' masses, factored; `None` when singular
+    /// (no rows, or bodies without mass on them).
+    pub fn factor(&self, b: &Bodies) -> Option<Spd> {
+        if self.n == 0 {
+            return None;
+        }
+        let mut k = [[0.0f32; MAX_ROWS]; MAX_ROWS];
+        for i in 0..self.n {
+            let ri = b.response(&self.rows[i]);
+            for j in 0..=i {
+                let v = ri.dot(&self.rows[j]);
+                k[i][j] = v;
+                k[j][i] = v;
+            }
+        }
+        Spd::factor(&k, self.n)
+    }
+
+    /// Solves the rows together as one block (for a joint outside the tree solve): rigid with
+    /// the full `K⁻¹` in the relax sweep, the stiff soft response in the biased sweep.
+    pub fn solve_block(&self, k: &Spd, b: &mut Bodies, imp: &mut Impulses, ctx: &Ctx) {
+        let mut r = [0.0f32; MAX_ROWS];
+        for i in 0..self.n {
+            r[i] = -(b.cdot(&self.rows[i]) + ctx.rigid_bias(self.err[i]));
+        }
+        let x = k.solve(&r);
+        let acc = self.acc(imp);
+        let mut d = [0.0f32; MAX_ROWS];
+        for i in 0..self.n {
+            d[i] = ctx.respond(x[i], acc[i]);
+            b.apply_row(&self.rows[i], d[i]);
+        }
+        self.add(imp, &d, 1.0);
+    }
+
+    /// `row` coupled with these rows (see the module notes); with no factor, `row` alone.
+    pub fn couple(&self, k: Option<&Spd>, b: &Bodies, row: Row) -> Coupled {
+        let resp = b.response(&row);
+        let k_ll = resp.dot(&row);
+        let mut c = Coupled {
+            row,
+            comp: [0.0; MAX_ROWS],
+            mass: 0.0,
+        };
+        let mut k_schur = k_ll;
+        if let Some(k) = k {
+            let mut k_el = [0.0f32; MAX_ROWS];
+            for i in 0..self.n {
+                k_el[i] = resp.dot(&self.rows[i]);
+            }
+            let y = k.solve(&k_el);
+            for i in 0..self.n {
+                c.comp[i] = -y[i];
+                c.row = c.row.add_scaled(&self.rows[i], -y[i]);
+                k_schur -= k_el[i] * y[i];
+            }
+        }
+        // Rounding can leave a hair above zero where the rows leave the coupled row no
+        // freedom (a limit about an axis the equality rows already lock).
+        c.mass = if k_schur > 1.0e-6 * k_ll && k_schur > 0.0 {
+            1.0 / k_schur
+        } else {
+            0.0
+        };
+        c
+    }
+}
+
+/// A limit, motor or spring row coupled with its joint's equality rows.
+#[derive(Clone, Copy, Debug)]
+pub struct Coupled {
+    /// The row plus `comp` times the equality rows.
+    pub row: Row,
+    /// Equality impulses per unit impulse on the row.
+    pub comp: [f32; MAX_ROWS],
+    /// Effective mass of the coupled row (the Schur complement).
+    pub mass: f32,
+}
+
+impl Coupled {
+    /// The same row with the opposite sign (an upper limit after a lower one).
+    #[inline]
+    pub fn neg(&self) -> Coupled {
+        let mut comp = self.comp;
+        for c in comp.iter_mut() {
+            *c = -*c;
+        }
+        Coupled {
+            row: self.row.neg(),
+            comp,
+            mass: self.mass,
+        }
+    }
+
+    /// Applies impulse `l` along the coupled row and books the equality part on `imp`.
+    #[inline]
+    pub fn apply(&self, eq: &Eq, b: &mut Bodies, imp: &mut Impulses, l: f32) {
+        b.apply_row(&self.row, l);
+        eq.add(imp, &self.comp, l);
+    }
+}
+
+/// Cholesky factor `L Lᵀ` of a small symmetric positive definite matrix (size `n <= 6`), with
+/// the reciprocals of the diagonal.
+#[derive(Clone, Copy, Debug)]
+pub struct Spd {
+    n: usize,
+    l: [[f32; MAX_ROWS]; MAX_ROWS],
+    inv_diag: [f32; MAX_ROWS],
+}
+
+impl Spd {
+    /// `None` when `k` is not positive definite (to a relative tolerance).
+    pub fn factor(k: &[[f32; MAX_ROWS]; MAX_ROWS], n: usize) -> Option<Spd> {
+        let mut s = Spd {
+            n,
+            l: [[0.0; MAX_ROWS]; MAX_ROWS],
+            inv_diag: [0.0; MAX_ROWS],
+        };
+        let scale = (0..n).map(|i| k[i][i]).fold(0.0f32, f32::max);
+        if !(scale > 0.0 && scale.is_finite()) {
+            return None;
+        }
+        for j in 0..n {
+            let mut d = k[j][j];
+            for p in 0..j {
+                d -= s.l[j][p] * s.l[j][p];
+            }
+            if d <= 1.0e-7 * scale {
+                return None;
+            }
+            let djj = d.sqrt();
+            s.l[j][j] = djj;
+            s.inv_diag[j] = 1.0 / djj;
+            for i in j + 1..n {
+                let mut v = k[i][j];
+                for p in 0..j {
+                    v -= s.l[i][p] * s.l[j][p];
+                }
+                s.l[i][j] = v * s.inv_diag[j];
+            }
+        }
+        Some(s)
+    }
+
+    /// `K⁻¹ b`.
+    pub fn solve(&self, b: &[f32; MAX_ROWS]) -> [f32; MAX_ROWS] {
+        let n = self.n;
+        let mut y = [0.0f32; MAX_ROWS];
+        for i in 0..n {
+            let mut v = b[i];
+            for p in 0..i {
+                v -= self.l[i][p] * y[p];
+            }
+            y[i] = v * self.inv_diag[i];
+        }
+        for i in (0..n).rev() {
+            let mut v = y[i];
+            for p in i + 1..n {
+                v -= self.l[p][i] * y[p];
+            }
+            y[i] = v * self.inv_diag[i];
+        }
+        y
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn cholesky_solves_and_rejects_singular() {
+        let mut k = [[0.0f32; 6]; 6];
+        let a = [[4.0, 1.0, 0.5], [1.0, 3.0, 0.2], [0.5, 0.2, 2.0]];
+        for i in 0..3 {
+            for j in 0..3 {
+                k[i][j] = a[i][j];
+            }
+        }
+        let s = Spd::factor(&k, 3).unwrap();
+        let x = s.solve(&[1.0, 2.0, 3.0, 0.0, 0.0, 0.0]);
+        for i in 0..3 {
+            let r: f32 = (0..3).map(|j| a[i][j] * x[j]).sum();
+            assert!((r - [1.0, 2.0, 3.0][i]).abs() < 1e-5);
+        }
+        k[2] = k[1];
+        k[0][2] = k[0][1];
+        k[1][2] = k[1][1];
+        k[2][2] = k[1][1];
+        assert!(Spd::factor(&k, 3).is_none());
+    }
+}
