@@ -1189,9 +1189,16 @@ typedef struct HearthSoftBodyDef {
      */
     float pressure;
     /**
-     * Linear damping of the vertices (1/s, >= 0). Default 0.5.
+     * Linear damping of the vertices (1/s, >= 0): slows every motion, like air drag.
+     * Default 0.5.
      */
     float damping;
+    /**
+     * Damping of deformation (1/s, >= 0): each vertex's velocity relaxes at this rate
+     * towards the rigid motion of the whole soft body, so wobbling and bouncing on the gas
+     * die out while flight and spin are untouched. Default 2.
+     */
+    float deformation_damping;
     /**
      * Coulomb friction against shapes (>= 0; the pair uses the geometric mean with the
      * shape's static friction). Default 0.5.
@@ -1213,6 +1220,11 @@ typedef struct HearthSoftBodyDef {
      * XPBD sub-steps per world step (1..=64). Default 20.
      */
     uint32_t substeps;
+    /**
+     * Gauss–Seidel passes over the stretch springs per sub-step (1..=16). Default 2 (one
+     * pass rings and stretches a large cloth).
+     */
+    uint32_t iterations;
     /**
      * 1 (default) collides with rigid shapes and planes; 0 passes through everything.
      */

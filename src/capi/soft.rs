@@ -72,8 +72,13 @@ pub struct HearthSoftBodyDef {
     /// Gas pressure as n·R·T (J = Pa·m³, >= 0): each face is pushed out along its normal by
     /// `nRT / V · area`, V the current enclosed volume. 0 (default) is no gas.
     pub pressure: f32,
-    /// Linear damping of the vertices (1/s, >= 0). Default 0.5.
+    /// Linear damping of the vertices (1/s, >= 0): slows every motion, like air drag.
+    /// Default 0.5.
     pub damping: f32,
+    /// Damping of deformation (1/s, >= 0): each vertex's velocity relaxes at this rate
+    /// towards the rigid motion of the whole soft body, so wobbling and bouncing on the gas
+    /// die out while flight and spin are untouched. Default 2.
+    pub deformation_damping: f32,
     /// Coulomb friction against shapes (>= 0; the pair uses the geometric mean with the
     /// shape's static friction). Default 0.5.
     pub friction: f32,
@@ -85,6 +90,9 @@ pub struct HearthSoftBodyDef {
     pub gravity_scale: f32,
     /// XPBD sub-steps per world step (1..=64). Default 20.
     pub substeps: u32,
+    /// Gauss–Seidel passes over the stretch springs per sub-step (1..=16). Default 2 (one
+    /// pass rings and stretches a large cloth).
+    pub iterations: u32,
     /// 1 (default) collides with rigid shapes and planes; 0 passes through everything.
     pub collide: u8,
     /// Host data, returned by `hearth_soft_body_get_user_data`.
@@ -109,11 +117,13 @@ pub extern "C" fn hearth_soft_body_def_default() -> HearthSoftBodyDef {
         volume_compliance: d.volume_compliance,
         pressure: d.pressure,
         damping: d.damping,
+        deformation_damping: d.deformation_damping,
         friction: d.friction,
         restitution: d.restitution,
         vertex_radius: d.vertex_radius,
         gravity_scale: d.gravity_scale,
         substeps: d.substeps,
+        iterations: d.iterations,
         collide: d.collide as u8,
         user_data: d.user_data,
         internal_value: DEF_COOKIE,
@@ -132,11 +142,13 @@ fn soft_def(d: &HearthSoftBodyDef) -> Result<SoftBodyDef, Failure> {
         volume_compliance: d.volume_compliance,
         pressure: d.pressure,
         damping: d.damping,
+        deformation_damping: d.deformation_damping,
         friction: d.friction,
         restitution: d.restitution,
         vertex_radius: d.vertex_radius,
         gravity_scale: d.gravity_scale,
         substeps: d.substeps,
+        iterations: d.iterations,
         collide: validate::flag(d.collide, "collide")?,
         user_data: d.user_data,
     };
