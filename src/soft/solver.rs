@@ -242,10 +242,8 @@ impl World {
                 continue;
             }
             let g = settings.gravity * b.gravity_scale;
-            if g != Vec3::ZERO {
-                b.force -= g * b.mass;
-                s.deferred.push((h.index, g, b.center, b.xf.q));
-            }
+            b.force -= g * b.mass;
+            s.deferred.push((h.index, g, b.center, b.xf.q));
         }
     }
 
@@ -514,6 +512,11 @@ fn find_contacts(
             best.n = inv * best.n;
         }
         s.contacts[i] = best;
+    }
+    // A pinned vertex is held where its pin is; it does not collide (with the body it is
+    // pinned to, it would fight the pin).
+    for pin in &s.pins {
+        s.contacts[pin.vertex as usize].active = false;
     }
 }
 
