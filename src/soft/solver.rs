@@ -17,15 +17,17 @@
 //!    body is coupled.
 //!
 //! **Coupled bodies.** A dynamic body a soft body touches or is pinned to is copied into
-//! the stage: pose, velocities, inverse mass and world inverse inertia. Its own motion this
-//! step already happened in the rigid solve, so in a soft body's sub-steps it moves by what
-//! that soft body changes (`x += (v − v_before) h`). A body that rested on soft bodies in the
-//! last step and touches no rigid shape has its gravity taken out of the rigid solve
-//! (`defer_soft_gravity`, stage 2) and integrated here, in the same sub-steps as the
-//! vertices that carry it; a body carried by several soft bodies gets an equal share in
-//! each of their passes. Otherwise the rigid solve would move it a whole step down into the
-//! vertices before they could push back, and a heavy box would bounce off a ball instead of
-//! settling into it. After the stage the bodies take their new velocities and poses.
+//! the stage: pose, velocities, inverse mass and world inverse inertia. A body that soft
+//! bodies acted on in the last step and that touches no rigid shape is *carried*: its
+//! gravity is taken out of the rigid solve (`defer_soft_gravity`, stage 2), and here its pose
+//! is set back to where it was when the step began and it moves through the soft sub-steps
+//! with its velocity, in step with the vertices under it (a box moved a whole step ahead by
+//! the rigid solve made its vertices push a step early, which pumped a box bobbing on a
+//! ball instead of damping it, and blew up a light body pinned to a cloth). Any other
+//! coupled body already moved in the rigid solve and moves here by what the soft body
+//! changes (`x += (v − v_before) h`). A body several soft bodies act on gets an equal share
+//! of its gravity in each of their passes. After the stage the bodies take their new
+//! velocities and poses.
 //!
 //! Then `substeps` times, with `h = dt / substeps`:
 //!
@@ -45,10 +47,15 @@
 //!    weight). A correction on a coupled body moves it as the position impulse `λ n` at the
 //!    arm would (`Δx = λ n / m`, `Δθ = I⁻¹ (r × λ n)`), the vertex the opposite way.
 //! 4. **Velocities** `v = (x − x_prev) / h`; coupled bodies add their attachment and tether
-//!    corrections divided by `h` (momentum is exchanged exactly).
+//!    corrections divided by `h` (momentum is exchanged exactly). Deformation damping moves
+//!    every vertex velocity towards the soft body's rigid motion (centre velocity plus
+//!    `I⁻¹ L` about the centre), keeping momentum and angular momentum.
 //! 5. **Contacts.** A vertex below its contact plane is projected onto it (against a
 //!    coupled body both move, in proportion to their inverse masses; a projection does not
-//!    change velocities). Then the relative velocity at the contact loses its approaching
+//!    change velocities). If it slid over the surface this sub-step by less than
+//!    `friction × depth`, the slide is undone (static friction, Müller et al. §3.5),
+//!    positions and velocities alike: velocity friction alone only drags the light vertex
+//!    along, and a heavy box crept down any slope of vertices. Then the relative velocity at the contact loses its approaching
 //!    normal part (plus restitution) and, with the position-based Coulomb friction of
 //!    Müller et al. (XPBD rigid bodies, §3.6), part of its tangential part, by an impulse
 //!    `p = Δv / (w_vertex + w_body)` with the body's effective inverse mass at the contact
