@@ -1189,9 +1189,16 @@ typedef struct HearthSoftBodyDef {
      */
     float pressure;
     /**
-     * Linear damping of the vertices (1/s, >= 0). Default 0.5.
+     * Linear damping of the vertices (1/s, >= 0): slows every motion, like air drag.
+     * Default 0.5.
      */
     float damping;
+    /**
+     * Damping of deformation (1/s, >= 0): each vertex's velocity relaxes at this rate
+     * towards the rigid motion of the whole soft body, so wobbling and bouncing on the gas
+     * die out while flight and spin are untouched. Default 2.
+     */
+    float deformation_damping;
     /**
      * Coulomb friction against shapes (>= 0; the pair uses the geometric mean with the
      * shape's static friction). Default 0.5.
@@ -1213,6 +1220,11 @@ typedef struct HearthSoftBodyDef {
      * XPBD sub-steps per world step (1..=64). Default 20.
      */
     uint32_t substeps;
+    /**
+     * Gauss–Seidel passes over the stretch springs per sub-step (1..=16). Default 2 (one
+     * pass rings and stretches a large cloth).
+     */
+    uint32_t iterations;
     /**
      * 1 (default) collides with rigid shapes and planes; 0 passes through everything.
      */
@@ -1241,6 +1253,71 @@ typedef struct HearthSoftBodyId {
      */
     uint32_t generation;
 } HearthSoftBodyId;
+
+/**
+ * The settings of a soft body that may change after creation: the fields of
+ * `HearthSoftBodyDef` with the same names, units, ranges and defaults. Read them with
+ * `hearth_soft_body_get_settings`, edit, write them back with
+ * `hearth_soft_body_set_settings`.
+ */
+typedef struct HearthSoftBodySettings {
+    /**
+     * Compliance of the stretch springs (m/N, >= 0; 0 is inextensible).
+     */
+    float edge_compliance;
+    /**
+     * Compliance of the bending springs (m/N, >= 0; `INFINITY` disables bending).
+     */
+    float bend_compliance;
+    /**
+     * 1 keeps the enclosed volume at its rest value, 0 does not.
+     */
+    uint8_t preserve_volume;
+    /**
+     * Compliance of the volume constraint (>= 0; 0 is incompressible).
+     */
+    float volume_compliance;
+    /**
+     * Gas pressure as n·R·T (J, >= 0).
+     */
+    float pressure;
+    /**
+     * Linear damping of the vertices (1/s, >= 0).
+     */
+    float damping;
+    /**
+     * Damping of deformation towards the rigid motion of the whole body (1/s, >= 0).
+     */
+    float deformation_damping;
+    /**
+     * Coulomb friction against shapes (>= 0).
+     */
+    float friction;
+    /**
+     * Bounce against shapes (>= 0).
+     */
+    float restitution;
+    /**
+     * Radius of each vertex for collision (m, >= 0).
+     */
+    float vertex_radius;
+    /**
+     * Multiplier of world gravity (finite).
+     */
+    float gravity_scale;
+    /**
+     * XPBD sub-steps per world step (1..=64).
+     */
+    uint32_t substeps;
+    /**
+     * Passes over the stretch springs per sub-step (1..=16).
+     */
+    uint32_t iterations;
+    /**
+     * 1 collides with rigid shapes and planes, 0 passes through everything.
+     */
+    uint8_t collide;
+} HearthSoftBodySettings;
 
 /**
  * Settings of a world. Get one from `hearth_world_def_default()`, then edit it.
@@ -2605,8 +2682,8 @@ HearthResult hearth_shape_get_body(const struct HearthWorld *world,
 
 /**
  * Defaults: at the origin, at rest, 1 kg, inextensible edges, bend compliance 0.01, no
- * volume constraint, no gas, damping 0.5, friction 0.5, no bounce, vertex radius 0.01 m,
- * full gravity, 20 sub-steps, collides.
+ * volume constraint, no gas, damping 0.5, deformation damping 2, friction 0.5, no bounce,
+ * vertex radius 0.01 m, full gravity, 20 sub-steps of 2 stretch passes, collides.
  */
 struct HearthSoftBodyDef hearth_soft_body_def_default(void);
 
@@ -2925,9 +3002,13 @@ HearthResult hearth_soft_body_set_pressure(struct HearthWorld *world,
 
 /**
  * Pins `vertex` where it is now: to the world when `body` is the null id (it stays at
- * that point), or to `body` (it follows the body's motion at the point it has in the
- * body's frame now; the body does not feel the pull). Pinning a pinned vertex moves its
- * pin. Destroying the body frees the vertices pinned to it.
+ * that point), or to `body` at the point it has in the body's frame now. A static or
+ * kinematic body carries the vertex along; a dynamic body is held to it two-way, solved in
+ * the soft-body sub-steps: the body feels the soft body's pull (a flag drags its pole,
+ * a cloth holds a weight), momentum is kept. Free vertices are tethered to their two
+ * nearest pins so a large cloth does not stretch. A pinned vertex does not collide.
+ * Pinning a pinned vertex moves its pin. Destroying the body frees the vertices pinned to
+ * it.
  *
  * Errors: `HEARTH_ERROR_NULL_POINTER`, `HEARTH_ERROR_INVALID_ID` (soft body, or a body
  * that is not null and not live in this world), `HEARTH_ERROR_INVALID_ARGUMENT` (vertex
@@ -2998,6 +3079,54 @@ HearthResult hearth_soft_body_apply_impulse(struct HearthWorld *world,
 HearthResult hearth_soft_body_apply_impulse_all(struct HearthWorld *world,
                                                 struct HearthSoftBodyId soft_body,
                                                 struct HearthVec3 impulse);
+
+/**
+ * Reads the settings a soft body runs with now (those given at creation or set since).
+ *
+ * Errors: `HEARTH_ERROR_NULL_POINTER`, `HEARTH_ERROR_INVALID_ID`.
+ *
+ * # Safety
+ * `world` must be NULL or a live world; `out_settings` NULL or writable.
+ */
+HearthResult hearth_soft_body_get_settings(const struct HearthWorld *world,
+                                           struct HearthSoftBodyId soft_body,
+                                           struct HearthSoftBodySettings *out_settings);
+
+/**
+ * Replaces a soft body's settings (stiffness, damping, gas, materials, sub-steps); they
+ * take effect at the next step. Every field is checked as at creation; nothing changes on
+ * error.
+ *
+ * Errors: `HEARTH_ERROR_NULL_POINTER` (world, settings), `HEARTH_ERROR_INVALID_ID`,
+ * `HEARTH_ERROR_INVALID_ARGUMENT` (a number NaN, infinite where not allowed, negative or
+ * out of range; a flag not 0 or 1), `HEARTH_ERROR_WORLD_LOCKED`.
+ *
+ * # Safety
+ * `world` must be NULL or a live world; `settings` NULL or readable.
+ */
+HearthResult hearth_soft_body_set_settings(struct HearthWorld *world,
+                                           struct HearthSoftBodyId soft_body,
+                                           const struct HearthSoftBodySettings *settings);
+
+/**
+ * Sets the three compliances of a soft body (the inverse of stiffness, >= 0; XPBD: any
+ * value is stable and the stiffness does not depend on the time step): `edge` of the
+ * stretch springs (m/N, 0 inextensible), `bend` of the bending springs (m/N, `INFINITY`
+ * disables bending), `volume` of the volume constraint (0 incompressible; used when the
+ * body preserves its volume). Takes effect at the next step.
+ *
+ * Errors: `HEARTH_ERROR_NULL_POINTER`, `HEARTH_ERROR_INVALID_ID`,
+ * `HEARTH_ERROR_INVALID_ARGUMENT` (negative or NaN; `edge` or `volume` infinite),
+ * `HEARTH_ERROR_WORLD_LOCKED`. Nothing changes on error.
+ *
+ * # Safety
+ * `world` must be NULL or a live world.
+ */
+HearthResult hearth_soft_body_set_compliance(struct HearthWorld *world,
+                                             struct HearthSoftBodyId soft_body,
+                                             float edge,
+                                             float bend,
+                                             float volume);
 
 /**
  * The default world settings: gravity (0, -9.81, 0), 6 sub-steps, sleep on.

@@ -41,6 +41,8 @@ impl World {
         self.apply_force_generators(dt);
         //    A body resting on particles gets its gravity in the particle stage (7).
         self.defer_coupled_gravity();
+        //    So does a body resting on soft bodies, in the soft-body stage (7c).
+        self.defer_soft_gravity();
         Ok(true)
     }
 

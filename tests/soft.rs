@@ -1,9 +1,13 @@
-//! Soft bodies against the issue's proofs: a pressurised 642-vertex ball bounces, settles and
-//! keeps its volume; doubling the pressure makes it stiffer; a stiffness sweep over four
-//! orders of magnitude stays finite without energy growth for 60 s; a cloth pinned at two
-//! corners hangs without stretching; a soft ball pushes a rigid box (two-way); pins follow
-//! bodies and are freed with them;
-//! determinism and no allocation in a steady step.
+//! Soft bodies against the issue's proofs, at the default settings (a def from
+//! `SoftBodyDef::default()` with only placement, mass, pressure and the varied parameter
+//! changed): a pressurised 642-vertex ball bounces, settles and keeps its volume; doubling
+//! the pressure makes it stiffer; a stiffness sweep over four orders of magnitude stays
+//! finite without energy growth for 60 s; cloths of 16×16 and 64×64 cells pinned at two
+//! corners hang without stretching; a soft ball pushes a rigid box and a rigid box dropped
+//! on a soft ball dents it and rests on it (two-way); a box rests on a slope of vertices;
+//! pins to dynamic bodies pull them (momentum kept, a weight hangs from a cloth); pins
+//! follow bodies and are freed with them; settings change after creation; determinism and
+//! no allocation in a steady step.
 
 use std::alloc::{GlobalAlloc, Layout, System};
 use std::cell::Cell;
@@ -52,15 +56,12 @@ fn at(p: Vec3) -> Transform {
     Transform::new(p, Quat::IDENTITY)
 }
 
-/// The 642-vertex pressurised ball of radius 0.5 m and 5 kg.
+/// The 642-vertex pressurised ball of radius 0.5 m and 5 kg, default settings otherwise.
 fn ball_def(height: f32, pressure: f32) -> SoftBodyDef {
     SoftBodyDef {
         transform: at(Vec3::new(0.0, height, 0.0)),
         mass: 5.0,
         pressure,
-        edge_compliance: 1.0e-5,
-        damping: 1.0,
-        substeps: 40,
         ..Default::default()
     }
 }
@@ -132,7 +133,8 @@ fn pressurised_icosphere_bounces_settles_and_keeps_its_volume() {
 
 #[test]
 fn doubling_the_pressure_makes_the_ball_stiffer() {
-    // Flattening under its own weight: free height (no gravity) minus resting height.
+    // Flattening under its own weight: free height (no gravity) minus resting height. With
+    // inextensible edges the skin carries most of its own weight, so this changes little.
     let mut flat = [0.0; 2];
     for (k, p) in [500.0, 1000.0].into_iter().enumerate() {
         let mut free = World::new(WorldSettings {
@@ -158,7 +160,17 @@ fn doubling_the_pressure_makes_the_ball_stiffer() {
         );
     }
     assert!(flat[0] > 0.005, "the ball should flatten under its weight: {}", flat[0]);
-    assert!(flat[1] < 0.9 * flat[0], "{flat:?}");
+    assert!(flat[1] < 0.95 * flat[0], "{flat:?}");
+    // Under a 3.2 kg box. With the default inextensible skin (two stretch passes, not
+    // converged to rigid) the skin's own give dominates the dent, so the gas makes it only
+    // somewhat stiffer: 24.3 mm at 500 J, 21.2 mm at 1000 J.
+    let dents = [drop_box_on_ball(500.0), drop_box_on_ball(1000.0)];
+    println!(
+        "dent under a 3.2 kg box: {:.1} mm at nRT 500 J, {:.1} mm at 1000 J",
+        1000.0 * dents[0],
+        1000.0 * dents[1]
+    );
+    assert!(dents[1] < 0.92 * dents[0], "{dents:?}");
 }
 
 #[test]
@@ -168,7 +180,6 @@ fn stiffness_sweep_stays_finite_without_energy_growth() {
         let def = SoftBodyDef {
             edge_compliance: compliance,
             bend_compliance: compliance,
-            substeps: 20,
             ..ball_def(1.0, 300.0)
         };
         let h = w.create_soft_body(&def, &mesh::icosphere(0.5, 3), None).unwrap();
@@ -200,46 +211,65 @@ fn stiffness_sweep_stays_finite_without_energy_growth() {
     }
 }
 
-#[test]
-fn cloth_pinned_at_two_corners_hangs_without_stretching() {
+/// A 2 × 2 m, 1 kg cloth of `n × n` cells at default settings, horizontal at 3 m, pinned at
+/// the two corners of its edge z = -1: it swings down and hangs. Returns the worst edge
+/// stretch after 10 s and the lowest point.
+fn hang_cloth(n: u32) -> (f32, f32) {
     let mut w = world();
-    let (cols, rows) = (16u32, 16u32);
     let def = SoftBodyDef {
         transform: at(Vec3::new(0.0, 3.0, 0.0)),
         mass: 1.0,
-        edge_compliance: 0.0,
-        bend_compliance: 1.0,
-        substeps: 40,
         ..Default::default()
     };
-    let h = w
-        .create_soft_body(&def, &mesh::cloth(2.0, 2.0, cols, rows), None)
-        .unwrap();
-    // Horizontal at first: it swings down about the edge z = -1 and hangs.
+    let rest = mesh::cloth(2.0, 2.0, n, n);
+    let h = w.create_soft_body(&def, &rest, None).unwrap();
     w.pin_soft_vertex(h, 0, None).unwrap();
-    w.pin_soft_vertex(h, cols, None).unwrap();
-    let rest = mesh::cloth(2.0, 2.0, cols, rows);
+    w.pin_soft_vertex(h, n, None).unwrap();
     let edges = edges_of(&rest);
-    for _ in 0..600 {
+    let mut worst_late: f32 = 0.0;
+    for step in 0..600 {
         w.step(DT).unwrap();
+        if step >= 300 {
+            let s = w.soft_body(h).unwrap();
+            for &(a, b, l) in &edges {
+                let d = s.pos[a as usize].distance(s.pos[b as usize]);
+                worst_late = worst_late.max(d / l - 1.0);
+            }
+        }
     }
     let s = w.soft_body(h).unwrap();
-    let mut worst: f32 = 0.0;
-    for &(a, b, l) in &edges {
-        let d = s.pos[a as usize].distance(s.pos[b as usize]);
-        worst = worst.max(d / l - 1.0);
-    }
     let low = s.pos.iter().map(|p| p.y).fold(f32::MAX, f32::min);
-    println!(
-        "cloth: worst edge stretch {:.2} %, lowest point {low:.3} m",
-        100.0 * worst
-    );
-    assert!(worst < 0.05, "stretch {worst}");
-    assert!(low < 1.3, "the cloth should hang down, lowest {low}");
     assert!(
         s.pos[0].distance(Vec3::new(-1.0, 3.0, -1.0)) < 1e-4,
         "the pin holds: {}",
         s.pos[0]
+    );
+    println!(
+        "cloth {n}x{n}: worst edge stretch over 5-10 s {:.2} %, lowest point {low:.3} m",
+        100.0 * worst_late
+    );
+    (worst_late, low)
+}
+
+#[test]
+fn cloth_pinned_at_two_corners_hangs_without_stretching() {
+    let (stretch, low) = hang_cloth(16);
+    assert!(stretch < 0.05, "stretch {stretch}");
+    assert!(
+        (low - 1.0).abs() < 0.05,
+        "the cloth should hang straight down, lowest {low}"
+    );
+}
+
+#[test]
+fn a_64x64_cloth_pinned_at_two_corners_hangs_without_stretching() {
+    // One Gauss-Seidel pass per sub-step rang this cloth apart (> 100 % stretch); two passes
+    // and tethers to both pins hang it.
+    let (stretch, low) = hang_cloth(64);
+    assert!(stretch < 0.05, "stretch {stretch}");
+    assert!(
+        (low - 1.0).abs() < 0.05,
+        "the cloth should hang straight down, lowest {low}"
     );
 }
 
@@ -279,6 +309,291 @@ fn a_soft_ball_pushes_a_rigid_box() {
     println!("push: box moved {:.3} m, ball centre x {:.3}", p.x - 1.0, c.x);
     assert!(p.x > 1.25, "the box should be pushed along +x: {}", p.x);
     assert!(c.x < p.x, "the ball stays behind the box");
+}
+
+fn static_box(w: &mut World, p: Vec3, half: Vec3) {
+    let b = w
+        .create_body(&BodyDef {
+            transform: at(p),
+            ..Default::default()
+        })
+        .unwrap();
+    w.create_shape(
+        b,
+        &ShapeDef::default(),
+        &Geometry::Box {
+            center: Vec3::ZERO,
+            rotation: Quat::IDENTITY,
+            half_extents: half,
+        },
+    )
+    .unwrap();
+}
+
+#[test]
+fn a_rigid_box_dropped_on_a_soft_ball_dents_it_and_rests_on_it() {
+    let dent = drop_box_on_ball(500.0);
+    assert!(dent > 0.015, "the ball should be dented: {dent}");
+}
+
+/// A 3.2 kg box dropped on the 642-vertex ball of gas `pressure`: checks that it comes to
+/// rest on the ball, in the dent, with the ball's volume kept; returns the dent depth (m).
+fn drop_box_on_ball(pressure: f32) -> f32 {
+    // The ball stands in a crate of four low walls touching its sides: a box on a ball that
+    // is free to roll is the balance board of a circus act (rola bola), and rolls off for
+    // any solver. The walls stop at the ball's equator, well below the box.
+    let mut w = world();
+    for (p, half) in [
+        (Vec3::new(0.61, 0.25, 0.0), Vec3::new(0.1, 0.25, 0.71)),
+        (Vec3::new(-0.61, 0.25, 0.0), Vec3::new(0.1, 0.25, 0.71)),
+        (Vec3::new(0.0, 0.25, 0.61), Vec3::new(0.71, 0.25, 0.1)),
+        (Vec3::new(0.0, 0.25, -0.61), Vec3::new(0.71, 0.25, 0.1)),
+    ] {
+        static_box(&mut w, p, half);
+    }
+    let h = ball(&mut w, 0.5, pressure);
+    for _ in 0..120 {
+        w.step(DT).unwrap();
+    }
+    let s = w.soft_body(h).unwrap();
+    let c = s.center();
+    let top = |s: &hearth::soft::SoftBody, c: Vec3| {
+        s.pos
+            .iter()
+            .filter(|p| (p.x - c.x).abs() < 0.05 && (p.z - c.z).abs() < 0.05)
+            .map(|p| p.y)
+            .fold(f32::MIN, f32::max)
+    };
+    let top0 = top(s, c);
+    let rest = s.rest_volume;
+    // A 0.4 × 0.2 × 0.4 m box of 3.2 kg, its bottom 5 cm above the ball's top.
+    let half = Vec3::new(0.2, 0.1, 0.2);
+    let bx = dynamic_box(&mut w, Vec3::new(c.x, top0 + half.y + 0.05, c.z), half, 100.0);
+    let mut worst: f32 = 0.0;
+    let mut lowest = f32::MAX;
+    // Box positions over the last second.
+    let (mut lo, mut hi) = (Vec3::splat(f32::MAX), Vec3::splat(f32::MIN));
+    for step in 0..600 {
+        w.step(DT).unwrap();
+        if step >= 540 {
+            let p = w.transform(bx).unwrap().p;
+            lo = lo.min(p);
+            hi = hi.max(p);
+        }
+        let s = w.soft_body(h).unwrap();
+        worst = worst.max((s.volume() / rest - 1.0).abs());
+        lowest = lowest.min(w.transform(bx).unwrap().p.y);
+    }
+    let b = w.body(bx).unwrap();
+    let s = w.soft_body(h).unwrap();
+    let c = s.center();
+    let dent = top0 - top(s, c);
+    let bottom = b.xf.p.y - half.y;
+    let tilt = (b.xf.q * Vec3::Y).angle_between(Vec3::Y);
+    let span = hi - lo;
+    println!(
+        "box on ball (nRT {pressure} J): dent {:.1} mm, box bottom {bottom:.4} m over the dented top {:.4} m (undented {top0:.4} m), \
+         moved {:.2} mm over the last second, speed {:.4} m/s, spin {:.4} rad/s, tilt {:.2} deg, \
+         off centre {:.3} m, volume error worst {:.2} %",
+        1000.0 * dent,
+        top(s, c),
+        1000.0 * span.max_element(),
+        b.v.length(),
+        b.w.length(),
+        tilt.to_degrees(),
+        (b.xf.p - c).with_y(0.0).length(),
+        100.0 * worst
+    );
+    assert!(
+        (bottom - (top(s, c) + 0.01)).abs() < 0.01,
+        "the box rests on the dented top (plus the vertex radius): {bottom} vs {}",
+        top(s, c)
+    );
+    assert!(bottom > top0 - 0.1, "not sunk through: {bottom}");
+    assert!(lowest - half.y > 0.8, "never fell through or off: {lowest}");
+    // At rest: a residual jitter of the order of a centimetre per second remains (the box
+    // sits on about twenty vertices solved one after another), but it does not go anywhere.
+    assert!(span.max_element() < 0.003, "the box still moves: {span}");
+    assert!(b.v.length() < 0.03 && b.w.length() < 0.15, "at rest: {} {}", b.v, b.w);
+    assert!((b.xf.p - c).with_y(0.0).length() < 0.05, "on top of the ball");
+    assert!(worst < 0.05, "volume error {worst}");
+    dent
+}
+
+#[test]
+fn a_box_rests_on_a_slope_of_vertices() {
+    // A soft slab tilted by 0.2 rad (tan 0.2 < friction 0.55) with its bottom layer pinned:
+    // a box on it stays put (velocity-only friction let it creep down at 2.8 cm/s).
+    let mut w = world();
+    let q = Quat::from_rotation_z(0.2);
+    let def = SoftBodyDef {
+        transform: Transform::new(Vec3::new(0.0, 1.0, 0.0), q),
+        mass: 5.0,
+        ..Default::default()
+    };
+    let h = w
+        .create_soft_body(&def, &mesh::lattice(Vec3::new(0.5, 0.1, 0.5), [8, 2, 8]), None)
+        .unwrap();
+    for k in 0..=8u32 {
+        for i in 0..=8u32 {
+            w.pin_soft_vertex(h, i + 9 * 3 * k, None).unwrap();
+        }
+    }
+    let p0 = Vec3::new(0.0, 1.0, 0.0) + q * Vec3::new(0.0, 0.211, 0.0);
+    let bx = w
+        .create_body(&BodyDef {
+            body_type: BodyType::Dynamic,
+            transform: Transform::new(p0, q),
+            ..Default::default()
+        })
+        .unwrap();
+    let geom = Geometry::Box {
+        center: Vec3::ZERO,
+        rotation: Quat::IDENTITY,
+        half_extents: Vec3::new(0.2, 0.1, 0.2),
+    };
+    w.create_shape(
+        bx,
+        &ShapeDef {
+            density: 100.0,
+            ..Default::default()
+        },
+        &geom,
+    )
+    .unwrap();
+    for _ in 0..60 {
+        w.step(DT).unwrap();
+    }
+    let p1 = w.transform(bx).unwrap().p;
+    for _ in 0..180 {
+        w.step(DT).unwrap();
+    }
+    let p2 = w.transform(bx).unwrap().p;
+    println!("box on a slope: moved {:.2} mm in 3 s", 1000.0 * p2.distance(p1));
+    assert!(p2.distance(p1) < 0.005, "the box creeps: {p1} -> {p2}");
+}
+
+#[test]
+fn pins_to_a_dynamic_body_pull_it_and_keep_momentum() {
+    // No gravity: a 0.2 kg body with a 1 kg cloth pinned along one edge; the cloth is
+    // thrown sideways. The body is dragged along and the total momentum stays.
+    let mut w = World::new(WorldSettings {
+        gravity: Vec3::ZERO,
+        enable_sleep: false,
+        ..Default::default()
+    })
+    .unwrap();
+    // Along the cloth's edge z = -0.5, just clear of it.
+    let body = dynamic_box(&mut w, Vec3::new(0.0, 0.0, -0.57), Vec3::new(0.5, 0.05, 0.05), 20.0);
+    let m_body = w.body(body).unwrap().mass;
+    // No air drag (it takes momentum away); deformation damping keeps it.
+    let def = SoftBodyDef {
+        mass: 1.0,
+        damping: 0.0,
+        ..Default::default()
+    };
+    let h = w.create_soft_body(&def, &mesh::cloth(1.0, 1.0, 10, 10), None).unwrap();
+    for i in 0..=10 {
+        w.pin_soft_vertex(h, i, Some(body)).unwrap();
+    }
+    let pinned_mass = 11.0 / 121.0;
+    let j = Vec3::new(0.0, 0.0, 1.0);
+    w.apply_soft_impulse(h, None, j).unwrap();
+    let momentum = |w: &World| {
+        let s = w.soft_body(h).unwrap();
+        let p: Vec3 = s.vel.iter().zip(&s.inv_mass).map(|(v, &im)| *v / im).sum();
+        p + w.body(body).unwrap().v * m_body
+    };
+    // The impulse reaches the free vertices only (pinned ones ignore it).
+    let expected = j * (1.0 - pinned_mass);
+    for _ in 0..60 {
+        w.step(DT).unwrap();
+    }
+    let p = momentum(&w);
+    let vb = w.body(body).unwrap().v;
+    println!("pinned cloth: momentum {p} (expected {expected}), body velocity {vb}");
+    assert!((p - expected).length() < 0.01 * expected.length(), "{p} vs {expected}");
+    assert!(vb.z > 0.5, "the cloth drags the body: {vb}");
+}
+
+#[test]
+fn a_weight_hangs_from_a_cloth() {
+    // A cloth hung by two corners from the world holds a 0.5 kg box pinned to its two
+    // bottom corners: the box hangs below it at rest (a one-way pin would let it fall).
+    let mut w = world();
+    let n = 16u32;
+    let def = SoftBodyDef {
+        transform: Transform::new(
+            Vec3::new(0.0, 3.0, 0.0),
+            Quat::from_rotation_x(std::f32::consts::FRAC_PI_2),
+        ),
+        mass: 0.5,
+        ..Default::default()
+    };
+    // Rotated a quarter turn about x: the cloth hangs in the XY plane, row 0 at the top.
+    let h = w.create_soft_body(&def, &mesh::cloth(1.0, 1.0, n, n), None).unwrap();
+    w.pin_soft_vertex(h, 0, None).unwrap();
+    w.pin_soft_vertex(h, n, None).unwrap();
+    let low = n * (n + 1);
+    let bottom_y = w.soft_body(h).unwrap().pos[low as usize].y;
+    let weight = dynamic_box(
+        &mut w,
+        Vec3::new(0.0, bottom_y - 0.06, 0.0),
+        Vec3::new(0.5, 0.05, 0.05),
+        100.0,
+    );
+    w.pin_soft_vertex(h, low, Some(weight)).unwrap();
+    w.pin_soft_vertex(h, low + n, Some(weight)).unwrap();
+    for _ in 0..300 {
+        w.step(DT).unwrap();
+    }
+    let b = w.body(weight).unwrap();
+    let s = w.soft_body(h).unwrap();
+    println!(
+        "weight of {:.2} kg under a cloth: box at {:.4} m (started {:.4} m), speed {:.4}, cloth corner {:.4} m",
+        b.mass,
+        b.xf.p.y,
+        bottom_y - 0.06,
+        b.v.length(),
+        s.pos[low as usize].y
+    );
+    assert!(
+        (b.xf.p.y - (bottom_y - 0.06)).abs() < 0.05,
+        "the box hangs where it was: {}",
+        b.xf.p.y
+    );
+    assert!(b.v.length() < 0.02, "at rest: {}", b.v);
+    assert!(
+        (s.pos[low as usize] - b.xf.apply(Vec3::new(-0.5, 0.06, 0.0))).length() < 0.01,
+        "pinned"
+    );
+}
+
+#[test]
+fn settings_change_after_creation() {
+    let mut w = world();
+    let h = ball(&mut w, 0.52, 500.0);
+    let mut st = w.soft_body_settings(h).unwrap();
+    assert_eq!(st.pressure, 500.0);
+    st.pressure = 1000.0;
+    st.damping = 2.0;
+    st.friction = 0.9;
+    st.edge_compliance = 1.0e-4;
+    w.set_soft_body_settings(h, &st).unwrap();
+    assert_eq!(w.soft_body_settings(h).unwrap(), st);
+    let bad = hearth::soft::SoftBodySettings { substeps: 0, ..st };
+    assert!(w.set_soft_body_settings(h, &bad).is_err());
+    let bad = hearth::soft::SoftBodySettings {
+        damping: f32::NAN,
+        ..st
+    };
+    assert!(w.set_soft_body_settings(h, &bad).is_err());
+    assert_eq!(w.soft_body_settings(h).unwrap(), st, "a failed call changes nothing");
+    for _ in 0..60 {
+        w.step(DT).unwrap();
+    }
+    let s = w.soft_body(h).unwrap();
+    assert!(s.pos.iter().all(|p| p.is_finite()));
 }
 
 #[test]

@@ -1,7 +1,8 @@
 //! Soft-body exports (issue 6): the def and its defaults, create from a triangle mesh or
 //! from the helpers (icosphere, box lattice, cloth grid), destroy, bulk read-back of vertex
 //! positions, normals and triangle indices into caller-owned arrays, pins, impulses,
-//! pressure and volume.
+//! pressure and volume, and the settings that may change after creation (stiffness,
+//! damping, gas, materials, sub-steps).
 
 use super::error::*;
 use super::generator::is_null_body;
@@ -10,7 +11,7 @@ use super::validate::{self, DEF_COOKIE};
 use super::world::{world_mut, world_ref, HearthWorld};
 use crate::math::Vec3;
 use crate::pool::Handle;
-use crate::soft::{mesh, SoftBody, SoftBodyDef, SoftMesh, MAX_SOFT_VERTICES};
+use crate::soft::{mesh, SoftBody, SoftBodyDef, SoftBodySettings, SoftMesh, MAX_SOFT_VERTICES};
 use crate::world::World;
 
 /// Id of a soft body inside its world. All-zero is the null id. Ids of destroyed soft
@@ -72,8 +73,13 @@ pub struct HearthSoftBodyDef {
     /// Gas pressure as n·R·T (J = Pa·m³, >= 0): each face is pushed out along its normal by
     /// `nRT / V · area`, V the current enclosed volume. 0 (default) is no gas.
     pub pressure: f32,
-    /// Linear damping of the vertices (1/s, >= 0). Default 0.5.
+    /// Linear damping of the vertices (1/s, >= 0): slows every motion, like air drag.
+    /// Default 0.5.
     pub damping: f32,
+    /// Damping of deformation (1/s, >= 0): each vertex's velocity relaxes at this rate
+    /// towards the rigid motion of the whole soft body, so wobbling and bouncing on the gas
+    /// die out while flight and spin are untouched. Default 2.
+    pub deformation_damping: f32,
     /// Coulomb friction against shapes (>= 0; the pair uses the geometric mean with the
     /// shape's static friction). Default 0.5.
     pub friction: f32,
@@ -85,6 +91,9 @@ pub struct HearthSoftBodyDef {
     pub gravity_scale: f32,
     /// XPBD sub-steps per world step (1..=64). Default 20.
     pub substeps: u32,
+    /// Gauss–Seidel passes over the stretch springs per sub-step (1..=16). Default 2 (one
+    /// pass rings and stretches a large cloth).
+    pub iterations: u32,
     /// 1 (default) collides with rigid shapes and planes; 0 passes through everything.
     pub collide: u8,
     /// Host data, returned by `hearth_soft_body_get_user_data`.
@@ -94,8 +103,8 @@ pub struct HearthSoftBodyDef {
 }
 
 /// Defaults: at the origin, at rest, 1 kg, inextensible edges, bend compliance 0.01, no
-/// volume constraint, no gas, damping 0.5, friction 0.5, no bounce, vertex radius 0.01 m,
-/// full gravity, 20 sub-steps, collides.
+/// volume constraint, no gas, damping 0.5, deformation damping 2, friction 0.5, no bounce,
+/// vertex radius 0.01 m, full gravity, 20 sub-steps of 2 stretch passes, collides.
 #[no_mangle]
 pub extern "C" fn hearth_soft_body_def_default() -> HearthSoftBodyDef {
     let d = SoftBodyDef::default();
@@ -109,11 +118,13 @@ pub extern "C" fn hearth_soft_body_def_default() -> HearthSoftBodyDef {
         volume_compliance: d.volume_compliance,
         pressure: d.pressure,
         damping: d.damping,
+        deformation_damping: d.deformation_damping,
         friction: d.friction,
         restitution: d.restitution,
         vertex_radius: d.vertex_radius,
         gravity_scale: d.gravity_scale,
         substeps: d.substeps,
+        iterations: d.iterations,
         collide: d.collide as u8,
         user_data: d.user_data,
         internal_value: DEF_COOKIE,
@@ -132,11 +143,13 @@ fn soft_def(d: &HearthSoftBodyDef) -> Result<SoftBodyDef, Failure> {
         volume_compliance: d.volume_compliance,
         pressure: d.pressure,
         damping: d.damping,
+        deformation_damping: d.deformation_damping,
         friction: d.friction,
         restitution: d.restitution,
         vertex_radius: d.vertex_radius,
         gravity_scale: d.gravity_scale,
         substeps: d.substeps,
+        iterations: d.iterations,
         collide: validate::flag(d.collide, "collide")?,
         user_data: d.user_data,
     };
@@ -727,9 +740,13 @@ pub unsafe extern "C" fn hearth_soft_body_set_pressure(
 }
 
 /// Pins `vertex` where it is now: to the world when `body` is the null id (it stays at
-/// that point), or to `body` (it follows the body's motion at the point it has in the
-/// body's frame now; the body does not feel the pull). Pinning a pinned vertex moves its
-/// pin. Destroying the body frees the vertices pinned to it.
+/// that point), or to `body` at the point it has in the body's frame now. A static or
+/// kinematic body carries the vertex along; a dynamic body is held to it two-way, solved in
+/// the soft-body sub-steps: the body feels the soft body's pull (a flag drags its pole,
+/// a cloth holds a weight), momentum is kept. Free vertices are tethered to their two
+/// nearest pins so a large cloth does not stretch. A pinned vertex does not collide.
+/// Pinning a pinned vertex moves its pin. Destroying the body frees the vertices pinned to
+/// it.
 ///
 /// Errors: `HEARTH_ERROR_NULL_POINTER`, `HEARTH_ERROR_INVALID_ID` (soft body, or a body
 /// that is not null and not live in this world), `HEARTH_ERROR_INVALID_ARGUMENT` (vertex
@@ -824,4 +841,151 @@ pub unsafe extern "C" fn hearth_soft_body_apply_impulse_all(
     impulse: HearthVec3,
 ) -> HearthResult {
     guard(|| Ok(world_mut(world)?.apply_soft_impulse(soft_body.into(), None, impulse.into())?))
+}
+
+/// The settings of a soft body that may change after creation: the fields of
+/// `HearthSoftBodyDef` with the same names, units, ranges and defaults. Read them with
+/// `hearth_soft_body_get_settings`, edit, write them back with
+/// `hearth_soft_body_set_settings`.
+#[repr(C)]
+#[derive(Clone, Copy, Debug)]
+pub struct HearthSoftBodySettings {
+    /// Compliance of the stretch springs (m/N, >= 0; 0 is inextensible).
+    pub edge_compliance: f32,
+    /// Compliance of the bending springs (m/N, >= 0; `INFINITY` disables bending).
+    pub bend_compliance: f32,
+    /// 1 keeps the enclosed volume at its rest value, 0 does not.
+    pub preserve_volume: u8,
+    /// Compliance of the volume constraint (>= 0; 0 is incompressible).
+    pub volume_compliance: f32,
+    /// Gas pressure as n·R·T (J, >= 0).
+    pub pressure: f32,
+    /// Linear damping of the vertices (1/s, >= 0).
+    pub damping: f32,
+    /// Damping of deformation towards the rigid motion of the whole body (1/s, >= 0).
+    pub deformation_damping: f32,
+    /// Coulomb friction against shapes (>= 0).
+    pub friction: f32,
+    /// Bounce against shapes (>= 0).
+    pub restitution: f32,
+    /// Radius of each vertex for collision (m, >= 0).
+    pub vertex_radius: f32,
+    /// Multiplier of world gravity (finite).
+    pub gravity_scale: f32,
+    /// XPBD sub-steps per world step (1..=64).
+    pub substeps: u32,
+    /// Passes over the stretch springs per sub-step (1..=16).
+    pub iterations: u32,
+    /// 1 collides with rigid shapes and planes, 0 passes through everything.
+    pub collide: u8,
+}
+
+impl From<SoftBodySettings> for HearthSoftBodySettings {
+    fn from(s: SoftBodySettings) -> Self {
+        HearthSoftBodySettings {
+            edge_compliance: s.edge_compliance,
+            bend_compliance: s.bend_compliance,
+            preserve_volume: s.preserve_volume as u8,
+            volume_compliance: s.volume_compliance,
+            pressure: s.pressure,
+            damping: s.damping,
+            deformation_damping: s.deformation_damping,
+            friction: s.friction,
+            restitution: s.restitution,
+            vertex_radius: s.vertex_radius,
+            gravity_scale: s.gravity_scale,
+            substeps: s.substeps,
+            iterations: s.iterations,
+            collide: s.collide as u8,
+        }
+    }
+}
+
+fn settings_from(s: &HearthSoftBodySettings) -> Result<SoftBodySettings, Failure> {
+    Ok(SoftBodySettings {
+        edge_compliance: s.edge_compliance,
+        bend_compliance: s.bend_compliance,
+        preserve_volume: validate::flag(s.preserve_volume, "preserve_volume")?,
+        volume_compliance: s.volume_compliance,
+        pressure: s.pressure,
+        damping: s.damping,
+        deformation_damping: s.deformation_damping,
+        friction: s.friction,
+        restitution: s.restitution,
+        vertex_radius: s.vertex_radius,
+        gravity_scale: s.gravity_scale,
+        substeps: s.substeps,
+        iterations: s.iterations,
+        collide: validate::flag(s.collide, "collide")?,
+    })
+}
+
+/// Reads the settings a soft body runs with now (those given at creation or set since).
+///
+/// Errors: `HEARTH_ERROR_NULL_POINTER`, `HEARTH_ERROR_INVALID_ID`.
+///
+/// # Safety
+/// `world` must be NULL or a live world; `out_settings` NULL or writable.
+#[no_mangle]
+pub unsafe extern "C" fn hearth_soft_body_get_settings(
+    world: *const HearthWorld,
+    soft_body: HearthSoftBodyId,
+    out_settings: *mut HearthSoftBodySettings,
+) -> HearthResult {
+    get(world, soft_body, out_settings, |s| Ok(s.def.settings().into()))
+}
+
+/// Replaces a soft body's settings (stiffness, damping, gas, materials, sub-steps); they
+/// take effect at the next step. Every field is checked as at creation; nothing changes on
+/// error.
+///
+/// Errors: `HEARTH_ERROR_NULL_POINTER` (world, settings), `HEARTH_ERROR_INVALID_ID`,
+/// `HEARTH_ERROR_INVALID_ARGUMENT` (a number NaN, infinite where not allowed, negative or
+/// out of range; a flag not 0 or 1), `HEARTH_ERROR_WORLD_LOCKED`.
+///
+/// # Safety
+/// `world` must be NULL or a live world; `settings` NULL or readable.
+#[no_mangle]
+pub unsafe extern "C" fn hearth_soft_body_set_settings(
+    world: *mut HearthWorld,
+    soft_body: HearthSoftBodyId,
+    settings: *const HearthSoftBodySettings,
+) -> HearthResult {
+    guard(|| {
+        let w = world_mut(world)?;
+        let settings = settings_from(validate::input(settings, "settings")?)?;
+        Ok(w.set_soft_body_settings(soft_body.into(), &settings)?)
+    })
+}
+
+/// Sets the three compliances of a soft body (the inverse of stiffness, >= 0; XPBD: any
+/// value is stable and the stiffness does not depend on the time step): `edge` of the
+/// stretch springs (m/N, 0 inextensible), `bend` of the bending springs (m/N, `INFINITY`
+/// disables bending), `volume` of the volume constraint (0 incompressible; used when the
+/// body preserves its volume). Takes effect at the next step.
+///
+/// Errors: `HEARTH_ERROR_NULL_POINTER`, `HEARTH_ERROR_INVALID_ID`,
+/// `HEARTH_ERROR_INVALID_ARGUMENT` (negative or NaN; `edge` or `volume` infinite),
+/// `HEARTH_ERROR_WORLD_LOCKED`. Nothing changes on error.
+///
+/// # Safety
+/// `world` must be NULL or a live world.
+#[no_mangle]
+pub unsafe extern "C" fn hearth_soft_body_set_compliance(
+    world: *mut HearthWorld,
+    soft_body: HearthSoftBodyId,
+    edge: f32,
+    bend: f32,
+    volume: f32,
+) -> HearthResult {
+    guard(|| {
+        let w = world_mut(world)?;
+        let settings = SoftBodySettings {
+            edge_compliance: edge,
+            bend_compliance: bend,
+            volume_compliance: volume,
+            ..w.soft_body_settings(soft_body.into())?
+        };
+        Ok(w.set_soft_body_settings(soft_body.into(), &settings)?)
+    })
 }

@@ -86,7 +86,7 @@ pub struct Scratch {
     /// Dynamic bodies particles acted on in the last step.
     carried: Vec<Handle>,
     /// Bodies whose gravity this step's particle stage integrates: (slot, gravity).
-    deferred: Vec<(u32, Vec3)>,
+    pub(crate) deferred: Vec<(u32, Vec3)>,
 }
 
 fn find(parent: &mut [u32], mut x: u32) -> u32 {

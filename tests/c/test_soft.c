@@ -3,8 +3,9 @@
  * (NULL, garbage and zeroed defs, bad flags, NaN and out-of-range numbers, bad counts and
  * indices, stale and foreign ids, short buffers that write nothing, WORLD_LOCKED from a
  * callback), bulk read-back equal to the single-vertex queries, pins to the world and to a
- * body, impulses, pressure, and a pressurised 642-vertex icosphere dropped on the ground
- * that comes to rest keeping its volume within 5 %.
+ * body (two-way with a dynamic body), impulses, pressure, settings read back and changed
+ * after creation (and refused whole on any bad field), and a pressurised 642-vertex
+ * icosphere dropped on the ground that comes to rest keeping its volume within 5 %.
  * Compiled as C11 and C++17, shared and static, under valgrind.
  */
 #include "hearth.h"
@@ -69,6 +70,7 @@ static void test_defaults(void) {
     ENSURE(d.substeps >= 1 && d.substeps <= 64);
     ENSURE(d.damping >= 0.0f && d.friction >= 0.0f && d.restitution == 0.0f);
     ENSURE(d.gravity_scale == 1.0f && d.user_data == 0);
+    ENSURE(d.deformation_damping == 2.0f && d.iterations == 2);
 }
 
 static void test_create_mesh(void) {
@@ -344,6 +346,11 @@ static void test_ids_and_reads(void) {
         ENSURE_RESULT(hearth_soft_body_get_rest_volume(w, b, &f), HEARTH_ERROR_INVALID_ID);
         ENSURE_RESULT(hearth_soft_body_get_pressure(w, b, &f), HEARTH_ERROR_INVALID_ID);
         ENSURE_RESULT(hearth_soft_body_set_pressure(w, b, 1.0f), HEARTH_ERROR_INVALID_ID);
+        HearthSoftBodySettings st;
+        ENSURE_RESULT(hearth_soft_body_get_settings(w, b, &st), HEARTH_ERROR_INVALID_ID);
+        ENSURE_OK(hearth_soft_body_get_settings(w, s, &st));
+        ENSURE_RESULT(hearth_soft_body_set_settings(w, b, &st), HEARTH_ERROR_INVALID_ID);
+        ENSURE_RESULT(hearth_soft_body_set_compliance(w, b, 0, 0, 0), HEARTH_ERROR_INVALID_ID);
         ENSURE_RESULT(hearth_soft_body_pin_vertex(w, b, 0, null_body()), HEARTH_ERROR_INVALID_ID);
         ENSURE_RESULT(hearth_soft_body_unpin_vertex(w, b, 0), HEARTH_ERROR_INVALID_ID);
         ENSURE_RESULT(hearth_soft_body_is_vertex_pinned(w, b, 0, &pinned), HEARTH_ERROR_INVALID_ID);
@@ -367,6 +374,15 @@ static void test_ids_and_reads(void) {
     ENSURE_RESULT(hearth_soft_body_get_user_data(w, s, NULL), HEARTH_ERROR_NULL_POINTER);
     ENSURE_RESULT(hearth_soft_body_is_vertex_pinned(w, s, 0, NULL), HEARTH_ERROR_NULL_POINTER);
     ENSURE_RESULT(hearth_soft_body_set_pressure(NULL, s, 1.0f), HEARTH_ERROR_NULL_POINTER);
+    {
+        HearthSoftBodySettings st;
+        ENSURE_RESULT(hearth_soft_body_get_settings(NULL, s, &st), HEARTH_ERROR_NULL_POINTER);
+        ENSURE_RESULT(hearth_soft_body_get_settings(w, s, NULL), HEARTH_ERROR_NULL_POINTER);
+        ENSURE_OK(hearth_soft_body_get_settings(w, s, &st));
+        ENSURE_RESULT(hearth_soft_body_set_settings(NULL, s, &st), HEARTH_ERROR_NULL_POINTER);
+        ENSURE_RESULT(hearth_soft_body_set_settings(w, s, NULL), HEARTH_ERROR_NULL_POINTER);
+        ENSURE_RESULT(hearth_soft_body_set_compliance(NULL, s, 0, 0, 0), HEARTH_ERROR_NULL_POINTER);
+    }
     ENSURE_RESULT(hearth_soft_body_pin_vertex(NULL, s, 0, null_body()), HEARTH_ERROR_NULL_POINTER);
     ENSURE_RESULT(hearth_soft_body_unpin_vertex(NULL, s, 0), HEARTH_ERROR_NULL_POINTER);
     ENSURE_RESULT(hearth_soft_body_apply_impulse(NULL, s, 0, vec3(0, 1, 0)), HEARTH_ERROR_NULL_POINTER);
@@ -565,12 +581,154 @@ static void test_pins(void) {
     hearth_world_destroy(w);
 }
 
+/* Settings read back as created, changed after creation, and refused whole on any bad
+ * field (nothing changes). */
+static void test_settings(void) {
+    HearthWorld *w = make_world(1);
+    HearthSoftBodyDef d = hearth_soft_body_def_default();
+    d.transform.position = vec3(0, 1, 0);
+    d.pressure = 50.0f;
+    d.friction = 0.7f;
+    d.substeps = 12;
+    HearthSoftBodyId s;
+    ENSURE_OK(hearth_soft_body_create_icosphere(w, &d, 0.5f, 2, &s));
+    HearthSoftBodySettings st;
+    memset(&st, 0, sizeof st);
+    ENSURE_OK(hearth_soft_body_get_settings(w, s, &st));
+    ENSURE(st.pressure == 50.0f && st.friction == 0.7f && st.substeps == 12);
+    ENSURE(st.edge_compliance == d.edge_compliance && st.bend_compliance == d.bend_compliance);
+    ENSURE(st.damping == d.damping && st.deformation_damping == d.deformation_damping);
+    ENSURE(st.iterations == 2 && st.collide == 1 && st.preserve_volume == 0);
+    ENSURE(st.vertex_radius == d.vertex_radius && st.gravity_scale == 1.0f);
+
+    st.pressure = 80.0f;
+    st.damping = 1.5f;
+    st.deformation_damping = 4.0f;
+    st.friction = 0.2f;
+    st.restitution = 0.3f;
+    st.preserve_volume = 1;
+    st.volume_compliance = 1e-4f;
+    st.iterations = 3;
+    st.bend_compliance = INFINITY; /* bending off */
+    ENSURE_OK(hearth_soft_body_set_settings(w, s, &st));
+    HearthSoftBodySettings back;
+    ENSURE_OK(hearth_soft_body_get_settings(w, s, &back));
+    ENSURE(back.pressure == 80.0f && back.damping == 1.5f && back.deformation_damping == 4.0f);
+    ENSURE(back.friction == 0.2f && back.restitution == 0.3f && back.preserve_volume == 1);
+    ENSURE(back.volume_compliance == 1e-4f && back.iterations == 3 && isinf(back.bend_compliance));
+    float f = 0.0f;
+    ENSURE_OK(hearth_soft_body_get_pressure(w, s, &f));
+    ENSURE(f == 80.0f);
+
+    /* Every bad field is refused and changes nothing. */
+    HearthSoftBodySettings bad;
+    bad = st; bad.edge_compliance = -1.0f;
+    ENSURE_RESULT(hearth_soft_body_set_settings(w, s, &bad), HEARTH_ERROR_INVALID_ARGUMENT);
+    bad = st; bad.edge_compliance = INFINITY;
+    ENSURE_RESULT(hearth_soft_body_set_settings(w, s, &bad), HEARTH_ERROR_INVALID_ARGUMENT);
+    bad = st; bad.bend_compliance = NAN;
+    ENSURE_RESULT(hearth_soft_body_set_settings(w, s, &bad), HEARTH_ERROR_INVALID_ARGUMENT);
+    bad = st; bad.preserve_volume = 2;
+    ENSURE_RESULT(hearth_soft_body_set_settings(w, s, &bad), HEARTH_ERROR_INVALID_ARGUMENT);
+    bad = st; bad.collide = 7;
+    ENSURE_RESULT(hearth_soft_body_set_settings(w, s, &bad), HEARTH_ERROR_INVALID_ARGUMENT);
+    bad = st; bad.pressure = -5.0f;
+    ENSURE_RESULT(hearth_soft_body_set_settings(w, s, &bad), HEARTH_ERROR_INVALID_ARGUMENT);
+    bad = st; bad.damping = NAN;
+    ENSURE_RESULT(hearth_soft_body_set_settings(w, s, &bad), HEARTH_ERROR_INVALID_ARGUMENT);
+    bad = st; bad.deformation_damping = -1.0f;
+    ENSURE_RESULT(hearth_soft_body_set_settings(w, s, &bad), HEARTH_ERROR_INVALID_ARGUMENT);
+    bad = st; bad.friction = INFINITY;
+    ENSURE_RESULT(hearth_soft_body_set_settings(w, s, &bad), HEARTH_ERROR_INVALID_ARGUMENT);
+    bad = st; bad.vertex_radius = -0.1f;
+    ENSURE_RESULT(hearth_soft_body_set_settings(w, s, &bad), HEARTH_ERROR_INVALID_ARGUMENT);
+    bad = st; bad.gravity_scale = INFINITY;
+    ENSURE_RESULT(hearth_soft_body_set_settings(w, s, &bad), HEARTH_ERROR_INVALID_ARGUMENT);
+    bad = st; bad.substeps = 0;
+    ENSURE_RESULT(hearth_soft_body_set_settings(w, s, &bad), HEARTH_ERROR_INVALID_ARGUMENT);
+    bad = st; bad.substeps = 65;
+    ENSURE_RESULT(hearth_soft_body_set_settings(w, s, &bad), HEARTH_ERROR_INVALID_ARGUMENT);
+    bad = st; bad.iterations = 0;
+    ENSURE_RESULT(hearth_soft_body_set_settings(w, s, &bad), HEARTH_ERROR_INVALID_ARGUMENT);
+    bad = st; bad.iterations = 17;
+    ENSURE_RESULT(hearth_soft_body_set_settings(w, s, &bad), HEARTH_ERROR_INVALID_ARGUMENT);
+    ENSURE_RESULT(hearth_soft_body_set_compliance(w, s, -1.0f, 0, 0), HEARTH_ERROR_INVALID_ARGUMENT);
+    ENSURE_RESULT(hearth_soft_body_set_compliance(w, s, 0, NAN, 0), HEARTH_ERROR_INVALID_ARGUMENT);
+    ENSURE_RESULT(hearth_soft_body_set_compliance(w, s, 0, -1.0f, 0), HEARTH_ERROR_INVALID_ARGUMENT);
+    ENSURE_RESULT(hearth_soft_body_set_compliance(w, s, 0, 0, INFINITY), HEARTH_ERROR_INVALID_ARGUMENT);
+    ENSURE_RESULT(hearth_soft_body_set_compliance(w, s, INFINITY, 0, 0), HEARTH_ERROR_INVALID_ARGUMENT);
+    ENSURE_OK(hearth_soft_body_get_settings(w, s, &back));
+    ENSURE(back.pressure == st.pressure && back.iterations == st.iterations && back.substeps == st.substeps);
+    ENSURE(back.edge_compliance == st.edge_compliance && isinf(back.bend_compliance));
+    ENSURE(back.damping == st.damping && back.collide == st.collide && back.preserve_volume == st.preserve_volume);
+
+    /* The compliance setter changes the three compliances and nothing else. */
+    ENSURE_OK(hearth_soft_body_set_compliance(w, s, 1e-4f, 0.5f, 1e-3f));
+    ENSURE_OK(hearth_soft_body_get_settings(w, s, &back));
+    ENSURE(back.edge_compliance == 1e-4f && back.bend_compliance == 0.5f && back.volume_compliance == 1e-3f);
+    ENSURE(back.pressure == 80.0f && back.friction == 0.2f && back.iterations == 3);
+
+    for (int i = 0; i < 60; i++) {
+        ENSURE_OK(hearth_world_step(w, 1.0f / 60.0f));
+    }
+    HearthVec3 c;
+    ENSURE_OK(hearth_soft_body_get_center(w, s, &c));
+    ENSURE(isfinite(c.y) && c.y > 0.0f && c.y < 1.0f);
+    hearth_world_destroy(w);
+}
+
+/* A pin to a dynamic body is two-way: with no gravity, a cloth thrown sideways drags the
+ * light body pinned to its edge along, and the total momentum stays. */
+static void test_pins_pull_dynamic_bodies(void) {
+    HearthWorldDef wd = hearth_world_def_default();
+    wd.gravity = vec3(0, 0, 0);
+    wd.enable_sleep = 0;
+    HearthWorld *w = NULL;
+    ENSURE_OK(hearth_world_create(&wd, &w));
+    HearthBodyDef bd = hearth_body_def_default();
+    bd.type = HEARTH_BODY_DYNAMIC;
+    bd.transform.position = vec3(0, 0, -0.57f);
+    HearthBodyId b;
+    ENSURE_OK(hearth_body_create(w, &bd, &b));
+    HearthShapeDef sd = hearth_shape_def_default();
+    sd.density = 20.0f;
+    HearthBox box;
+    memset(&box, 0, sizeof box);
+    box.rotation.w = 1.0f;
+    box.half_extents = vec3(0.5f, 0.05f, 0.05f); /* 0.2 kg */
+    HearthShapeId sh;
+    ENSURE_OK(hearth_shape_create_box(w, b, &sd, &box, &sh));
+    HearthSoftBodyDef d = hearth_soft_body_def_default();
+    d.damping = 0.0f; /* no air drag: momentum is kept */
+    HearthSoftBodyId s;
+    ENSURE_OK(hearth_soft_body_create_cloth(w, &d, 1.0f, 1.0f, 10, 10, &s));
+    for (uint32_t i = 0; i <= 10; i++) {
+        ENSURE_OK(hearth_soft_body_pin_vertex(w, s, i, b)); /* the edge z = -0.5 */
+    }
+    ENSURE_OK(hearth_soft_body_apply_impulse_all(w, s, vec3(0, 0, 1)));
+    for (int i = 0; i < 60; i++) {
+        ENSURE_OK(hearth_world_step(w, 1.0f / 60.0f));
+    }
+    HearthVec3 vb;
+    ENSURE_OK(hearth_body_get_linear_velocity(w, b, &vb));
+    ENSURE(vb.z > 0.5f);
+    /* Momentum: the free vertices got 1 N s x 110/121; the pinned ones ignore impulses. */
+    double pz = 0.2 * vb.z;
+    HearthVec3 v;
+    for (uint32_t i = 0; i < 121; i++) {
+        ENSURE_OK(hearth_soft_body_get_vertex_velocity(w, s, i, &v));
+        pz += v.z / 121.0;
+    }
+    ENSURE_NEAR(pz, 110.0 / 121.0, 0.01);
+    hearth_world_destroy(w);
+}
+
 /* WORLD_LOCKED: every mutating soft-body call from inside a force callback. */
 typedef struct LockProbe {
     HearthSoftBodyId soft;
     int calls;
     HearthResult created, created_ico, created_box, created_cloth, destroyed, pinned, unpinned;
-    HearthResult impulse, impulse_all, pressure, read;
+    HearthResult impulse, impulse_all, pressure, settings, compliance, read;
 } LockProbe;
 
 static void lock_callback(void *user_data, HearthWorld *world, const HearthGeneratorContext *context) {
@@ -591,6 +749,11 @@ static void lock_callback(void *user_data, HearthWorld *world, const HearthGener
     p->impulse = hearth_soft_body_apply_impulse(world, p->soft, 0, vec3(0, 1, 0));
     p->impulse_all = hearth_soft_body_apply_impulse_all(world, p->soft, vec3(0, 1, 0));
     p->pressure = hearth_soft_body_set_pressure(world, p->soft, 1.0f);
+    HearthSoftBodySettings st;
+    if (hearth_soft_body_get_settings(world, p->soft, &st) == HEARTH_OK) { /* reads work */
+        p->settings = hearth_soft_body_set_settings(world, p->soft, &st);
+    }
+    p->compliance = hearth_soft_body_set_compliance(world, p->soft, 1e-3f, 1e-3f, 0);
     float vol;
     p->read = hearth_soft_body_get_volume(world, p->soft, &vol);
 }
@@ -618,6 +781,8 @@ static void test_world_locked(void) {
     ENSURE(probe.impulse == HEARTH_ERROR_WORLD_LOCKED);
     ENSURE(probe.impulse_all == HEARTH_ERROR_WORLD_LOCKED);
     ENSURE(probe.pressure == HEARTH_ERROR_WORLD_LOCKED);
+    ENSURE(probe.settings == HEARTH_ERROR_WORLD_LOCKED);
+    ENSURE(probe.compliance == HEARTH_ERROR_WORLD_LOCKED);
     ENSURE(probe.read == HEARTH_OK);
     size_t n = 0;
     ENSURE_OK(hearth_world_get_soft_body_count(w, &n));
@@ -635,10 +800,7 @@ static void test_pressurised_ball_rests(void) {
     HearthSoftBodyDef d = hearth_soft_body_def_default();
     d.transform.position = vec3(0, 1.5f, 0);
     d.mass = 5.0f;
-    d.pressure = 500.0f;
-    d.edge_compliance = 1e-5f;
-    d.damping = 1.0f;
-    d.substeps = 40;
+    d.pressure = 500.0f; /* everything else at its default */
     HearthSoftBodyId s;
     ENSURE_OK(hearth_soft_body_create_icosphere(w, &d, 0.5f, 3, &s));
     size_t n = 0;
@@ -648,7 +810,7 @@ static void test_pressurised_ball_rests(void) {
     ENSURE_OK(hearth_soft_body_get_rest_volume(w, s, &rest));
     HearthVec3 pos[642];
     float lowest = 10.0f, worst = 0.0f, last_y = 0.0f, drift = 0.0f, second_ago = 0.0f;
-    const int steps = 480; /* 8 s */
+    const int steps = 600; /* 10 s */
     for (int i = 0; i < steps; i++) {
         ENSURE_OK(hearth_world_step(w, 1.0f / 60.0f));
         float vol = 0.0f;
@@ -697,6 +859,8 @@ int main(void) {
     test_ids_and_reads();
     test_impulses();
     test_pins();
+    test_settings();
+    test_pins_pull_dynamic_bodies();
     test_world_locked();
     test_pressurised_ball_rests();
     return ensure_report("test_soft");
