@@ -478,11 +478,13 @@ class HearthSoftBodyDef(_Struct):
         ("volume_compliance", c_float),
         ("pressure", c_float),
         ("damping", c_float),
+        ("deformation_damping", c_float),
         ("friction", c_float),
         ("restitution", c_float),
         ("vertex_radius", c_float),
         ("gravity_scale", c_float),
         ("substeps", c_uint32),
+        ("iterations", c_uint32),
         ("collide", c_uint8),
         ("user_data", c_uint64),
         ("internal_value", c_uint32),
@@ -493,6 +495,25 @@ class HearthSoftBodyId(_Struct):
     _fields_ = [
         ("index", c_uint32),
         ("generation", c_uint32),
+    ]
+
+
+class HearthSoftBodySettings(_Struct):
+    _fields_ = [
+        ("edge_compliance", c_float),
+        ("bend_compliance", c_float),
+        ("preserve_volume", c_uint8),
+        ("volume_compliance", c_float),
+        ("pressure", c_float),
+        ("damping", c_float),
+        ("deformation_damping", c_float),
+        ("friction", c_float),
+        ("restitution", c_float),
+        ("vertex_radius", c_float),
+        ("gravity_scale", c_float),
+        ("substeps", c_uint32),
+        ("iterations", c_uint32),
+        ("collide", c_uint8),
     ]
 
 
@@ -836,6 +857,18 @@ _fn(
     HearthVec3,
 )
 _fn("hearth_soft_body_apply_impulse_all", HearthResult, POINTER(HearthWorld), HearthSoftBodyId, HearthVec3)
+_fn(
+    "hearth_soft_body_get_settings", HearthResult, POINTER(HearthWorld), HearthSoftBodyId,
+    POINTER(HearthSoftBodySettings),
+)
+_fn(
+    "hearth_soft_body_set_settings", HearthResult, POINTER(HearthWorld), HearthSoftBodyId,
+    POINTER(HearthSoftBodySettings),
+)
+_fn(
+    "hearth_soft_body_set_compliance", HearthResult, POINTER(HearthWorld), HearthSoftBodyId, c_float, c_float,
+    c_float,
+)
 _fn("hearth_world_def_default", HearthWorldDef)
 _fn("hearth_world_create", HearthResult, POINTER(HearthWorldDef), POINTER(POINTER(HearthWorld)))
 _fn("hearth_world_destroy", None, POINTER(HearthWorld))

@@ -83,6 +83,12 @@ Spring = namedtuple("Spring", "enabled hertz damping_ratio")
 JointForce = namedtuple("JointForce", "force torque")
 AttachmentCount = namedtuple("AttachmentCount", "bodies particles")
 
+#: The settings of a soft body that may change after creation (`HearthSoftBodySettings`):
+#: the like-named fields of `HearthSoftBodyDef`, with the flags `preserve_volume` and
+#: `collide` as bools. Read with `SoftBody.settings`, change with `SoftBody.set_settings`.
+SoftBodySettings = namedtuple("SoftBodySettings", [name for name, _ in _ffi.HearthSoftBodySettings._fields_])
+_SOFT_FLAGS = ("preserve_volume", "collide")
+
 
 class _Handle:
     """A world and an id. Subclasses set _ID_TYPE, the C id struct."""
@@ -569,6 +575,46 @@ class SoftBody(_Handle):
         out = ctypes.c_uint64()
         lib.hearth_soft_body_get_user_data(self._w, self._id, byref(out))
         return out.value
+
+    @property
+    def settings(self):
+        """SoftBodySettings: what the soft body runs with now, those given at creation or set
+        since (`hearth_soft_body_get_settings`). Assigning a SoftBodySettings replaces them all
+        (`soft.settings = soft.settings._replace(damping=1.0)`), as `set_settings`."""
+        out = _ffi.HearthSoftBodySettings()
+        lib.hearth_soft_body_get_settings(self._w, self._id, byref(out))
+        values = {name: getattr(out, name) for name in SoftBodySettings._fields}
+        for flag in _SOFT_FLAGS:
+            values[flag] = bool(values[flag])
+        return SoftBodySettings(**values)
+
+    @settings.setter
+    def settings(self, value):
+        self.set_settings(value)
+
+    def set_settings(self, settings=None, **fields):
+        """Replaces the settings (`hearth_soft_body_set_settings`); they take effect at the next
+        step. `settings` (a SoftBodySettings or a HearthSoftBodySettings; the current settings
+        when None) with the keyword `fields` applied on top, e.g.
+        `soft.set_settings(damping=1.0, substeps=30)`. The library checks every field as at
+        creation; on error (InvalidArgument: NaN, negative, out of range) nothing changes."""
+        if settings is None:
+            settings = self.settings
+        if isinstance(settings, _ffi.HearthSoftBodySettings):
+            struct = _ffi.HearthSoftBodySettings.from_buffer_copy(settings)
+        elif isinstance(settings, SoftBodySettings):
+            struct = fill(_ffi.HearthSoftBodySettings(), settings._asdict())
+        else:
+            raise TypeError(f"settings must be a SoftBodySettings, not {type(settings).__name__}")
+        fill(struct, fields)
+        lib.hearth_soft_body_set_settings(self._w, self._id, byref(struct))
+
+    def set_compliance(self, edge, bend, volume):
+        """Sets the three compliances (the inverse of stiffness, >= 0) in one call
+        (`hearth_soft_body_set_compliance`): `edge` of the stretch springs (m/N, 0 inextensible),
+        `bend` of the bending springs (m/N, `math.inf` disables bending), `volume` of the volume
+        constraint (0 incompressible). Takes effect at the next step; nothing changes on error."""
+        lib.hearth_soft_body_set_compliance(self._w, self._id, edge, bend, volume)
 
     def pin_vertex(self, vertex, body=None):
         """Pins a vertex where it is now: to the world (body None) or to a body."""
