@@ -925,8 +925,10 @@ namespace Hearth
         public float VolumeCompliance;
         /// <summary>Gas pressure as n·R·T (J = Pa·m³, &gt;= 0): each face is pushed out along its normal by <c>nRT / V · area</c>, V the current enclosed volume. 0 (default) is no gas.</summary>
         public float Pressure;
-        /// <summary>Linear damping of the vertices (1/s, &gt;= 0). Default 0.5.</summary>
+        /// <summary>Linear damping of the vertices (1/s, &gt;= 0): slows every motion, like air drag. Default 0.5.</summary>
         public float Damping;
+        /// <summary>Damping of deformation (1/s, &gt;= 0): each vertex's velocity relaxes at this rate towards the rigid motion of the whole soft body, so wobbling and bouncing on the gas die out while flight and spin are untouched. Default 2.</summary>
+        public float DeformationDamping;
         /// <summary>Coulomb friction against shapes (&gt;= 0; the pair uses the geometric mean with the shape's static friction). Default 0.5.</summary>
         public float Friction;
         /// <summary>Bounce against shapes (&gt;= 0; the pair uses the larger of the two). Default 0.</summary>
@@ -937,6 +939,8 @@ namespace Hearth
         public float GravityScale;
         /// <summary>XPBD sub-steps per world step (1..=64). Default 20.</summary>
         public uint Substeps;
+        /// <summary>Gauss–Seidel passes over the stretch springs per sub-step (1..=16). Default 2 (one pass rings and stretches a large cloth).</summary>
+        public uint Iterations;
         /// <summary>1 (default) collides with rigid shapes and planes; 0 passes through everything.</summary>
         public Flag Collide;
         /// <summary>Host data, returned by <c>hearth_soft_body_get_user_data</c>.</summary>
@@ -968,6 +972,40 @@ namespace Hearth
         public static bool operator ==(SoftBodyId a, SoftBodyId b) { return a.Equals(b); }
         public static bool operator !=(SoftBodyId a, SoftBodyId b) { return !a.Equals(b); }
         public override string ToString() { return "SoftBodyId(" + Index + ", " + Generation + ")"; }
+    }
+
+    /// <summary>The settings of a soft body that may change after creation: the fields of <c>HearthSoftBodyDef</c> with the same names, units, ranges and defaults. Read them with <c>hearth_soft_body_get_settings</c>, edit, write them back with <c>hearth_soft_body_set_settings</c>.</summary>
+    [StructLayout(LayoutKind.Sequential)]
+    public struct SoftBodySettings
+    {
+        /// <summary>Compliance of the stretch springs (m/N, &gt;= 0; 0 is inextensible).</summary>
+        public float EdgeCompliance;
+        /// <summary>Compliance of the bending springs (m/N, &gt;= 0; <c>INFINITY</c> disables bending).</summary>
+        public float BendCompliance;
+        /// <summary>1 keeps the enclosed volume at its rest value, 0 does not.</summary>
+        public Flag PreserveVolume;
+        /// <summary>Compliance of the volume constraint (&gt;= 0; 0 is incompressible).</summary>
+        public float VolumeCompliance;
+        /// <summary>Gas pressure as n·R·T (J, &gt;= 0).</summary>
+        public float Pressure;
+        /// <summary>Linear damping of the vertices (1/s, &gt;= 0).</summary>
+        public float Damping;
+        /// <summary>Damping of deformation towards the rigid motion of the whole body (1/s, &gt;= 0).</summary>
+        public float DeformationDamping;
+        /// <summary>Coulomb friction against shapes (&gt;= 0).</summary>
+        public float Friction;
+        /// <summary>Bounce against shapes (&gt;= 0).</summary>
+        public float Restitution;
+        /// <summary>Radius of each vertex for collision (m, &gt;= 0).</summary>
+        public float VertexRadius;
+        /// <summary>Multiplier of world gravity (finite).</summary>
+        public float GravityScale;
+        /// <summary>XPBD sub-steps per world step (1..=64).</summary>
+        public uint Substeps;
+        /// <summary>Passes over the stretch springs per sub-step (1..=16).</summary>
+        public uint Iterations;
+        /// <summary>1 collides with rigid shapes and planes, 0 passes through everything.</summary>
+        public Flag Collide;
     }
 
     /// <summary>Settings of a world. Get one from <c>hearth_world_def_default()</c>, then edit it.</summary>
@@ -1475,6 +1513,15 @@ namespace Hearth
 
         [DllImport(Lib, CallingConvention = CallingConvention.Cdecl)]
         public static extern Result hearth_soft_body_apply_impulse_all(WorldHandle world, SoftBodyId softBody, Vec3 impulse);
+
+        [DllImport(Lib, CallingConvention = CallingConvention.Cdecl)]
+        public static extern Result hearth_soft_body_get_settings(WorldHandle world, SoftBodyId softBody, out SoftBodySettings outSettings);
+
+        [DllImport(Lib, CallingConvention = CallingConvention.Cdecl)]
+        public static extern Result hearth_soft_body_set_settings(WorldHandle world, SoftBodyId softBody, [In] ref SoftBodySettings settings);
+
+        [DllImport(Lib, CallingConvention = CallingConvention.Cdecl)]
+        public static extern Result hearth_soft_body_set_compliance(WorldHandle world, SoftBodyId softBody, float edge, float bend, float volume);
 
         [DllImport(Lib, CallingConvention = CallingConvention.Cdecl)]
         public static extern WorldDef hearth_world_def_default();

@@ -1526,6 +1526,35 @@ namespace Hearth
             }
         }
 
+        /// <summary>
+        /// hearth_soft_body_get_settings / hearth_soft_body_set_settings: the settings the soft
+        /// body runs with now (those given at creation or set since). Setting replaces them all
+        /// from the next step; read, edit, write back (<c>var s = soft.Settings; s.Damping = 1f;
+        /// soft.Settings = s;</c>). A bad value throws (InvalidArgument) and changes nothing.
+        /// </summary>
+        public SoftBodySettings Settings
+        {
+            get
+            {
+                SoftBodySettings value;
+                HearthException.Check(Native.hearth_soft_body_get_settings(H, Id, out value), "hearth_soft_body_get_settings");
+                return value;
+            }
+            set { HearthException.Check(Native.hearth_soft_body_set_settings(H, Id, ref value), "hearth_soft_body_set_settings"); }
+        }
+
+        /// <summary>
+        /// hearth_soft_body_set_compliance: the three compliances (the inverse of stiffness, &gt;= 0)
+        /// in one call: <paramref name="edge"/> of the stretch springs (m/N, 0 inextensible),
+        /// <paramref name="bend"/> of the bending springs (m/N, <c>float.PositiveInfinity</c>
+        /// disables bending), <paramref name="volume"/> of the volume constraint (0 incompressible).
+        /// Takes effect at the next step; a bad value throws (InvalidArgument) and changes nothing.
+        /// </summary>
+        public void SetCompliance(float edge, float bend, float volume)
+        {
+            HearthException.Check(Native.hearth_soft_body_set_compliance(H, Id, edge, bend, volume), "hearth_soft_body_set_compliance");
+        }
+
         /// <summary>hearth_soft_body_pin_vertex to the world (it stays where it is now).</summary>
         public void PinVertex(uint vertex) { PinVertex(vertex, BodyId.Null); }
 

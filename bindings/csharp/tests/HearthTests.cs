@@ -280,6 +280,9 @@ internal static class HearthTests
         Equal(soft.Substeps, 20u, "soft substeps");
         Equal(soft.Mass, 1f, "soft mass");
         Equal(soft.VertexRadius, 0.01f, "soft vertex radius");
+        Equal(soft.DeformationDamping, 2f, "soft deformation damping");
+        Equal(soft.Iterations, 2u, "soft stretch passes");
+        Equal((bool)soft.Collide, true, "soft collides");
     }
 
     // ---- rigid bodies -----------------------------------------------------------------------
@@ -984,6 +987,134 @@ internal static class HearthTests
         }
     }
 
+    // The settings part of a def (the like-named fields).
+    private static SoftBodySettings SettingsOf(SoftBodyDef d)
+    {
+        var s = new SoftBodySettings();
+        s.EdgeCompliance = d.EdgeCompliance;
+        s.BendCompliance = d.BendCompliance;
+        s.PreserveVolume = d.PreserveVolume;
+        s.VolumeCompliance = d.VolumeCompliance;
+        s.Pressure = d.Pressure;
+        s.Damping = d.Damping;
+        s.DeformationDamping = d.DeformationDamping;
+        s.Friction = d.Friction;
+        s.Restitution = d.Restitution;
+        s.VertexRadius = d.VertexRadius;
+        s.GravityScale = d.GravityScale;
+        s.Substeps = d.Substeps;
+        s.Iterations = d.Iterations;
+        s.Collide = d.Collide;
+        return s;
+    }
+
+    private static void TestSoftBodySettings()
+    {
+        using (var world = new World())
+        {
+            SoftBody plain = world.CreateSoftBodyCloth(SoftBodyDef.Default(), 1f, 1f, 2, 2);
+            Equal(plain.Settings, SettingsOf(SoftBodyDef.Default()), "settings of a default def");
+
+            SoftBodyDef def = SoftBodyDef.Default();
+            def.EdgeCompliance = 1e-4f;
+            def.BendCompliance = float.PositiveInfinity;
+            def.PreserveVolume = true;
+            def.VolumeCompliance = 0.01f;
+            def.Pressure = 30f;
+            def.Damping = 0.25f;
+            def.DeformationDamping = 3.5f;
+            def.Friction = 0.8f;
+            def.Restitution = 0.1f;
+            def.VertexRadius = 0.02f;
+            def.GravityScale = 0.5f;
+            def.Substeps = 12;
+            def.Iterations = 4;
+            def.Collide = false;
+            SoftBody ball = world.CreateSoftBodyIcosphere(def, 0.5f, 1);
+            SoftBodySettings s = ball.Settings;
+            Equal(s, SettingsOf(def), "settings are the def given at creation");
+            Equal(s.Iterations, 4u, "iterations read back");
+            Equal(s.DeformationDamping, 3.5f, "deformation damping read back");
+            Equal(ball.Pressure, s.Pressure, "the pressure getter agrees");
+
+            // Set, then get returns them.
+            s.EdgeCompliance = 0.001f;
+            s.BendCompliance = 0.5f;
+            s.PreserveVolume = false;
+            s.Pressure = 12f;
+            s.Damping = 1.5f;
+            s.DeformationDamping = 0f;
+            s.Friction = 0.125f;
+            s.VertexRadius = 0.0625f;
+            s.GravityScale = -1f;
+            s.Substeps = 64;
+            s.Iterations = 16;
+            s.Collide = true;
+            ball.Settings = s;
+            Equal(ball.Settings, s, "set, then get");
+            Equal(ball.Pressure, 12f, "the pressure getter sees the new settings");
+            ball.Pressure = 7f;
+            Equal(ball.Settings.Pressure, 7f, "the settings see the pressure setter");
+            s.Pressure = 7f;
+
+            // SetCompliance changes those three and nothing else.
+            ball.SetCompliance(0.002f, float.PositiveInfinity, 0.25f);
+            SoftBodySettings c = ball.Settings;
+            Equal(c.EdgeCompliance, 0.002f, "edge compliance");
+            Ensure(float.IsPositiveInfinity(c.BendCompliance), "bend compliance infinity: no bending");
+            Equal(c.VolumeCompliance, 0.25f, "volume compliance");
+            c.EdgeCompliance = s.EdgeCompliance;
+            c.BendCompliance = s.BendCompliance;
+            c.VolumeCompliance = s.VolumeCompliance;
+            Equal(c, s, "SetCompliance leaves the other settings");
+            s = ball.Settings;
+
+            // Bad values: InvalidArgument, nothing changes.
+            var bad = new List<KeyValuePair<string, Func<SoftBodySettings, SoftBodySettings>>>
+            {
+                new KeyValuePair<string, Func<SoftBodySettings, SoftBodySettings>>("NaN damping", x => { x.Damping = float.NaN; return x; }),
+                new KeyValuePair<string, Func<SoftBodySettings, SoftBodySettings>>("negative deformation damping", x => { x.DeformationDamping = -1f; return x; }),
+                new KeyValuePair<string, Func<SoftBodySettings, SoftBodySettings>>("NaN deformation damping", x => { x.DeformationDamping = float.NaN; return x; }),
+                new KeyValuePair<string, Func<SoftBodySettings, SoftBodySettings>>("negative friction", x => { x.Friction = -0.5f; return x; }),
+                new KeyValuePair<string, Func<SoftBodySettings, SoftBodySettings>>("infinite pressure", x => { x.Pressure = float.PositiveInfinity; return x; }),
+                new KeyValuePair<string, Func<SoftBodySettings, SoftBodySettings>>("infinite edge compliance", x => { x.EdgeCompliance = float.PositiveInfinity; return x; }),
+                new KeyValuePair<string, Func<SoftBodySettings, SoftBodySettings>>("NaN bend compliance", x => { x.BendCompliance = float.NaN; return x; }),
+                new KeyValuePair<string, Func<SoftBodySettings, SoftBodySettings>>("infinite gravity scale", x => { x.GravityScale = float.NegativeInfinity; return x; }),
+                new KeyValuePair<string, Func<SoftBodySettings, SoftBodySettings>>("0 iterations", x => { x.Iterations = 0; return x; }),
+                new KeyValuePair<string, Func<SoftBodySettings, SoftBodySettings>>("17 iterations", x => { x.Iterations = 17; return x; }),
+                new KeyValuePair<string, Func<SoftBodySettings, SoftBodySettings>>("0 substeps", x => { x.Substeps = 0; return x; }),
+                new KeyValuePair<string, Func<SoftBodySettings, SoftBodySettings>>("65 substeps", x => { x.Substeps = 65; return x; }),
+                new KeyValuePair<string, Func<SoftBodySettings, SoftBodySettings>>("flag 2", x => { x.PreserveVolume = new Flag(2); return x; }),
+                new KeyValuePair<string, Func<SoftBodySettings, SoftBodySettings>>("all zero", x => default(SoftBodySettings)),
+            };
+            foreach (var b in bad)
+            {
+                SoftBodySettings value = b.Value(s);
+                Fails(Result.InvalidArgument, () => ball.Settings = value, b.Key);
+                Equal(ball.Settings, s, b.Key + ": settings unchanged");
+            }
+            Fails(Result.InvalidArgument, () => ball.SetCompliance(float.NaN, 0f, 0f), "NaN edge compliance");
+            Fails(Result.InvalidArgument, () => ball.SetCompliance(0f, -1e-3f, 0f), "negative bend compliance");
+            Fails(Result.InvalidArgument, () => ball.SetCompliance(0f, 0f, float.PositiveInfinity), "infinite volume compliance");
+            Equal(ball.Settings, s, "failed SetCompliance: settings unchanged");
+
+            // The new settings run: gravity scale -1 lifts it.
+            float y = ball.Center.Y;
+            world.Step(Dt);
+            Ensure(ball.Center.Y > y, "gravity scale -1: it rises");
+
+            // Stale ids.
+            ball.Destroy();
+            Fails(Result.InvalidId, () => { var x = ball.Settings; }, "settings of a destroyed soft body");
+            Fails(Result.InvalidId, () => ball.Settings = s, "set settings of a destroyed soft body");
+            Fails(Result.InvalidId, () => ball.SetCompliance(0f, 0.01f, 0f), "set compliance of a destroyed soft body");
+            SoftBody other = world.CreateSoftBodyIcosphere(SoftBodyDef.Default(), 0.5f, 1);
+            Ensure(other.Id.Index == ball.Id.Index && other.Id != ball.Id, "the slot is reused with a new generation");
+            Fails(Result.InvalidId, () => ball.SetCompliance(0f, 0.01f, 0f), "stale id of a reused slot");
+            Equal(other.Settings, SettingsOf(SoftBodyDef.Default()), "the new soft body is untouched");
+        }
+    }
+
     // ---- driver -------------------------------------------------------------------------------
 
     private static int Main(string[] args)
@@ -1009,6 +1140,7 @@ internal static class HearthTests
             new KeyValuePair<string, Action>("joints", TestJoints),
             new KeyValuePair<string, Action>("particles", TestParticles),
             new KeyValuePair<string, Action>("soft bodies", TestSoftBodies),
+            new KeyValuePair<string, Action>("soft body settings", TestSoftBodySettings),
         };
         int passed = 0, failed = 0;
         foreach (var test in tests)
