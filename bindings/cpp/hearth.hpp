@@ -80,6 +80,7 @@ using ParticleDef = HearthParticleDef;
 using BurstDef = HearthBurstDef;
 using ExpiredParticle = HearthExpiredParticle;
 using SoftBodyDef = HearthSoftBodyDef;
+using SoftBodySettings = HearthSoftBodySettings;
 using BallJointDef = HearthBallJointDef;
 using HingeJointDef = HearthHingeJointDef;
 using FixedJointDef = HearthFixedJointDef;
@@ -735,6 +736,21 @@ public:
         HEARTH_CPP_READ(uint64_t, hearth_soft_body_get_user_data(world_, id_, &out));
     }
     Ret<void> set_pressure(float nrt) const { return P::check(hearth_soft_body_set_pressure(world_, id_, nrt)); }
+    /** The settings the soft body runs with now (those given at creation or set since). */
+    Ret<SoftBodySettings> settings() const {
+        HEARTH_CPP_READ(SoftBodySettings, hearth_soft_body_get_settings(world_, id_, &out));
+    }
+    /** Replaces every setting from the next step: read with settings(), edit, write back.
+     *  A bad value fails with Code::InvalidArgument and changes nothing. */
+    Ret<void> set_settings(const SoftBodySettings &settings) const {
+        return P::check(hearth_soft_body_set_settings(world_, id_, &settings));
+    }
+    /** The three compliances (>= 0): `edge` of the stretch springs (m/N, 0 inextensible),
+     *  `bend` of the bending springs (m/N, INFINITY disables bending), `volume` of the volume
+     *  constraint (0 incompressible). A bad value fails and changes nothing. */
+    Ret<void> set_compliance(float edge, float bend, float volume) const {
+        return P::check(hearth_soft_body_set_compliance(world_, id_, edge, bend, volume));
+    }
     /** Pins a vertex where it is: to the world (default) or to a body. */
     Ret<void> pin_vertex(uint32_t vertex, BodyId body = BodyId{0, 0}) const {
         return P::check(hearth_soft_body_pin_vertex(world_, id_, vertex, body));

@@ -3,7 +3,7 @@
 // a Result in the nothrow API) leaving the world unchanged, move-only RAII ownership, lambdas
 // as force and contact generators (a hovering body, a lambda floor, exceptions and failed
 // Statuses reported by step(), boxes released), bulk read-back equal to single reads, joints,
-// particles, soft bodies and built-in generators.
+// particles, soft bodies (and their settings read back and changed) and built-in generators.
 //
 // Compiled by tests/bindings_cpp.rs with -std=c++17 -Wall -Wextra -Wpedantic -Werror, linked
 // shared and static, and once more with -fno-exceptions (only the nothrow half is built then);
@@ -99,6 +99,36 @@ static const float NaN = std::nanf("");
 
 static bool same_transform(const hearth::Transform &a, const hearth::Transform &b) {
     return std::memcmp(&a, &b, sizeof a) == 0;
+}
+
+// Field by field (the structs have padding, which memcmp would compare too).
+static bool same_settings(const hearth::SoftBodySettings &a, const hearth::SoftBodySettings &b) {
+    return a.edge_compliance == b.edge_compliance && a.bend_compliance == b.bend_compliance &&
+           a.preserve_volume == b.preserve_volume && a.volume_compliance == b.volume_compliance &&
+           a.pressure == b.pressure && a.damping == b.damping && a.deformation_damping == b.deformation_damping &&
+           a.friction == b.friction && a.restitution == b.restitution && a.vertex_radius == b.vertex_radius &&
+           a.gravity_scale == b.gravity_scale && a.substeps == b.substeps && a.iterations == b.iterations &&
+           a.collide == b.collide;
+}
+
+// The settings part of a def (the like-named fields).
+static hearth::SoftBodySettings settings_of(const hearth::SoftBodyDef &d) {
+    hearth::SoftBodySettings s{};
+    s.edge_compliance = d.edge_compliance;
+    s.bend_compliance = d.bend_compliance;
+    s.preserve_volume = d.preserve_volume;
+    s.volume_compliance = d.volume_compliance;
+    s.pressure = d.pressure;
+    s.damping = d.damping;
+    s.deformation_damping = d.deformation_damping;
+    s.friction = d.friction;
+    s.restitution = d.restitution;
+    s.vertex_radius = d.vertex_radius;
+    s.gravity_scale = d.gravity_scale;
+    s.substeps = d.substeps;
+    s.iterations = d.iterations;
+    s.collide = d.collide;
+    return s;
 }
 
 // ============================================================== the throwing API (default)
@@ -561,6 +591,90 @@ static void test_soft_bodies() {
     CHECK(w.soft_body_count() == 2);
 }
 
+static void test_soft_body_settings() {
+    hearth::World w = make_world();
+    const hearth::SoftBodyDef defaults = hearth::soft_body_def();
+    CHECK(defaults.deformation_damping == 2.0f && defaults.iterations == 2 && defaults.substeps == 20);
+    hearth::SoftBodyDef sd = hearth::soft_body_def();
+    sd.transform.position = hearth::vec3(0, 2, 0);
+    sd.edge_compliance = 1e-4f;
+    sd.bend_compliance = INFINITY;
+    sd.preserve_volume = 1;
+    sd.volume_compliance = 0.01f;
+    sd.pressure = 30.0f;
+    sd.damping = 0.25f;
+    sd.deformation_damping = 3.5f;
+    sd.friction = 0.8f;
+    sd.restitution = 0.1f;
+    sd.vertex_radius = 0.02f;
+    sd.gravity_scale = 0.5f;
+    sd.substeps = 12;
+    sd.iterations = 4;
+    sd.collide = 0;
+    hearth::SoftBody ball = w.create_soft_icosphere(sd, 0.5f, 1);
+    hearth::SoftBodySettings s = ball.settings();
+    CHECK(same_settings(s, settings_of(sd))); // the def given at creation
+    CHECK(same_settings(w.create_cloth(defaults, 1.0f, 1.0f, 2, 2).settings(), settings_of(defaults)));
+
+    // Set, then get returns them.
+    s.edge_compliance = 0.001f;
+    s.bend_compliance = 0.5f;
+    s.preserve_volume = 0;
+    s.pressure = 12.0f;
+    s.deformation_damping = 0.0f;
+    s.gravity_scale = -1.0f;
+    s.substeps = 64;
+    s.iterations = 16;
+    s.collide = 1;
+    ball.set_settings(s);
+    CHECK(same_settings(ball.settings(), s));
+    CHECK(ball.pressure() == 12.0f);
+
+    // set_compliance changes those three and nothing else.
+    ball.set_compliance(0.002f, INFINITY, 0.25f);
+    hearth::SoftBodySettings c = ball.settings();
+    CHECK(c.edge_compliance == 0.002f && std::isinf(c.bend_compliance) && c.volume_compliance == 0.25f);
+    c.edge_compliance = s.edge_compliance;
+    c.bend_compliance = s.bend_compliance;
+    c.volume_compliance = s.volume_compliance;
+    CHECK(same_settings(c, s));
+    s = ball.settings();
+
+    // Bad values throw InvalidArgument and change nothing.
+    hearth::SoftBodySettings bad = s;
+    bad.damping = NaN;
+    CHECK_THROWS(ball.set_settings(bad), hearth::Code::InvalidArgument);
+    bad = s;
+    bad.deformation_damping = -1.0f;
+    CHECK_THROWS(ball.set_settings(bad), hearth::Code::InvalidArgument);
+    bad = s;
+    bad.iterations = 0;
+    CHECK_THROWS(ball.set_settings(bad), hearth::Code::InvalidArgument);
+    bad.iterations = 17;
+    CHECK_THROWS(ball.set_settings(bad), hearth::Code::InvalidArgument);
+    bad = s;
+    bad.substeps = 65;
+    CHECK_THROWS(ball.set_settings(bad), hearth::Code::InvalidArgument);
+    bad = s;
+    bad.collide = 2;
+    CHECK_THROWS(ball.set_settings(bad), hearth::Code::InvalidArgument);
+    CHECK_THROWS(ball.set_settings(hearth::SoftBodySettings{}), hearth::Code::InvalidArgument); // 0 sub-steps
+    CHECK_THROWS(ball.set_compliance(NaN, 0.0f, 0.0f), hearth::Code::InvalidArgument);
+    CHECK_THROWS(ball.set_compliance(0.0f, -1.0f, 0.0f), hearth::Code::InvalidArgument);
+    CHECK_THROWS(ball.set_compliance(INFINITY, 0.0f, 0.0f), hearth::Code::InvalidArgument);
+    CHECK(same_settings(ball.settings(), s));
+
+    // The new settings run: gravity scale -1 lifts it.
+    const float y = ball.center().y;
+    w.step(DT);
+    CHECK(ball.center().y > y);
+
+    ball.destroy();
+    CHECK_THROWS(ball.settings(), hearth::Code::InvalidId);
+    CHECK_THROWS(ball.set_settings(s), hearth::Code::InvalidId);
+    CHECK_THROWS(ball.set_compliance(0.0f, 0.01f, 0.0f), hearth::Code::InvalidId);
+}
+
 static void test_builtin_generators() {
     hearth::World w = make_world();
     hearth::Body b = add_ball(w, hearth::vec3(0, 10, 0));
@@ -599,6 +713,7 @@ static void run_throwing_tests() {
     test_joints();
     test_particles();
     test_soft_bodies();
+    test_soft_body_settings();
     test_builtin_generators();
 }
 #endif // HEARTH_CPP_EXCEPTIONS
@@ -749,6 +864,35 @@ static void test_nothrow_handles() {
     CHECK_OK(s);
     CHECK(s->vertex_count().value() == 27);
     CHECK_CODE(w.create_soft_icosphere(hearth::soft_body_def(), 1.0f, 7), hearth::Code::InvalidArgument);
+    // Soft-body settings as Results.
+    hearth::SoftBodyDef sd = hearth::soft_body_def();
+    sd.deformation_damping = 0.5f;
+    sd.iterations = 3;
+    CHECK_OK(s->set_pressure(5.0f));
+    hearth::Result<hearth::SoftBodySettings> got = s->settings();
+    CHECK_OK(got);
+    hearth::SoftBodySettings expected = settings_of(hearth::soft_body_def());
+    expected.pressure = 5.0f;
+    CHECK(got.ok() && same_settings(*got, expected));
+    hearth::SoftBodySettings want = settings_of(sd);
+    CHECK_OK(s->set_settings(want));
+    CHECK(same_settings(s->settings().value(), want));
+    CHECK_OK(s->set_compliance(0.01f, 0.02f, 0.03f));
+    const hearth::SoftBodySettings after = s->settings().value();
+    CHECK(after.edge_compliance == 0.01f && after.bend_compliance == 0.02f && after.volume_compliance == 0.03f);
+    hearth::SoftBodySettings bad = after;
+    bad.iterations = 17;
+    CHECK_CODE(s->set_settings(bad), hearth::Code::InvalidArgument);
+    bad = after;
+    bad.friction = NaN;
+    CHECK_CODE(s->set_settings(bad), hearth::Code::InvalidArgument);
+    CHECK_CODE(s->set_compliance(0.0f, NaN, 0.0f), hearth::Code::InvalidArgument);
+    CHECK_CODE(s->set_compliance(0.0f, 0.0f, -1.0f), hearth::Code::InvalidArgument);
+    CHECK(same_settings(s->settings().value(), after));
+    CHECK_OK(s->destroy());
+    CHECK_CODE(s->settings(), hearth::Code::InvalidId);
+    CHECK_CODE(s->set_settings(after), hearth::Code::InvalidId);
+    CHECK_CODE(s->set_compliance(0.0f, 0.0f, 0.0f), hearth::Code::InvalidId);
     CHECK(hearth::version_matches());
     CHECK(hearth::version() == HEARTH_VERSION);
 }
