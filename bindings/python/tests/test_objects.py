@@ -446,3 +446,21 @@ def test_soft_settings_of_a_destroyed_soft_body(world):
     with pytest.raises(hearth.InvalidId):
         ball.set_compliance(0.0, 0.01, 0.0)
     assert other.settings == settings
+
+
+def test_soft_settings_are_locked_during_a_step(world):
+    ball = world.create_soft_body_icosphere(0.5, 1)
+    body = world.create_body("dynamic")
+    body.add_sphere(radius=0.1)
+    seen = []
+
+    def callback(w, ctx):
+        seen.append(ball.settings)  # reading is allowed
+        for change in (lambda: ball.set_compliance(0.1, 0.1, 0.1), lambda: ball.set_settings(damping=3.0)):
+            with pytest.raises(hearth.WorldLocked):
+                change()
+
+    world.create_force_generator(callback).attach(body)
+    before = ball.settings
+    world.step(DT)
+    assert seen == [before] and ball.settings == before
