@@ -11,66 +11,19 @@
 //! - `csharp_pyramid_prints_what_the_c_pyramid_prints`: `examples/csharp/Pyramid.cs` and
 //!   `examples/c/pyramid.c` print the same lines (the language's name aside).
 
+mod common;
+
+use common::{lib_dir, root, run};
 use std::collections::BTreeSet;
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
-fn root() -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
-}
-
-/// Where this build put `libhearth.so`: `target/<profile>/deps`, next to this test binary
-/// (a copy in `target/<profile>` may be stale, so it is never used). As in `c_harness.rs`.
-fn lib_dir() -> PathBuf {
-    let exe = std::env::current_exe().unwrap();
-    let dir = exe.parent().unwrap().to_path_buf();
-    assert!(
-        dir.join(shared_lib_name()).exists(),
-        "shared library missing in {}",
-        dir.display()
-    );
-    dir
-}
-
-fn shared_lib_name() -> &'static str {
-    if cfg!(target_os = "macos") {
-        "libhearth.dylib"
-    } else {
-        "libhearth.so"
-    }
-}
-
 fn out_dir(name: &str) -> PathBuf {
-    let d = PathBuf::from(env!("CARGO_TARGET_TMPDIR"))
-        .join("bindings_csharp")
-        .join(name);
-    std::fs::create_dir_all(&d).unwrap();
-    d
-}
-
-fn triple() -> String {
-    let arch = std::env::consts::ARCH;
-    if cfg!(target_os = "macos") {
-        format!("{arch}-apple-darwin")
-    } else {
-        format!("{arch}-unknown-linux-gnu")
-    }
+    common::out_dir(&format!("bindings_csharp/{name}"))
 }
 
 fn read(path: &Path) -> String {
     std::fs::read_to_string(path).unwrap_or_else(|e| panic!("cannot read {}: {e}", path.display()))
-}
-
-/// Runs a command; panics with its whole output unless it exits with 0.
-fn run(cmd: &mut Command) -> String {
-    let out = cmd.output().unwrap_or_else(|e| panic!("cannot run {cmd:?}: {e}"));
-    let text = format!(
-        "{}{}",
-        String::from_utf8_lossy(&out.stdout),
-        String::from_utf8_lossy(&out.stderr)
-    );
-    assert!(out.status.success(), "{cmd:?} failed ({}):\n{text}", out.status);
-    text
 }
 
 // ---------------------------------------------------------------------------------------
@@ -409,35 +362,13 @@ fn mono(exe: &Path) -> Command {
     cmd
 }
 
-fn c_compiler(dir: &Path) -> Command {
-    let mut b = cc::Build::new();
-    b.cargo_metadata(false)
-        .cargo_warnings(false)
-        .opt_level(1)
-        .host(&triple())
-        .target(&triple())
-        .out_dir(dir)
-        .warnings(true)
-        .extra_warnings(true)
-        .warnings_into_errors(true);
-    let mut cmd = b.get_compiler().to_command();
-    cmd.arg("-std=c11").arg("-I").arg(root().join("include"));
-    cmd
-}
-
 /// Builds a C program linked against the fresh shared library.
 fn build_c(dir: &Path, source: &Path, name: &str) -> PathBuf {
     let exe = dir.join(name);
-    let lib = lib_dir();
-    run(c_compiler(dir)
-        .arg(source)
-        .arg("-o")
-        .arg(&exe)
-        .arg("-L")
-        .arg(&lib)
-        .arg("-lhearth")
-        .arg(format!("-Wl,-rpath,{}", lib.display()))
-        .arg("-lm"));
+    let mut cmd = common::compiler(false, dir);
+    cmd.arg(source).arg("-o").arg(&exe);
+    common::link(&mut cmd, common::Link::Shared);
+    run(&mut cmd);
     exe
 }
 
@@ -470,7 +401,7 @@ fn csharp_tests_pass() {
     std::fs::write(&source, layout_program(&h)).unwrap();
     let layout_exe = build_c(&dir, &source, "layout");
     let layout = dir.join("layout.txt");
-    std::fs::write(&layout, run(&mut Command::new(&layout_exe))).unwrap();
+    std::fs::write(&layout, run(&mut common::program(&layout_exe))).unwrap();
 
     let exe = mcs(
         &dir,
@@ -486,21 +417,8 @@ fn csharp_tests_pass() {
 fn csharp_pyramid_prints_what_the_c_pyramid_prints() {
     require_mono();
     let dir = out_dir("pyramid");
-    let c_exe = build_c(&dir, &root().join("examples/c/pyramid.c"), "pyramid");
     let cs_exe = mcs(&dir, "Pyramid", &[root().join("examples/csharp/Pyramid.cs")]);
-    let c_out = run(&mut Command::new(&c_exe));
     let cs_out = run(&mut mono(&cs_exe));
     print!("{cs_out}");
-    let c_lines: Vec<&str> = c_out.lines().collect();
-    let cs_lines: Vec<&str> = cs_out.lines().collect();
-    assert_eq!(c_lines.len(), cs_lines.len(), "C:\n{c_out}\nC#:\n{cs_out}");
-    assert!(c_lines[0].contains(" C example"), "{}", c_lines[0]);
-    for (i, (c, cs)) in c_lines.iter().zip(&cs_lines).enumerate() {
-        let c = if i == 0 {
-            c.replacen(" C example", " C# example", 1)
-        } else {
-            c.to_string()
-        };
-        assert_eq!(&c, cs, "line {} differs\nC:\n{c_out}\nC#:\n{cs_out}", i + 1);
-    }
+    common::assert_prints_like_the_c_pyramid(&cs_out, "C#", &dir);
 }

@@ -5,105 +5,28 @@
 //! compiles as C11 and C++17 with warnings as errors, that the shared library exports only
 //! `hearth_*` symbols, and (with `HEARTH_VALGRIND=1`) runs every program under valgrind.
 
+mod common;
+
+use common::{compiler, lib_dir, link, root, run, run_program, shared_lib_name, Link};
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
-fn root() -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
-}
-
-/// Where this build put `libhearth.so` and `libhearth.a`: `target/<profile>/deps`, next to this
-/// test binary. (`cargo test` does not copy them up to `target/<profile>`; a copy there may be
-/// stale from an earlier `cargo build`, so it is never used.)
-fn lib_dir() -> PathBuf {
-    let exe = std::env::current_exe().unwrap();
-    let dir = exe.parent().unwrap().to_path_buf();
-    assert!(
-        dir.join(shared_lib_name()).exists(),
-        "shared library missing in {}",
-        dir.display()
-    );
-    assert!(
-        dir.join("libhearth.a").exists(),
-        "static library missing in {}",
-        dir.display()
-    );
-    dir
-}
-
-fn shared_lib_name() -> &'static str {
-    if cfg!(target_os = "macos") {
-        "libhearth.dylib"
-    } else {
-        "libhearth.so"
-    }
-}
-
 fn out_dir() -> PathBuf {
-    let d = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("c_harness");
-    std::fs::create_dir_all(&d).unwrap();
-    d
+    common::out_dir("c_harness")
 }
 
-fn triple() -> String {
-    let arch = std::env::consts::ARCH;
-    if cfg!(target_os = "macos") {
-        format!("{arch}-apple-darwin")
-    } else {
-        format!("{arch}-unknown-linux-gnu")
-    }
-}
-
-fn compiler(cpp: bool) -> Command {
-    let mut b = cc::Build::new();
-    b.cargo_metadata(false)
-        .cargo_warnings(false)
-        .opt_level(1)
-        .debug(true)
-        .host(&triple())
-        .target(&triple())
-        .out_dir(out_dir())
-        .cpp(cpp)
-        .warnings(true)
-        .extra_warnings(true)
-        .warnings_into_errors(true);
-    let mut cmd = b.get_compiler().to_command();
-    cmd.arg(if cpp { "-std=c++17" } else { "-std=c11" });
-    cmd.arg("-Wpedantic");
-    cmd.arg("-I").arg(root().join("include"));
-    cmd.arg("-I").arg(root().join("tests").join("c"));
-    cmd
-}
-
-fn run(cmd: &mut Command) -> String {
-    let out = cmd.output().unwrap_or_else(|e| panic!("cannot run {cmd:?}: {e}"));
-    let text = format!(
-        "{}{}",
-        String::from_utf8_lossy(&out.stdout),
-        String::from_utf8_lossy(&out.stderr)
-    );
-    assert!(out.status.success(), "{cmd:?} failed:\n{text}");
-    text
-}
-
-#[derive(Clone, Copy)]
-enum Link {
-    Shared,
-    Static,
-}
-
-/// Builds one C test program; returns the executable.
-fn build(source: &str, cpp: bool, link: Link) -> PathBuf {
+/// Builds one C test program (as C, or as C++ with `cpp`); returns the executable.
+fn build(source: &str, cpp: bool, linkage: Link) -> PathBuf {
     let name = Path::new(source).file_stem().unwrap().to_str().unwrap();
-    let suffix = match (cpp, link) {
+    let suffix = match (cpp, linkage) {
         (false, Link::Shared) => "c",
         (true, Link::Shared) => "cpp",
         (false, Link::Static) => "c_static",
         (true, Link::Static) => "cpp_static",
     };
     let exe = out_dir().join(format!("{name}_{suffix}"));
-    let lib = lib_dir();
-    let mut cmd = compiler(cpp);
+    let mut cmd = compiler(cpp, &out_dir());
+    cmd.arg("-I").arg(root().join("tests").join("c"));
     if cpp {
         cmd.arg("-x").arg("c++");
     }
@@ -112,47 +35,16 @@ fn build(source: &str, cpp: bool, link: Link) -> PathBuf {
         cmd.arg("-x").arg("none");
     }
     cmd.arg("-o").arg(&exe);
-    match link {
-        Link::Shared => {
-            cmd.arg("-L")
-                .arg(&lib)
-                .arg("-lhearth")
-                .arg(format!("-Wl,-rpath,{}", lib.display()));
-        }
-        Link::Static => {
-            cmd.arg(lib.join("libhearth.a")).args(["-lpthread", "-ldl"]);
-        }
-    }
-    cmd.arg("-lm");
+    link(&mut cmd, linkage);
     run(&mut cmd);
     exe
 }
 
-/// Runs a test program (and again under valgrind with `HEARTH_VALGRIND=1`). cargo puts
-/// `target/<profile>` first in `LD_LIBRARY_PATH`, which would win over the programs' rpath and
-/// load a possibly stale `libhearth.so` from an earlier `cargo build`: it is removed.
-fn run_program(exe: &Path) -> String {
-    let text = run(Command::new(exe).env_remove("LD_LIBRARY_PATH"));
+/// Runs a test program (see `common::run_program`); it must report no failed check.
+fn run_test_program(exe: &Path) {
+    let text = run_program(exe);
     assert!(text.contains(" 0 failed"), "{}:\n{text}", exe.display());
     print!("{text}");
-    if std::env::var("HEARTH_VALGRIND").as_deref() == Ok("1") {
-        let v = run(Command::new("valgrind")
-            .env_remove("LD_LIBRARY_PATH")
-            .args([
-                "--error-exitcode=99",
-                "--leak-check=full",
-                "--show-leak-kinds=definite,indirect,possible",
-            ])
-            .args([
-                "--errors-for-leak-kinds=definite,indirect,possible",
-                "--track-origins=yes",
-                "-q",
-            ])
-            .arg(exe));
-        assert!(v.contains(" 0 failed"), "under valgrind:\n{v}");
-        println!("valgrind clean: {}", exe.display());
-    }
-    text
 }
 
 const PROGRAMS: &[&str] = &[
@@ -166,14 +58,14 @@ const PROGRAMS: &[&str] = &[
 #[test]
 fn c_programs_pass_with_the_shared_library() {
     for p in PROGRAMS {
-        run_program(&build(p, false, Link::Shared));
+        run_test_program(&build(p, false, Link::Shared));
     }
 }
 
 #[test]
 fn c_programs_pass_compiled_as_cpp17() {
     for p in PROGRAMS {
-        run_program(&build(p, true, Link::Shared));
+        run_test_program(&build(p, true, Link::Shared));
     }
 }
 
@@ -181,7 +73,7 @@ fn c_programs_pass_compiled_as_cpp17() {
 fn c_programs_pass_with_the_static_library() {
     for p in PROGRAMS {
         let exe = build(p, false, Link::Static);
-        let text = run(&mut Command::new(&exe));
+        let text = run(&mut common::program(&exe));
         assert!(text.contains(" 0 failed"), "{text}");
     }
 }
@@ -200,8 +92,8 @@ fn header_compiles_as_c11_and_cpp17_with_warnings_as_errors() {
         "#include \"hearth.h\"\nint main() { HearthResult r = HEARTH_OK; return static_cast<int>(r); }\n",
     )
     .unwrap();
-    run(compiler(false).arg("-fsyntax-only").arg(&src_c));
-    run(compiler(true).arg("-fsyntax-only").arg(&src_cpp));
+    run(compiler(false, &out_dir()).arg("-fsyntax-only").arg(&src_c));
+    run(compiler(true, &out_dir()).arg("-fsyntax-only").arg(&src_cpp));
 }
 
 #[test]

@@ -11,42 +11,11 @@
 //! Needs `cmake` and `pkg-config` (Debian packages `cmake` and `pkg-config`/`pkgconf`); the
 //! tests fail with that message when they are missing.
 
+mod common;
+
+use common::{lib_dir, program, root, run};
 use std::path::{Path, PathBuf};
 use std::process::Command;
-
-fn root() -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
-}
-
-/// `target/<profile>/deps`, where this build put `libhearth.so` and `libhearth.a`.
-fn lib_dir() -> PathBuf {
-    let exe = std::env::current_exe().unwrap();
-    let dir = exe.parent().unwrap().to_path_buf();
-    for lib in ["libhearth.so", "libhearth.a"] {
-        assert!(dir.join(lib).exists(), "{lib} missing in {}", dir.display());
-    }
-    dir
-}
-
-/// A command for a built program. Cargo's LD_LIBRARY_PATH lists `target/<profile>` first,
-/// where an older `cargo build` may have left a stale libhearth.so; it would win over the
-/// program's RUNPATH, so it is removed and the program loads the library it was linked for.
-fn program(exe: &Path) -> Command {
-    let mut cmd = Command::new(exe);
-    cmd.env_remove("LD_LIBRARY_PATH");
-    cmd
-}
-
-fn run(cmd: &mut Command) -> String {
-    let out = cmd.output().unwrap_or_else(|e| panic!("cannot run {cmd:?}: {e}"));
-    let text = format!(
-        "{}{}",
-        String::from_utf8_lossy(&out.stdout),
-        String::from_utf8_lossy(&out.stderr)
-    );
-    assert!(out.status.success(), "{cmd:?} failed:\n{text}");
-    text
-}
 
 /// Fails with the package to install when a tool is missing.
 fn require_tool(tool: &str, debian_package: &str) {
