@@ -1,271 +1,167 @@
-//! Contact constraints, per step: `prepare` builds one constraint per touching manifold (and
-//! one per generated contact) with its anchors, materials and warm-start impulses; the
-//! sub-stepped passes run on them four at a time in `contact_wide.rs`; `store_impulses` keeps
-//! the impulses on the contacts for the next step.
+//! Contacts to solve, per step. `prepare` lists every touching manifold (and every contact a
+//! generator wrote) as a small `ContactRef`: its solver bodies, which way round, and its kind.
+//! The batched solver (`contact_wide.rs`) colours the refs and builds the constraints in lanes
+//! straight from the contacts as it packs them, so no array of scalar constraints is written
+//! and read back; after the solve, `store` keeps each lane's impulses on its contact for warm
+//! starting.
 
+use crate::body::{Body, NONE};
 use crate::collision::MAX_MANIFOLD_POINTS;
-use crate::math::{orthonormal_basis, Vec3};
+use crate::contact::{Contact, GeneratedContact};
+use crate::math::Vec3;
+use crate::pool::Pool;
+use crate::solver::{BodyState, Velocity};
 use crate::world::World;
 
-/// Tangential speed (m/s) below which a contact patch starts a step sticking.
-const STICK_SPEED: f32 = 0.01;
+/// `ContactRef::source` bit of a generated contact (the rest indexes `World::generated_contacts`).
+const GENERATED: u32 = 1 << 31;
 
-#[derive(Clone, Copy, Debug, Default)]
-pub struct ConstraintPoint {
-    /// Lever arms of the contact point at the start of the step.
-    pub ra0: Vec3,
-    pub rb0: Vec3,
-    /// Separation at the start of the step (m, negative when overlapping).
-    pub separation0: f32,
-    pub normal_impulse: f32,
-    /// Normal relative velocity before the solve (for restitution).
-    pub relative_velocity: f32,
+/// One contact in the solver's orientation: a static body (solver index 0) is always B, so
+/// batches whose B sides are all static skip B's half of the work.
+#[derive(Clone, Copy, Debug)]
+pub struct ContactRef {
+    /// The persistent contact, or `GENERATED` | the generated contact's index.
+    pub source: u32,
+    /// Solver state indices of the bodies (0: the static dummy).
+    pub a: u32,
+    pub b: u32,
+    /// A and B are the contact's B and A.
+    pub swapped: bool,
+    /// Side A (resp. B) has finite mass: the colouring reserves its body.
+    pub writes_a: bool,
+    pub writes_b: bool,
+    /// Batch kind and load, see `ContactRef::order_key`.
+    key: u8,
 }
 
-/// Coulomb friction of the contact patch: two tangent directions at the centroid of the
-/// manifold and a twist about the normal, clamped by μ times the total normal impulse.
-/// Solving the patch as one (rather than per point) keeps friction from leaking into
-/// spurious twist, so a sliding box feels exactly μ·N.
-#[derive(Clone, Copy, Debug, Default)]
-pub struct PatchFriction {
-    /// Arms of the manifold's centroid at the start of the step.
-    pub ra0: Vec3,
-    pub rb0: Vec3,
-    /// Mean distance of the points from the centroid: the lever of torsional friction.
-    pub twist_radius: f32,
-    pub tangent_impulse: [f32; 2],
-    pub twist_impulse: f32,
-    /// The patch slides (dynamic friction) this step; decided from the tangential speed at
-    /// the start of the step.
+impl ContactRef {
+    fn new(source: u32, a: u32, b: u32, ma: f32, mb: f32, count: usize, loaded: bool) -> ContactRef {
+        // A static (or sleeping) A goes to B.
+        let swapped = a == 0 && b != 0;
+        let (a, b, ma, mb) = if swapped { (b, a, mb, ma) } else { (a, b, ma, mb) };
+        ContactRef {
+            source,
+            a,
+            b,
+            swapped,
+            writes_a: ma > 0.0,
+            writes_b: mb > 0.0,
+            key: u8::from(count > 1) << 2 | u8::from(b != 0) << 1 | u8::from(loaded),
+        }
+    }
+
+    /// Point-count class and whether side B is dynamic: a batch holds one kind only, so a
+    /// constraint is solved the same way whatever its batch-mates (and the lane width).
+    #[inline(always)]
+    pub fn kind(&self) -> u8 {
+        self.key >> 1
+    }
+
+    /// Like with like: the kinds, then whether the constraint carried load last step (batches
+    /// of idle constraints end their sweep early). Three bits.
+    #[inline(always)]
+    pub fn order_key(&self) -> usize {
+        self.key as usize
+    }
+
+    /// Index in `World::generated_contacts` of a generated contact.
+    #[inline(always)]
+    pub fn generated_index(&self) -> usize {
+        (self.source & !GENERATED) as usize
+    }
+
+    /// The persistent contact it was built from, if any.
+    #[inline(always)]
+    pub fn contact(&self) -> Option<u32> {
+        (self.source & GENERATED == 0).then_some(self.source)
+    }
+}
+
+/// What a lane's constraint is built from.
+pub struct Sources<'a> {
+    pub contacts: &'a Pool<Contact>,
+    pub bodies: &'a Pool<Body>,
+    pub generated: &'a [GeneratedContact],
+    pub states: &'a [BodyState],
+    /// Velocities at the start of the step.
+    pub vel: &'a [Velocity],
+}
+
+/// The solver index of a body for this step: its own while awake, else the static dummy.
+#[inline]
+fn solver_index(bodies: &Pool<Body>, b: u32) -> u32 {
+    if b == NONE {
+        return 0;
+    }
+    let body = bodies.at(b);
+    if body.awake {
+        body.solver_index
+    } else {
+        0
+    }
+}
+
+/// Lists every awake contact with manifold points and every generated contact that moves a
+/// body (`SolverScratch::refs`), and notes whether any of them bounces.
+pub fn prepare(world: &mut World) {
+    let scratch = &mut world.solver;
+    let (refs, states) = (&mut scratch.refs, &scratch.states);
+    refs.clear();
+    let mut bounces = false;
+    for &ci in &world.awake_contacts {
+        let c = world.contacts.at(ci);
+        let count = c.manifold.count;
+        if count == 0 {
+            continue;
+        }
+        let (a, b) = (
+            solver_index(&world.bodies, c.body_a),
+            solver_index(&world.bodies, c.body_b),
+        );
+        let (ma, mb) = (states[a as usize].inv_mass, states[b as usize].inv_mass);
+        if ma == 0.0 && mb == 0.0 {
+            continue;
+        }
+        let loaded = c.impulses[..count].iter().any(|p| p.normal > 0.0);
+        bounces |= c.restitution > 0.0;
+        refs.push(ContactRef::new(ci, a, b, ma, mb, count, loaded));
+    }
+    for (gi, g) in world.generated_contacts.iter().enumerate() {
+        let (a, b) = (
+            solver_index(&world.bodies, g.body_a),
+            solver_index(&world.bodies, g.body_b),
+        );
+        let (ma, mb) = (states[a as usize].inv_mass, states[b as usize].inv_mass);
+        if ma == 0.0 && mb == 0.0 {
+            continue;
+        }
+        bounces |= g.restitution > 0.0;
+        refs.push(ContactRef::new(GENERATED | gi as u32, a, b, ma, mb, 1, false));
+    }
+    scratch.bounces = bounces;
+}
+
+/// What one lane solved, written back to its contact for warm starting the next step.
+pub struct LaneImpulses {
+    pub normal: [f32; MAX_MANIFOLD_POINTS],
+    /// Friction impulse on side B as a world vector, and about the normal.
+    pub tangent: Vec3,
+    pub twist: f32,
     pub sliding: bool,
 }
 
-#[derive(Clone, Copy, Debug)]
-pub struct ContactConstraint {
-    pub a: u32,
-    pub b: u32,
-    /// The persistent contact, or `NONE` for a generated contact.
-    pub contact: u32,
-    /// Inverse masses of the two bodies.
-    pub ma: f32,
-    pub mb: f32,
-    pub normal: Vec3,
-    pub tangents: [Vec3; 2],
-    pub static_friction: f32,
-    pub dynamic_friction: f32,
-    pub restitution: f32,
-    /// Rounding radii of the two shapes (see `Geometry::rounding_radius`).
-    pub radius_a: f32,
-    pub radius_b: f32,
-    pub count: usize,
-    pub points: [ConstraintPoint; MAX_MANIFOLD_POINTS],
-    pub friction: PatchFriction,
-    /// A and B were exchanged so that a static body is always B (see `static_to_b`).
-    pub swapped: bool,
-    /// Solved with the full rigid response and no leak of accumulated impulse: generated
-    /// contacts (rods, cables) must hold their length under load, and they do not form the
-    /// deep stacks the soft contacts damp.
-    pub rigid: bool,
-}
-
-impl ContactConstraint {
-    /// Puts a static body (solver index 0) on side B, so batches whose B sides are all static
-    /// skip B's half of the work. The normal and the friction impulse flip with the sides; the
-    /// normal and twist impulses keep their values.
-    fn static_to_b(&mut self) {
-        if self.a != 0 || self.b == 0 {
-            return;
-        }
-        let friction_world =
-            self.tangents[0] * self.friction.tangent_impulse[0] + self.tangents[1] * self.friction.tangent_impulse[1];
-        std::mem::swap(&mut self.a, &mut self.b);
-        std::mem::swap(&mut self.ma, &mut self.mb);
-        std::mem::swap(&mut self.radius_a, &mut self.radius_b);
-        self.normal = -self.normal;
-        let (t1, t2) = orthonormal_basis(self.normal);
-        self.tangents = [t1, t2];
-        for p in &mut self.points[..self.count] {
-            std::mem::swap(&mut p.ra0, &mut p.rb0);
-        }
-        let f = &mut self.friction;
-        std::mem::swap(&mut f.ra0, &mut f.rb0);
-        f.tangent_impulse = [-friction_world.dot(t1), -friction_world.dot(t2)];
-        self.swapped = true;
-    }
-
-    /// The friction impulse on the original body B, as a world vector.
-    fn friction_world(&self) -> Vec3 {
-        let t =
-            self.tangents[0] * self.friction.tangent_impulse[0] + self.tangents[1] * self.friction.tangent_impulse[1];
-        if self.swapped {
-            -t
-        } else {
-            t
-        }
-    }
-}
-
-/// Builds constraints for every awake contact with manifold points.
-pub fn prepare(world: &mut World) {
-    let constraints = &mut world.solver.constraints;
-    let states = &world.solver.states;
-    constraints.clear();
-    for &ci in &world.awake_contacts {
-        let c = world.contacts.at(ci);
-        if c.manifold.count == 0 {
-            continue;
-        }
-        let ba = world.bodies.at(c.body_a);
-        let bb = world.bodies.at(c.body_b);
-        let a = if ba.awake { ba.solver_index } else { 0 };
-        let b = if bb.awake { bb.solver_index } else { 0 };
-        let (sa, sb) = (&states[a as usize], &states[b as usize]);
-        if sa.inv_mass == 0.0 && sb.inv_mass == 0.0 {
-            continue;
-        }
-        let (ua, ub) = (&world.solver.vel[a as usize], &world.solver.vel[b as usize]);
-        let n = c.manifold.normal;
-        let (t1, t2) = orthonormal_basis(n);
-        let mut cc = ContactConstraint {
-            a,
-            b,
-            ma: sa.inv_mass,
-            mb: sb.inv_mass,
-            contact: ci,
-            normal: n,
-            tangents: [t1, t2],
-            static_friction: c.static_friction,
-            dynamic_friction: c.dynamic_friction,
-            restitution: c.restitution,
-            radius_a: c.radius_a,
-            radius_b: c.radius_b,
-            count: c.manifold.count,
-            points: [ConstraintPoint::default(); MAX_MANIFOLD_POINTS],
-            friction: PatchFriction::default(),
-            swapped: false,
-            rigid: false,
-        };
-        let mut centroid = Vec3::ZERO;
-        for i in 0..c.manifold.count {
-            let mp = &c.manifold.points[i];
-            centroid += mp.point;
-            let ra = mp.point - ba.center;
-            let rb = mp.point - bb.center;
-            let dv = ub.v + ub.w.cross(rb) - ua.v - ua.w.cross(ra);
-            cc.points[i] = ConstraintPoint {
-                ra0: ra,
-                rb0: rb,
-                separation0: mp.separation,
-                normal_impulse: c.impulses[i].normal,
-                relative_velocity: dv.dot(n),
-            };
-        }
-        centroid /= c.manifold.count as f32;
-        let twist_radius = if c.manifold.count > 1 {
-            c.manifold
-                .points()
-                .iter()
-                .map(|p| (p.point - centroid).length())
-                .sum::<f32>()
-                / c.manifold.count as f32
-        } else {
-            0.0
-        };
-        let (ra, rb) = (centroid - ba.center, centroid - bb.center);
-        let dv = ub.v + ub.w.cross(rb) - ua.v - ua.w.cross(ra);
-        let vt = dv - n * dv.dot(n);
-        let f = &c.friction;
-        cc.friction = PatchFriction {
-            ra0: ra,
-            rb0: rb,
-            twist_radius,
-            tangent_impulse: [f.tangent.dot(t1), f.tangent.dot(t2)],
-            twist_impulse: f.twist,
-            sliding: vt.length_squared() > STICK_SPEED * STICK_SPEED,
-        };
-        cc.static_to_b();
-        constraints.push(cc);
-    }
-    prepare_generated(world);
-}
-
-/// Constraints for the contacts that contact generators wrote this step (rods, cables, user
-/// callbacks): single points, not persistent, solved together with collision contacts.
-fn prepare_generated(world: &mut World) {
-    let constraints = &mut world.solver.constraints;
-    let states = &world.solver.states;
-    let vel = &world.solver.vel;
-    for g in &world.generated_contacts {
-        let index = |b: u32| -> (u32, crate::math::Vec3) {
-            if b == crate::body::NONE {
-                return (0, g.point);
-            }
-            let body = world.bodies.at(b);
-            (if body.awake { body.solver_index } else { 0 }, body.center)
-        };
-        let ((a, ca), (b, cb)) = (index(g.body_a), index(g.body_b));
-        let (sa, sb) = (&states[a as usize], &states[b as usize]);
-        if sa.inv_mass == 0.0 && sb.inv_mass == 0.0 {
-            continue;
-        }
-        let (ua, ub) = (&vel[a as usize], &vel[b as usize]);
-        let n = g.normal;
-        let (t1, t2) = orthonormal_basis(n);
-        let (ra, rb) = (g.point - ca, g.point - cb);
-        let dv = ub.v + ub.w.cross(rb) - ua.v - ua.w.cross(ra);
-        let mut cc = ContactConstraint {
-            a,
-            b,
-            ma: sa.inv_mass,
-            mb: sb.inv_mass,
-            contact: crate::body::NONE,
-            normal: n,
-            tangents: [t1, t2],
-            static_friction: g.friction,
-            dynamic_friction: g.friction,
-            restitution: g.restitution,
-            radius_a: 0.0,
-            radius_b: 0.0,
-            count: 1,
-            points: [ConstraintPoint::default(); MAX_MANIFOLD_POINTS],
-            friction: PatchFriction::default(),
-            swapped: false,
-            rigid: true,
-        };
-        cc.points[0] = ConstraintPoint {
-            ra0: ra,
-            rb0: rb,
-            separation0: -g.penetration,
-            relative_velocity: dv.dot(n),
-            ..Default::default()
-        };
-        cc.friction = PatchFriction {
-            ra0: ra,
-            rb0: rb,
-            sliding: (dv - n * dv.dot(n)).length_squared() > STICK_SPEED * STICK_SPEED,
-            ..Default::default()
-        };
-        cc.static_to_b();
-        constraints.push(cc);
-    }
-}
-
-/// True for constraints built from generated contacts (they store no impulses).
+/// Keeps a lane's impulses on its contact (generated contacts keep none).
 #[inline]
-fn is_generated(c: &ContactConstraint) -> bool {
-    c.contact == crate::body::NONE
-}
-
-/// Keeps each point's impulses on its contact for warm starting the next step.
-pub fn store_impulses(world: &mut World) {
-    for c in world.solver.constraints.iter().filter(|c| !is_generated(c)) {
-        let contact = world.contacts.at_mut(c.contact);
-        for (i, p) in c.points[..c.count].iter().enumerate() {
-            let imp = &mut contact.impulses[i];
-            imp.normal = p.normal_impulse;
-        }
-        contact.friction.tangent = c.friction_world();
-        contact.friction.twist = c.friction.twist_impulse;
-        contact.friction.sliding = c.friction.sliding;
+pub fn store(r: &ContactRef, out: &LaneImpulses, contacts: &mut Pool<Contact>) {
+    let Some(ci) = r.contact() else {
+        return;
+    };
+    let contact = contacts.at_mut(ci);
+    let count = contact.manifold.count;
+    for (imp, &n) in contact.impulses[..count].iter_mut().zip(&out.normal) {
+        imp.normal = n;
     }
+    contact.friction.tangent = if r.swapped { -out.tangent } else { out.tangent };
+    contact.friction.twist = out.twist;
+    contact.friction.sliding = out.sliding;
 }

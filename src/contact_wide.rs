@@ -1,10 +1,11 @@
-//! The contact solver's passes, four constraints at a time.
+//! The contact solver's passes, four (SSE2) or eight (AVX2) constraints at a time.
 //!
-//! Each step the prepared constraints are graph-coloured so that no two constraints of a
-//! colour share a dynamic body, then packed four to a batch (lanes) in colour order. Lanes of a
-//! batch touch different bodies, so one batch gathers the velocities of its bodies, solves all
-//! four constraints with `F4` arithmetic and scatters the velocities back: a Gauss–Seidel
-//! sweep with four independent constraints per instruction. Constraints that fit no colour
+//! Each step the contacts listed by `contact_solver::prepare` are graph-coloured so that no
+//! two of a colour share a dynamic body, then packed a lane each into batches in colour order;
+//! `pack` stages each lane's input straight from its contact and builds the constraints in
+//! lanes. Lanes of a batch touch different bodies, so one batch gathers the velocities of its
+//! bodies, solves all its constraints with lane arithmetic and scatters the velocities back: a
+//! Gauss–Seidel sweep with independent constraints side by side. Constraints that fit no colour
 //! go into batches of their own. Static bodies (and kinematic ones: zero inverse mass) are
 //! never written, so they do not take part in the colouring.
 //!
@@ -17,8 +18,10 @@
 //! sub-steps: `restitution`, then `store` writes the impulses back for warm starting.
 
 use crate::collision::MAX_MANIFOLD_POINTS;
-use crate::contact_solver::ContactConstraint;
+use crate::contact::{Contact, GeneratedContact};
+use crate::contact_solver::{self, ContactRef, LaneImpulses, Sources};
 use crate::math::Vec3;
+use crate::pool::Pool;
 #[cfg(target_arch = "x86_64")]
 use crate::simd::F8;
 use crate::simd::{Lanes, F4, M, V};
@@ -104,7 +107,8 @@ pub struct WideContact<L: Lanes> {
     static_friction: L,
     dynamic_friction: L,
     restitution: L,
-    /// All-ones in lanes solved rigidly (see `ContactConstraint::rigid`).
+    /// All-ones in lanes solved rigidly: generated contacts (rods, cables) must hold their
+    /// length under load, and they do not form the deep stacks the soft contacts damp.
     rigid: L,
     /// The biased sweep's coefficients per lane, fixed for a step (`set_softness`): push-out
     /// rate, mass scale, impulse leak, and the part of its impulse a point keeps.
@@ -167,13 +171,13 @@ mod eight {
     }
 
     entry! {
-        pack_all(members: &[Vec<u32>], singles: &[u32], constraints: &[ContactConstraint]);
+        pack_all(members: &[Vec<u32>], singles: &[u32], refs: &[ContactRef], sources: &Sources);
         set_softness_all(soft: &SoftSweep, inv_h: f32);
         refresh_all(states: &[BodyState], first: bool);
         warm_start_all(vel: &mut [Velocity]);
         solve_all(vel: &mut [Velocity], inv_h: f32, forward: bool, bias: Option<&SoftSweep>);
         restitution_all(vel: &mut [Velocity], threshold: f32);
-        store_all(constraints: &mut [ContactConstraint]);
+        store_all(refs: &[ContactRef], contacts: &mut Pool<Contact>);
     }
 }
 
@@ -224,9 +228,10 @@ impl Batches {
         }
     }
 
-    /// Colours and packs `constraints` into batches. `states` gives inverse masses.
-    pub fn build(&mut self, constraints: &[ContactConstraint], states: &[BodyState]) {
-        let words = states.len().div_ceil(64);
+    /// Colours the contacts of `refs` and packs their constraints into batches, building
+    /// each lane's constraint from `sources`.
+    pub fn build(&mut self, refs: &[ContactRef], sources: &Sources) {
+        let words = sources.states.len().div_ceil(64);
         self.color_bits.resize_with(COLORS, Vec::new);
         self.color_members.resize_with(COLORS, Vec::new);
         for c in 0..COLORS {
@@ -235,55 +240,40 @@ impl Batches {
             self.color_members[c].clear();
         }
         self.singles.clear();
-        let writes = |i: u32| i != 0 && states[i as usize].inv_mass > 0.0;
-        'next: for (ci, c) in constraints.iter().enumerate() {
-            let (wa, wb) = (writes(c.a), writes(c.b));
+        'next: for (ri, r) in refs.iter().enumerate() {
+            let (wa, wb) = (r.writes_a, r.writes_b);
             for color in 0..COLORS {
                 let bits = &mut self.color_bits[color];
                 let used = |i: u32| bits[i as usize / 64] & (1u64 << (i % 64)) != 0;
-                if (wa && used(c.a)) || (wb && used(c.b)) {
+                if (wa && used(r.a)) || (wb && used(r.b)) {
                     continue;
                 }
-                for (w, i) in [(wa, c.a), (wb, c.b)] {
+                for (w, i) in [(wa, r.a), (wb, r.b)] {
                     if w {
                         bits[i as usize / 64] |= 1u64 << (i % 64);
                     }
                 }
-                self.color_members[color].push(ci as u32);
+                self.color_members[color].push(ri as u32);
                 continue 'next;
             }
-            self.singles.push(ci as u32);
+            self.singles.push(ri as u32);
         }
         for members in self.color_members.iter_mut() {
-            order(members, &mut self.ordered, constraints);
+            order(members, &mut self.ordered, refs);
         }
         dispatch!(
             &mut self.sets,
-            pack_all(&self.color_members, &self.singles, constraints)
+            pack_all(&self.color_members, &self.singles, refs, sources)
         )
     }
 }
 
-/// Point-count class and whether side B is static: a batch holds one kind only, so a
-/// constraint is solved the same way whatever its batch-mates (and the lane width).
-fn kind(c: &ContactConstraint) -> (bool, bool) {
-    (c.count > 1, c.b != 0)
-}
-
-/// Like with like: the kinds, then whether the constraint carried load last step (batches
-/// of idle constraints end their sweep early). Three bits.
-fn order_key(c: &ContactConstraint) -> usize {
-    let loaded = c.points[..c.count].iter().any(|p| p.normal_impulse > 0.0);
-    let (multi, dynamic_b) = kind(c);
-    usize::from(multi) << 2 | usize::from(dynamic_b) << 1 | usize::from(loaded)
-}
-
-/// Orders a colour's members by `order_key`, keeping their order within a key (a counting
-/// sort: linear, stable, no allocation once `scratch` has grown).
-fn order(members: &mut [u32], scratch: &mut Vec<u32>, constraints: &[ContactConstraint]) {
+/// Orders a colour's members by `ContactRef::order_key`, keeping their order within a key (a
+/// counting sort: linear, stable, no allocation once `scratch` has grown).
+fn order(members: &mut [u32], scratch: &mut Vec<u32>, refs: &[ContactRef]) {
     let mut start = [0usize; 9];
     for &i in members.iter() {
-        start[order_key(&constraints[i as usize]) + 1] += 1;
+        start[refs[i as usize].order_key() + 1] += 1;
     }
     for k in 1..9 {
         start[k] += start[k - 1];
@@ -291,7 +281,7 @@ fn order(members: &mut [u32], scratch: &mut Vec<u32>, constraints: &[ContactCons
     scratch.clear();
     scratch.resize(members.len(), 0);
     for &i in members.iter() {
-        let k = order_key(&constraints[i as usize]);
+        let k = refs[i as usize].order_key();
         scratch[start[k]] = i;
         start[k] += 1;
     }
@@ -306,21 +296,22 @@ fn pack_all<L: Lanes + Default>(
     batches: &mut Vec<WideContact<L>>,
     members: &[Vec<u32>],
     singles: &[u32],
-    constraints: &[ContactConstraint],
+    refs: &[ContactRef],
+    sources: &Sources,
 ) {
     let mut used = 0;
     for members in members {
-        for group in members.chunk_by(|&x, &y| kind(&constraints[x as usize]) == kind(&constraints[y as usize])) {
+        for group in members.chunk_by(|&x, &y| refs[x as usize].kind() == refs[y as usize].kind()) {
             for chunk in group.chunks(L::N) {
                 next_slot(batches, used);
-                pack(&mut batches[used], chunk, constraints);
+                pack(&mut batches[used], chunk, refs, sources);
                 used += 1;
             }
         }
     }
     for &i in singles {
         next_slot(batches, used);
-        pack(&mut batches[used], &[i], constraints);
+        pack(&mut batches[used], &[i], refs, sources);
         used += 1;
     }
     batches.truncate(used);
@@ -360,89 +351,242 @@ impl<A> Stage3<A> {
     }
 }
 
-/// Packs up to `L::N` constraints into `w`, setting every field the passes read before they
-/// write it (the storage is reused from earlier steps).
-#[inline(always)]
-fn pack<L: Lanes>(w: &mut WideContact<L>, lanes: &[u32], constraints: &[ContactConstraint]) {
-    // Stage each field per lane (empty lanes stay zero), then load the lanes at once.
-    let mut f = [L::Floats::default(); 11];
-    let mut v = [Stage3::<L::Floats>::default(); 7];
-    let mut pf = [[L::Floats::default(); 4]; MAXP];
-    let mut pv = [[Stage3::<L::Floats>::default(); 2]; MAXP];
-    let mut sliding = L::Floats::default();
-    let mut src = L::Indices::default();
-    src.as_mut().fill(EMPTY);
-    (w.a, w.b, w.src, w.count, w.has_restitution) = (L::Indices::default(), L::Indices::default(), src, 0, false);
-    let on = f32::from_bits(u32::MAX);
-    for (i, &k) in lanes.iter().enumerate() {
-        let c = &constraints[k as usize];
-        w.a.as_mut()[i] = c.a;
-        w.b.as_mut()[i] = c.b;
-        w.src.as_mut()[i] = k;
-        w.count = w.count.max(c.count);
-        w.has_restitution |= c.restitution > 0.0;
-        let (oa, ob) = (c.normal * c.radius_a, c.normal * -c.radius_b);
-        let at_b = match (c.radius_a > 0.0, c.radius_b > 0.0) {
-            (true, false) => 0.0,
-            (false, true) => 1.0,
-            _ => 0.5,
-        };
-        let fr = &c.friction;
-        for (slot, x) in f.iter_mut().zip([
-            c.ma,
-            c.mb,
-            at_b,
-            c.static_friction,
-            c.dynamic_friction,
-            c.restitution,
-            fr.twist_radius,
-            fr.tangent_impulse[0],
-            fr.tangent_impulse[1],
-            fr.twist_impulse,
-            if c.rigid { on } else { 0.0 },
-        ]) {
-            slot.as_mut()[i] = x;
+/// Raw input of a batch, staged lane by lane in the solver's orientation (static B) before it
+/// is loaded into lanes; empty lanes stay zero.
+struct Staging<L: Lanes> {
+    /// ma, mb, radius_a, radius_b, static and dynamic friction, restitution, twist impulse,
+    /// 1/point count, rigid (all-ones).
+    f: [L::Floats; 10],
+    /// Normal, centres of mass of A and B, friction impulse on B (world).
+    v: [Stage3<L::Floats>; 4],
+    /// Per point: separation, normal impulse, active (all-ones).
+    pf: [[L::Floats; 3]; MAXP],
+    /// Per point: the point midway between the surfaces.
+    pv: [Stage3<L::Floats>; MAXP],
+}
+
+impl<L: Lanes> Staging<L> {
+    #[inline(always)]
+    fn new() -> Self {
+        Staging {
+            f: [L::Floats::default(); 10],
+            v: [Stage3::default(); 4],
+            pf: [[L::Floats::default(); 3]; MAXP],
+            pv: [Stage3::default(); MAXP],
         }
-        for (slot, x) in v
-            .iter_mut()
-            .zip([c.normal, oa, ob, c.tangents[0], c.tangents[1], fr.ra0 - oa, fr.rb0 - ob])
-        {
+    }
+
+    /// Lane `i` from the persistent contact of `r`.
+    #[inline(always)]
+    fn contact(&mut self, i: usize, r: &ContactRef, c: &Contact, s: &Sources) {
+        let (mut ca, mut cb) = (s.bodies.at(c.body_a).center, s.bodies.at(c.body_b).center);
+        let (mut n, mut radius_a, mut radius_b, mut friction) =
+            (c.manifold.normal, c.radius_a, c.radius_b, c.friction.tangent);
+        if r.swapped {
+            std::mem::swap(&mut ca, &mut cb);
+            std::mem::swap(&mut radius_a, &mut radius_b);
+            n = -n;
+            // The stored friction impulse acts on the contact's B, here side A.
+            friction = -friction;
+        }
+        let count = c.manifold.count;
+        self.lane(
+            i,
+            r,
+            s,
+            [radius_a, radius_b, c.static_friction, c.dynamic_friction],
+            c.restitution,
+        );
+        self.f[7].as_mut()[i] = c.friction.twist;
+        self.f[8].as_mut()[i] = 1.0 / count as f32;
+        for (slot, x) in self.v.iter_mut().zip([n, ca, cb, friction]) {
             slot.set(i, x);
         }
-        for (p, cp) in c.points[..c.count].iter().enumerate() {
-            for (slot, x) in pf[p]
-                .iter_mut()
-                .zip([cp.separation0, on, cp.normal_impulse, cp.relative_velocity])
-            {
+        for (p, (mp, imp)) in c.manifold.points().iter().zip(&c.impulses).enumerate() {
+            for (slot, x) in self.pf[p].iter_mut().zip([mp.separation, imp.normal, on()]) {
                 slot.as_mut()[i] = x;
             }
-            pv[p][0].set(i, cp.ra0 - oa);
-            pv[p][1].set(i, cp.rb0 - ob);
+            self.pv[p].set(i, mp.point);
         }
-        if fr.sliding {
-            sliding.as_mut()[i] = on;
+    }
+
+    /// Lane `i` from a contact generated this step (rods, cables, user callbacks): a single
+    /// point, not persistent, solved rigidly.
+    #[inline(always)]
+    fn generated(&mut self, i: usize, r: &ContactRef, g: &GeneratedContact, s: &Sources) {
+        let center = |b: u32| {
+            if b == crate::body::NONE {
+                g.point
+            } else {
+                s.bodies.at(b).center
+            }
+        };
+        let (mut ca, mut cb, mut n) = (center(g.body_a), center(g.body_b), g.normal);
+        if r.swapped {
+            std::mem::swap(&mut ca, &mut cb);
+            n = -n;
+        }
+        self.lane(i, r, s, [0.0, 0.0, g.friction, g.friction], g.restitution);
+        self.f[8].as_mut()[i] = 1.0;
+        self.f[9].as_mut()[i] = on();
+        for (slot, x) in self.v.iter_mut().zip([n, ca, cb]) {
+            slot.set(i, x);
+        }
+        for (slot, x) in self.pf[0].iter_mut().zip([-g.penetration, 0.0, on()]) {
+            slot.as_mut()[i] = x;
+        }
+        self.pv[0].set(i, g.point);
+    }
+
+    /// The inverse masses, radii, friction coefficients and restitution of lane `i`.
+    #[inline(always)]
+    fn lane(&mut self, i: usize, r: &ContactRef, s: &Sources, [ra, rb, fs, fd]: [f32; 4], e: f32) {
+        let (ma, mb) = (s.states[r.a as usize].inv_mass, s.states[r.b as usize].inv_mass);
+        for (slot, x) in self.f.iter_mut().zip([ma, mb, ra, rb, fs, fd, e]) {
+            slot.as_mut()[i] = x;
+        }
+    }
+}
+
+/// All-ones: a lane mask that is set.
+#[inline(always)]
+fn on() -> f32 {
+    f32::from_bits(u32::MAX)
+}
+
+/// Tangential speed (m/s) below which a contact patch starts a step sticking.
+const STICK_SPEED: f32 = 0.01;
+
+/// Two unit tangents completing the unit normal `n` to a right-handed basis (Duff et al. 2017,
+/// branch-free, lane by lane).
+#[inline(always)]
+fn basis<L: Lanes>(n: V<L>) -> (V<L>, V<L>) {
+    let one = L::one();
+    let sign = L::select(n.z.ge(L::zero()), one, -one);
+    let a = -(one / (sign + n.z));
+    let b = n.x * n.y * a;
+    (
+        V {
+            x: one + sign * n.x * n.x * a,
+            y: sign * b,
+            z: -(sign * n.x),
+        },
+        V {
+            x: b,
+            y: sign + n.y * n.y * a,
+            z: -n.y,
+        },
+    )
+}
+
+/// Packs up to `L::N` contacts into `w`, setting every field the passes read before they
+/// write it (the storage is reused from earlier steps). Each lane's input is staged from its
+/// contact; the constraint is then built in lanes: the tangent basis, the arms of the points
+/// and of the patch centroid at the start of the step (kept as offsets from the shapes' core
+/// points), the approach speeds for restitution, the twist lever (mean distance of the points
+/// from the centroid) and whether the patch starts the step sliding.
+#[inline(always)]
+fn pack<L: Lanes>(w: &mut WideContact<L>, lanes: &[u32], refs: &[ContactRef], sources: &Sources) {
+    let mut st = Staging::<L>::new();
+    let mut src = L::Indices::default();
+    src.as_mut().fill(EMPTY);
+    (w.a, w.b, w.src, w.count, w.has_restitution) = (L::Indices::default(), L::Indices::default(), src, 1, false);
+    for (i, &k) in lanes.iter().enumerate() {
+        let r = &refs[k as usize];
+        w.a.as_mut()[i] = r.a;
+        w.b.as_mut()[i] = r.b;
+        w.src.as_mut()[i] = k;
+        match r.contact() {
+            Some(ci) => {
+                let c = sources.contacts.at(ci);
+                w.count = w.count.max(c.manifold.count);
+                w.has_restitution |= c.restitution > 0.0;
+                st.contact(i, r, c, sources);
+            }
+            None => {
+                let g = &sources.generated[r.generated_index()];
+                w.has_restitution |= g.restitution > 0.0;
+                st.generated(i, r, g, sources);
+            }
         }
     }
     // Batches run as one-point or four-point manifolds (missing points inactive).
     w.count = if w.count <= 1 { 1 } else { MAXP };
     w.b_static = w.b.as_ref().iter().all(|&b| b == 0);
-    let [ma, mb, at_b, fs, fd, e, twist_radius, t0, t1, twist, rigid] = load_all::<L, 11>(&f);
-    w.rigid = rigid;
-    let [normal, oa, ob, tan0, tan1, fca0, fcb0] = [0, 1, 2, 3, 4, 5, 6].map(|i| v[i].load::<L>());
-    (w.ma, w.mb, w.at_b, w.static_friction, w.dynamic_friction, w.restitution) = (ma, mb, at_b, fs, fd, e);
-    (w.normal, w.oa, w.ob, w.tangents) = (normal, oa, ob, [tan0, tan1]);
-    let fw = &mut w.friction;
-    (fw.ca0, fw.cb0, fw.twist_radius, fw.tangent_impulse, fw.twist_impulse) =
-        (fca0, fcb0, twist_radius, [t0, t1], twist);
-    fw.sliding = L::load(&sliding);
-    for p in 0..w.count {
-        let wp = &mut w.points[p];
-        let [sep0, active, impulse, rel] = load_all::<L, 4>(&pf[p]);
-        (wp.separation0, wp.active, wp.impulse, wp.relative_velocity) = (sep0, active, impulse, rel);
-        wp.max_impulse = L::zero();
-        wp.ca0 = pv[p][0].load::<L>();
-        wp.cb0 = pv[p][1].load::<L>();
+    if w.count == 1 {
+        build::<L, 1>(w, &st, sources.vel);
+    } else {
+        build::<L, MAXP>(w, &st, sources.vel);
     }
+}
+
+/// Velocity of a body's material point at arm `r`.
+#[inline(always)]
+fn point_velocity<L: Lanes>(v: V<L>, w: V<L>, r: V<L>) -> V<L> {
+    v + w.cross(r)
+}
+
+/// Builds the constraint of a packed batch of `N`-point manifolds from its staged input.
+#[inline(always)]
+fn build<L: Lanes, const N: usize>(w: &mut WideContact<L>, st: &Staging<L>, vel: &[Velocity]) {
+    let zero = L::zero();
+    let [ma, mb, radius_a, radius_b, fs, fd, e, twist, inv_count, rigid] = load_all::<L, 10>(&st.f);
+    let [n, ca, cb, friction] = [0, 1, 2, 3].map(|i| st.v[i].load::<L>());
+    (
+        w.ma,
+        w.mb,
+        w.static_friction,
+        w.dynamic_friction,
+        w.restitution,
+        w.rigid,
+    ) = (ma, mb, fs, fd, e, rigid);
+    let (t1, t2) = basis(n);
+    (w.normal, w.tangents) = (n, [t1, t2]);
+    // Contact points sit on the shapes' rounded surfaces, `radius` out from the core points.
+    let (oa, ob) = (n.scale(radius_a), n.scale(-radius_b));
+    let (round_a, round_b) = (radius_a.gt(zero), radius_b.gt(zero));
+    let half = L::splat(0.5);
+    w.at_b = L::select(
+        round_a,
+        L::select(round_b, half, zero),
+        L::select(round_b, L::one(), half),
+    );
+    (w.oa, w.ob) = (oa, ob);
+    let (va, wa) = gather(vel, &w.a);
+    let (vb, wb) = gather(vel, &w.b);
+    let mut points = [V::zero(); MAXP];
+    let mut centroid = V::zero();
+    for (p, wp) in w.points[..N].iter_mut().enumerate() {
+        let [separation, impulse, active] = load_all::<L, 3>(&st.pf[p]);
+        let point = st.pv[p].load::<L>();
+        points[p] = point;
+        centroid = centroid + point;
+        let (ra, rb) = (point - ca, point - cb);
+        (wp.separation0, wp.active, wp.impulse, wp.max_impulse) = (separation, active, impulse, zero);
+        wp.relative_velocity = L::select(
+            active,
+            (point_velocity(vb, wb, rb) - point_velocity(va, wa, ra)).dot(n),
+            zero,
+        );
+        wp.ca0 = V::select(active, ra - oa, V::zero());
+        wp.cb0 = V::select(active, rb - ob, V::zero());
+    }
+    let centroid = centroid.scale(inv_count);
+    let mut twist_radius = zero;
+    if N > 1 {
+        for (p, point) in points.iter().enumerate() {
+            let d = (*point - centroid).length_squared().sqrt();
+            twist_radius = twist_radius + L::select(w.points[p].active, d, zero);
+        }
+        twist_radius = twist_radius * inv_count;
+    }
+    let (ra, rb) = (centroid - ca, centroid - cb);
+    let dv = point_velocity(vb, wb, rb) - point_velocity(va, wa, ra);
+    let vt = dv - n.scale(dv.dot(n));
+    let f = &mut w.friction;
+    (f.ca0, f.cb0, f.twist_radius, f.twist_impulse) = (ra - oa, rb - ob, twist_radius, twist);
+    f.tangent_impulse = [friction.dot(t1), friction.dot(t2)];
+    f.sliding = vt.length_squared().gt(L::splat(STICK_SPEED * STICK_SPEED));
 }
 
 /// The lanes' bodies' motion so far: translation, rotation and world inverse inertia.
@@ -1126,14 +1270,19 @@ fn restitution_batch<L: Lanes, const SB: bool>(vel: &mut [Velocity], w: &mut Wid
     }
 }
 
-/// Writes each lane's impulses back to its scalar constraint.
-pub fn store(batches: &mut Batches, constraints: &mut [ContactConstraint]) {
-    dispatch!(&mut batches.sets, store_all(constraints))
+#[inline(always)]
+fn floats3<L: Lanes>(v: &V<L>) -> [L::Floats; 3] {
+    [v.x.to_floats(), v.y.to_floats(), v.z.to_floats()]
+}
+
+/// Writes each lane's impulses back to its contact.
+pub fn store(batches: &mut Batches, refs: &[ContactRef], contacts: &mut Pool<Contact>) {
+    dispatch!(&mut batches.sets, store_all(refs, contacts))
 }
 
 #[inline(always)]
 #[allow(clippy::ptr_arg)] // all passes take the storage `pack_all` grows (see `dispatch!`)
-fn store_all<L: Lanes>(batches: &mut Vec<WideContact<L>>, constraints: &mut [ContactConstraint]) {
+fn store_all<L: Lanes>(batches: &mut Vec<WideContact<L>>, refs: &[ContactRef], contacts: &mut Pool<Contact>) {
     for w in batches.iter() {
         let f = &w.friction;
         let (t0, t1, tw, sl) = (
@@ -1142,6 +1291,7 @@ fn store_all<L: Lanes>(batches: &mut Vec<WideContact<L>>, constraints: &mut [Con
             f.twist_impulse.to_floats(),
             f.sliding.bits(),
         );
+        let tangents = [floats3(&w.tangents[0]), floats3(&w.tangents[1])];
         let mut impulses = [L::Floats::default(); MAXP];
         for (i, p) in impulses.iter_mut().zip(&w.points) {
             *i = p.impulse.to_floats();
@@ -1150,13 +1300,15 @@ fn store_all<L: Lanes>(batches: &mut Vec<WideContact<L>>, constraints: &mut [Con
             if src == EMPTY {
                 continue;
             }
-            let c = &mut constraints[src as usize];
-            for (point, lanes) in c.points[..c.count].iter_mut().zip(&impulses) {
-                point.normal_impulse = lanes.as_ref()[lane];
-            }
-            c.friction.tangent_impulse = [t0.as_ref()[lane], t1.as_ref()[lane]];
-            c.friction.twist_impulse = tw.as_ref()[lane];
-            c.friction.sliding = sl & (1 << lane) != 0;
+            let at = |x: &L::Floats| x.as_ref()[lane];
+            let tangent = |k: usize| Vec3::new(at(&tangents[k][0]), at(&tangents[k][1]), at(&tangents[k][2]));
+            let out = LaneImpulses {
+                normal: impulses.each_ref().map(at),
+                tangent: tangent(0) * at(&t0) + tangent(1) * at(&t1),
+                twist: at(&tw),
+                sliding: sl & (1 << lane) != 0,
+            };
+            contact_solver::store(&refs[src as usize], &out, contacts);
         }
     }
 }

@@ -7,10 +7,11 @@
 //! without bias (joints, then contacts) } → restitution → store impulses.
 
 use crate::body::Body;
-use crate::contact_solver::{self, ContactConstraint};
+use crate::contact_solver::{self, ContactRef, Sources};
 use crate::contact_wide;
 use crate::math::{integrate_rotation, Mat3, Quat, Vec3};
 use crate::world::{Integrator, World};
+use glam::Vec4;
 
 /// Linear and angular velocity of one awake body: the only data the velocity sweeps touch.
 /// Padded to two rows of four floats so four bodies load and transpose into SIMD lanes.
@@ -53,22 +54,17 @@ impl Velocity {
 /// every solver array is a shared static dummy with infinite mass that is never written.
 #[derive(Clone, Copy, Debug)]
 pub struct BodyState {
-    /// Rotation since the start of the step.
-    pub dq: Quat,
     pub inv_mass: f32,
-    pub inv_i: Mat3,
-    /// The contact passes' view, as rows of four floats so four bodies load into lanes with
-    /// transposes: translation since the start of the step, rotation since the start of the
-    /// step as a quaternion (x, y, z, w), the columns of the world inverse inertia, and the
-    /// rotation since the start of the step as a rotation vector.
+    /// As rows of four floats, so that lanes of bodies load with transposes: translation
+    /// since the start of the step, rotation since the start of the step as a quaternion
+    /// (x, y, z, w), the columns of the world inverse inertia, and the rotation since the
+    /// start of the step as a rotation vector.
     pub rows: [[f32; 4]; 6],
 }
 
 impl BodyState {
     pub const STATIC: BodyState = BodyState {
-        dq: Quat::IDENTITY,
         inv_mass: 0.0,
-        inv_i: Mat3::ZERO,
         rows: [[0.0; 4], [0.0, 0.0, 0.0, 1.0], [0.0; 4], [0.0; 4], [0.0; 4], [0.0; 4]],
     };
 
@@ -81,9 +77,23 @@ impl BodyState {
         s
     }
 
+    /// Translation since the start of the step.
     #[inline]
     pub fn dp(&self) -> Vec3 {
         Vec3::from_slice(&self.rows[0][..3])
+    }
+
+    /// Rotation since the start of the step.
+    #[inline]
+    pub fn dq(&self) -> Quat {
+        Quat::from_array(self.rows[1])
+    }
+
+    /// World inverse inertia.
+    #[inline]
+    pub fn inv_i(&self) -> Mat3 {
+        let c = |r: &[f32; 4]| Vec3::from_slice(&r[..3]);
+        Mat3::from_cols(c(&self.rows[2]), c(&self.rows[3]), c(&self.rows[4]))
     }
 
     #[inline]
@@ -93,7 +103,6 @@ impl BodyState {
 
     #[inline]
     fn set_rotation(&mut self, dq: Quat) {
-        self.dq = dq;
         // The contact refresh turns the quaternion into a matrix only when it needs one.
         self.rows[1] = dq.to_array();
         // Rotation vector to first order (it only gauges and updates small motions).
@@ -103,11 +112,45 @@ impl BodyState {
 
     #[inline]
     fn set_inv_i(&mut self, m: Mat3) {
-        self.inv_i = m;
         for (row, col) in self.rows[2..5].iter_mut().zip([m.x_axis, m.y_axis, m.z_axis]) {
             *row = col.extend(0.0).to_array();
         }
     }
+}
+
+/// How the sub-steps integrate a body.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Path {
+    /// The static dummy: never moves.
+    Fixed,
+    /// Kinematic: moves at its velocity; no forces.
+    Kinematic,
+    /// Dynamic with isotropic inertia and no torque: velocities change by the step's constant
+    /// acceleration and damping only, so one short loop handles it.
+    Plain,
+    /// Dynamic with torque, gyroscopic motion or RK4 (`BodySim`).
+    General,
+}
+
+/// What the sub-steps read per body, kept small so the integration loops stream through it.
+#[derive(Clone, Copy, Debug)]
+#[repr(C, align(16))]
+pub struct Drive {
+    /// Velocity change per sub-step from gravity and applied force: `h·a` (fourth lane 0).
+    pub dv: [f32; 4],
+    /// What damping keeps of the velocities per sub-step: 1 / (1 + h·damping).
+    pub lin_keep: f32,
+    pub ang_keep: f32,
+    pub path: Path,
+}
+
+impl Drive {
+    const FIXED: Drive = Drive {
+        dv: [0.0; 4],
+        lin_keep: 1.0,
+        ang_keep: 1.0,
+        path: Path::Fixed,
+    };
 }
 
 /// Per-body data the integrator needs each sub-step, fixed for the step.
@@ -120,11 +163,6 @@ pub struct BodySim {
     pub torque: Vec3,
     pub lin_damping: f32,
     pub ang_damping: f32,
-    /// What damping keeps of the velocities per sub-step: 1 / (1 + h·damping).
-    pub lin_keep: f32,
-    pub ang_keep: f32,
-    /// A torque is applied (else the sub-steps skip the inverse-inertia product).
-    pub has_torque: bool,
     pub q0: Quat,
     /// Inertia in the body frame; used for gyroscopic motion and RK4.
     pub inertia: Mat3,
@@ -141,7 +179,11 @@ pub struct SolverScratch {
     pub vel: Vec<Velocity>,
     pub states: Vec<BodyState>,
     pub sims: Vec<BodySim>,
-    pub constraints: Vec<ContactConstraint>,
+    pub drives: Vec<Drive>,
+    /// This step's contacts (`contact_solver::prepare`).
+    pub refs: Vec<ContactRef>,
+    /// Some contact has restitution.
+    pub bounces: bool,
     pub batches: contact_wide::Batches,
 }
 
@@ -214,6 +256,8 @@ pub fn prepare_bodies(world: &mut World, dt: f32, h: f32) {
     scratch.states.clear();
     scratch.vel.clear();
     scratch.sims.clear();
+    scratch.drives.clear();
+    scratch.drives.push(Drive::FIXED);
     scratch.states.push(BodyState::STATIC);
     scratch.vel.push(Velocity::default());
     scratch.sims.push(BodySim {
@@ -222,9 +266,6 @@ pub fn prepare_bodies(world: &mut World, dt: f32, h: f32) {
         torque: Vec3::ZERO,
         lin_damping: 0.0,
         ang_damping: 0.0,
-        lin_keep: 1.0,
-        ang_keep: 1.0,
-        has_torque: false,
         q0: Quat::IDENTITY,
         inertia: Mat3::ZERO,
         inv_inertia: Mat3::ZERO,
@@ -258,67 +299,114 @@ pub fn prepare_bodies(world: &mut World, dt: f32, h: f32) {
             .states
             .push(BodyState::new(body.inv_mass, body.inv_inertia_world));
         scratch.vel.push(Velocity::new(body.v, body.w));
+        let lin_accel = if dynamic {
+            gravity * body.gravity_scale + body.inv_mass * body.force
+        } else {
+            Vec3::ZERO
+        };
+        let gyroscopic = dynamic && has_gyroscopic_term(&body.inertia_local);
+        scratch.drives.push(Drive {
+            dv: (h * lin_accel).extend(0.0).to_array(),
+            lin_keep: 1.0 / (1.0 + h * body.linear_damping),
+            ang_keep: 1.0 / (1.0 + h * body.angular_damping),
+            path: match (dynamic, gyroscopic || body.torque != Vec3::ZERO) {
+                (false, _) => Path::Kinematic,
+                (true, false) => Path::Plain,
+                (true, true) => Path::General,
+            },
+        });
         scratch.sims.push(BodySim {
             body: bi,
-            lin_accel: if dynamic {
-                gravity * body.gravity_scale + body.inv_mass * body.force
-            } else {
-                Vec3::ZERO
-            },
+            lin_accel,
             torque: if dynamic { body.torque } else { Vec3::ZERO },
             lin_damping: body.linear_damping,
             ang_damping: body.angular_damping,
-            lin_keep: 1.0 / (1.0 + h * body.linear_damping),
-            ang_keep: 1.0 / (1.0 + h * body.angular_damping),
-            has_torque: dynamic && body.torque != Vec3::ZERO,
             q0: body.xf.q,
             inertia: body.inertia_local,
             inv_inertia: body.inv_inertia_local,
-            gyroscopic: dynamic && has_gyroscopic_term(&body.inertia_local),
+            gyroscopic,
             dynamic,
             rk4: false,
         });
     }
 }
 
-fn integrate_velocities(vel: &mut [Velocity], states: &[BodyState], sims: &[BodySim], h: f32, max_speed: f32) {
-    for ((u, s), sim) in vel.iter_mut().zip(states).zip(sims).skip(1) {
-        if !sim.dynamic || sim.rk4 {
-            continue;
+/// Applies the step's acceleration and damping to every awake dynamic body's velocities.
+fn integrate_velocities(
+    vel: &mut [Velocity],
+    drives: &[Drive],
+    states: &[BodyState],
+    sims: &[BodySim],
+    h: f32,
+    max_speed: f32,
+) {
+    for (k, (u, d)) in vel.iter_mut().zip(drives).enumerate() {
+        match d.path {
+            Path::Fixed | Path::Kinematic => {}
+            Path::Plain => {
+                let rows = u.rows_mut();
+                let v = (Vec4::from_array(rows[0]) + Vec4::from_array(d.dv)) * d.lin_keep;
+                rows[0] = clamp_speed(v, max_speed).to_array();
+                rows[1] = (Vec4::from_array(rows[1]) * d.ang_keep).to_array();
+            }
+            Path::General => general_velocity(u, d, &states[k], &sims[k], h, max_speed),
         }
-        let mut v = u.v + h * sim.lin_accel;
-        let mut w = u.w;
-        if sim.has_torque {
-            w += h * (s.inv_i * sim.torque);
-        }
-        if sim.gyroscopic {
-            w = gyroscopic_step(w, s.dq * sim.q0, &sim.inertia, &sim.inv_inertia, h);
-        }
-        v *= sim.lin_keep;
-        w *= sim.ang_keep;
-        let speed2 = v.length_squared();
-        if speed2 > max_speed * max_speed {
-            v *= max_speed / speed2.sqrt();
-        }
-        u.v = v;
-        u.w = w;
     }
 }
 
+/// `v` (a 3-vector with fourth lane 0) no faster than `max_speed`.
+#[inline(always)]
+fn clamp_speed(v: Vec4, max_speed: f32) -> Vec4 {
+    let speed2 = v.length_squared();
+    if speed2 > max_speed * max_speed {
+        v * (max_speed / speed2.sqrt())
+    } else {
+        v
+    }
+}
+
+/// Velocity update of a body with torque or gyroscopic motion (RK4 bodies are integrated in
+/// `integrate_positions`).
+fn general_velocity(u: &mut Velocity, d: &Drive, s: &BodyState, sim: &BodySim, h: f32, max_speed: f32) {
+    if sim.rk4 {
+        return;
+    }
+    let v = Vec4::from_array(u.rows()[0]) + Vec4::from_array(d.dv);
+    let mut w = u.w;
+    if sim.torque != Vec3::ZERO {
+        w += h * (s.inv_i() * sim.torque);
+    }
+    if sim.gyroscopic {
+        w = gyroscopic_step(w, s.dq() * sim.q0, &sim.inertia, &sim.inv_inertia, h);
+    }
+    u.rows_mut()[0] = clamp_speed(v * d.lin_keep, max_speed).to_array();
+    u.w = w * d.ang_keep;
+}
+
 /// Moves every awake body by its velocity.
-fn integrate_positions(vel: &mut [Velocity], states: &mut [BodyState], sims: &[BodySim], h: f32) {
-    for ((u, s), sim) in vel.iter_mut().zip(states.iter_mut()).zip(sims).skip(1) {
-        if sim.rk4 {
-            rk4_step(u, s, sim, h);
-        } else {
-            s.set_dp(s.dp() + h * u.v);
-            s.dq = integrate_rotation(s.dq, u.w, h);
-        }
-        s.set_rotation(s.dq);
-        if sim.gyroscopic {
-            // Anisotropic inertia turns with the body: keep the world inverse current.
-            let r = Mat3::from_quat(s.dq * sim.q0);
-            s.set_inv_i(r * sim.inv_inertia * r.transpose());
+fn integrate_positions(vel: &mut [Velocity], drives: &[Drive], states: &mut [BodyState], sims: &[BodySim], h: f32) {
+    for (k, ((u, s), d)) in vel.iter_mut().zip(states.iter_mut()).zip(drives).enumerate() {
+        match d.path {
+            Path::Fixed => {}
+            Path::Kinematic | Path::Plain => {
+                s.rows[0] = (Vec4::from_array(s.rows[0]) + h * Vec4::from_array(u.rows()[0])).to_array();
+                s.set_rotation(integrate_rotation(s.dq(), u.w, h));
+            }
+            Path::General => {
+                let sim = &sims[k];
+                let dq = if sim.rk4 {
+                    rk4_step(u, s, sim, h)
+                } else {
+                    s.set_dp(s.dp() + h * u.v);
+                    integrate_rotation(s.dq(), u.w, h)
+                };
+                s.set_rotation(dq);
+                if sim.gyroscopic {
+                    // Anisotropic inertia turns with the body: keep the world inverse current.
+                    let r = Mat3::from_quat(dq * sim.q0);
+                    s.set_inv_i(r * sim.inv_inertia * r.transpose());
+                }
+            }
         }
     }
 }
@@ -326,7 +414,7 @@ fn integrate_positions(vel: &mut [Velocity], states: &mut [BodyState], sims: &[B
 /// Classical RK4 over the free rigid-body equations for one sub-step: position, orientation,
 /// linear velocity and world angular momentum, with continuous damping. Computed in f64 so
 /// rounding does not show as energy drift over long spins.
-fn rk4_step(u: &mut Velocity, s: &mut BodyState, sim: &BodySim, h: f32) {
+fn rk4_step(u: &mut Velocity, s: &mut BodyState, sim: &BodySim, h: f32) -> Quat {
     use glam::{DMat3, DQuat, DVec3, DVec4};
     #[derive(Clone, Copy)]
     struct Y {
@@ -359,7 +447,7 @@ fn rk4_step(u: &mut Velocity, s: &mut BodyState, sim: &BodySim, h: f32) {
         v: y.v + k.v * t,
         l: y.l + k.l * t,
     };
-    let q_start = (s.dq * sim.q0).as_dquat().normalize();
+    let q_start = (s.dq() * sim.q0).as_dquat().normalize();
     let r = DMat3::from_quat(q_start);
     let y0 = Y {
         p: s.dp().as_dvec3(),
@@ -381,7 +469,7 @@ fn rk4_step(u: &mut Velocity, s: &mut BodyState, sim: &BodySim, h: f32) {
     s.set_dp(y.p.as_vec3());
     u.v = y.v.as_vec3();
     u.w = omega(y.q, y.l).as_vec3();
-    s.dq = (q * sim.q0.as_dquat().conjugate()).normalize().as_quat();
+    (q * sim.q0.as_dquat().conjugate()).normalize().as_quat()
 }
 
 /// Runs the sub-stepped solve over awake bodies and touching contacts, then writes the new
@@ -401,14 +489,26 @@ pub fn solve(world: &mut World, dt: f32) {
         for sim in scratch.sims.iter_mut() {
             sim.rk4 = sim.dynamic;
         }
-        for c in &scratch.constraints {
-            scratch.sims[c.a as usize].rk4 = false;
-            scratch.sims[c.b as usize].rk4 = false;
+        for r in &scratch.refs {
+            scratch.sims[r.a as usize].rk4 = false;
+            scratch.sims[r.b as usize].rk4 = false;
         }
         crate::joints::solver::mark_constrained(joints, &mut scratch.sims);
+        for (d, sim) in scratch.drives.iter_mut().zip(&scratch.sims) {
+            if sim.rk4 {
+                d.path = Path::General;
+            }
+        }
     }
-    scratch.batches.build(&scratch.constraints, &scratch.states);
-    let (vel, states, sims) = (&mut scratch.vel, &mut scratch.states, &scratch.sims);
+    let sources = Sources {
+        contacts: &world.contacts,
+        bodies: &world.bodies,
+        generated: &world.generated_contacts,
+        states: &scratch.states,
+        vel: &scratch.vel,
+    };
+    scratch.batches.build(&scratch.refs, &sources);
+    let (vel, states, sims, drives) = (&mut scratch.vel, &mut scratch.states, &scratch.sims, &scratch.drives);
     let batches = &mut scratch.batches;
     let inv_h = 1.0 / h;
     // Contacts stiffer than a quarter of the sub-step rate make Gauss–Seidel unstable.
@@ -421,7 +521,7 @@ pub fn solve(world: &mut World, dt: f32) {
     };
     contact_wide::set_softness(batches, &soft, inv_h);
     for sub in 0..substeps {
-        integrate_velocities(vel, states, sims, h, settings.max_linear_speed);
+        integrate_velocities(vel, drives, states, sims, h, settings.max_linear_speed);
         contact_wide::refresh(states, batches, sub == 0);
         crate::joints::solver::warm_start(joints, vel, states);
         contact_wide::warm_start(vel, batches);
@@ -431,16 +531,15 @@ pub fn solve(world: &mut World, dt: f32) {
         for k in 0..settings.velocity_iterations {
             contact_wide::solve(vel, batches, inv_h, (sub + k) % 2 == 0, Some(&soft));
         }
-        integrate_positions(vel, states, sims, h);
+        integrate_positions(vel, drives, states, sims, h);
         crate::joints::solver::solve(joints, vel, states, h, false);
         contact_wide::solve(vel, batches, inv_h, sub % 2 == 1, None);
     }
-    if scratch.constraints.iter().any(|c| c.restitution > 0.0) {
+    if scratch.bounces {
         contact_wide::refresh(states, batches, false);
         contact_wide::restitution(vel, batches, settings.restitution_threshold);
     }
-    contact_wide::store(batches, &mut scratch.constraints);
-    contact_solver::store_impulses(world);
+    contact_wide::store(batches, &scratch.refs, &mut world.contacts);
     crate::joints::solver::store(world, h);
     finalize_bodies(world);
 }
@@ -452,7 +551,7 @@ fn finalize_bodies(world: &mut World) {
         let body = world.bodies.at_mut(sim.body);
         body.v = u.v;
         body.w = u.w;
-        let q = (s.dq * sim.q0).normalize();
+        let q = (s.dq() * sim.q0).normalize();
         body.set_center_rotation(body.center + s.dp(), q);
         body.update_world_inertia();
         body.force = Vec3::ZERO;

@@ -82,14 +82,14 @@ pub struct Frames {
 
 impl Frames {
     pub(crate) fn new(c: &JointConstraint, sa: &BodyState, sb: &BodyState) -> Frames {
-        let ra = sa.dq * c.frame_a.p;
-        let rb = sb.dq * c.frame_b.p;
+        let ra = sa.dq() * c.frame_a.p;
+        let rb = sb.dq() * c.frame_b.p;
         Frames {
             ra,
             rb,
             d: c.delta_center + sb.dp() - sa.dp() + rb - ra,
-            qa: sa.dq * c.frame_a.q,
-            qb: sb.dq * c.frame_b.q,
+            qa: sa.dq() * c.frame_a.q,
+            qb: sb.dq() * c.frame_b.q,
         }
     }
 
@@ -412,8 +412,8 @@ pub(crate) fn load(c: &JointConstraint, vel: &[Velocity], states: &[BodyState]) 
             wb: ub.w,
             ma: sa.inv_mass,
             mb: sb.inv_mass,
-            ia: sa.inv_i,
-            ib: sb.inv_i,
+            ia: sa.inv_i(),
+            ib: sb.inv_i(),
         },
         Frames::new(c, sa, sb),
     )

@@ -113,7 +113,7 @@ fn classify(s: &BodyState, index: u32) -> (bool, bool) {
     if index == 0 || s.inv_mass == 0.0 {
         return (true, false);
     }
-    let det = s.inv_i.determinant();
+    let det = s.inv_i().determinant();
     (false, det > 0.0 && det.is_finite())
 }
 
@@ -261,7 +261,7 @@ impl Forest {
             for k in 0..3 {
                 d[packed(k, k)] = mass;
             }
-            let inertia = s.inv_i.as_dmat3().inverse();
+            let inertia = s.inv_i().as_dmat3().inverse();
             for c in 0..3 {
                 for r in c..3 {
                     d[packed(3 + r, 3 + c)] = inertia.col(c)[r];
