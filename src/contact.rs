@@ -3,8 +3,9 @@
 //! matched by feature id.
 
 use crate::collision::{collide, Manifold, MAX_MANIFOLD_POINTS};
-use crate::math::{Transform, Vec3};
+use crate::math::{Quat, Transform, Vec3};
 use crate::shape::{Shape, ShapeDef};
+use glam::{Mat3A, Vec3A};
 
 /// Impulses a manifold point carried at the end of the last step.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
@@ -54,47 +55,76 @@ pub struct Contact {
 #[derive(Clone, Copy, Debug, Default)]
 pub struct ManifoldCache {
     pub valid: bool,
-    pub relative: Transform,
-    pub normal_a: Vec3,
-    pub local_a: [Vec3; MAX_MANIFOLD_POINTS],
-    pub local_b: [Vec3; MAX_MANIFOLD_POINTS],
+    /// B's position and rotation in A's frame (the rotation to rounding, not renormalised).
+    pub relative_p: Vec3A,
+    pub relative_q: Quat,
+    pub normal_a: Vec3A,
+    pub local_a: [Vec3A; MAX_MANIFOLD_POINTS],
+    pub local_b: [Vec3A; MAX_MANIFOLD_POINTS],
 }
 
 /// Largest relative translation (m) and rotation (cos of half the angle) for reuse.
 const CACHE_MAX_TRANSLATION: f32 = 1.0e-3;
 const CACHE_MIN_COS_HALF_ANGLE: f32 = 0.999_962; // cos(0.5°): a turn of 1°
 
+/// A transform as a rotation matrix and a translation, for mapping several points.
+struct Frame {
+    r: Mat3A,
+    p: Vec3A,
+}
+
+impl Frame {
+    #[inline(always)]
+    fn new(xf: &Transform) -> Frame {
+        Frame {
+            r: Mat3A::from_quat(xf.q),
+            p: xf.p.into(),
+        }
+    }
+}
+
 impl ManifoldCache {
     fn store(&mut self, m: &Manifold, xf_a: &Transform, xf_b: &Transform) {
+        let (fa, fb) = (Frame::new(xf_a), Frame::new(xf_b));
+        let (ta, tb) = (fa.r.transpose(), fb.r.transpose());
         self.valid = true;
-        self.relative = xf_a.inv_mul(xf_b);
-        self.normal_a = xf_a.q.conjugate() * m.normal;
+        self.relative_p = ta * (fb.p - fa.p);
+        self.relative_q = xf_a.q.conjugate() * xf_b.q;
+        let n = Vec3A::from(m.normal);
+        self.normal_a = ta * n;
         for (i, p) in m.points().iter().enumerate() {
-            let half = 0.5 * p.separation * m.normal;
-            self.local_a[i] = xf_a.apply_inv(p.point - half);
-            self.local_b[i] = xf_b.apply_inv(p.point + half);
+            let (point, half) = (Vec3A::from(p.point), 0.5 * p.separation * n);
+            self.local_a[i] = ta * (point - half - fa.p);
+            self.local_b[i] = tb * (point + half - fb.p);
         }
     }
 
-    /// The cached manifold moved to the current poses, if they are close enough.
-    fn reuse(&self, old: &Manifold, xf_a: &Transform, xf_b: &Transform) -> Option<Manifold> {
+    /// Moves the cached manifold `m` to the current poses if they are close enough to the
+    /// cached ones; returns whether it did.
+    #[inline]
+    fn reuse(&self, m: &mut Manifold, xf_a: &Transform, xf_b: &Transform) -> bool {
         if !self.valid {
-            return None;
+            return false;
         }
-        let relative = xf_a.inv_mul(xf_b);
-        if (relative.p - self.relative.p).length_squared() > CACHE_MAX_TRANSLATION * CACHE_MAX_TRANSLATION
-            || relative.q.dot(self.relative.q).abs() < CACHE_MIN_COS_HALF_ANGLE
+        let fa = Frame::new(xf_a);
+        let relative_p = fa.r.transpose() * (Vec3A::from(xf_b.p) - fa.p);
+        if (relative_p - self.relative_p).length_squared() > CACHE_MAX_TRANSLATION * CACHE_MAX_TRANSLATION
+            || (xf_a.q.conjugate() * xf_b.q).dot(self.relative_q).abs() < CACHE_MIN_COS_HALF_ANGLE
         {
-            return None;
+            return false;
         }
-        let mut m = *old;
-        m.normal = xf_a.q * self.normal_a;
-        for i in 0..m.count {
-            let (pa, pb) = (xf_a.apply(self.local_a[i]), xf_b.apply(self.local_b[i]));
-            m.points[i].point = 0.5 * (pa + pb);
-            m.points[i].separation = (pb - pa).dot(m.normal);
+        let fb = Frame::new(xf_b);
+        let n = fa.r * self.normal_a;
+        m.normal = n.into();
+        for (p, (la, lb)) in m.points[..m.count]
+            .iter_mut()
+            .zip(self.local_a.iter().zip(&self.local_b))
+        {
+            let (pa, pb) = (fa.r * *la + fa.p, fb.r * *lb + fb.p);
+            p.point = (0.5 * (pa + pb)).into();
+            p.separation = (pb - pa).dot(n);
         }
-        Some(m)
+        true
     }
 }
 
@@ -140,8 +170,7 @@ impl Contact {
     /// impulses over to points with the same feature id. Returns true when the contact started
     /// touching in this update.
     pub fn update(&mut self, a: &Shape, xf_a: &Transform, b: &Shape, xf_b: &Transform, speculative: f32) -> bool {
-        if let Some(m) = self.cache.reuse(&self.manifold, xf_a, xf_b) {
-            self.manifold = m;
+        if self.cache.reuse(&mut self.manifold, xf_a, xf_b) {
             return false;
         }
         let old = self.manifold;
