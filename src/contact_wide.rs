@@ -31,6 +31,7 @@ const MAXP: usize = MAX_MANIFOLD_POINTS;
 
 /// Colours tried before a constraint goes to a batch of its own.
 const COLORS: usize = 24;
+const ALL_COLORS: u32 = (1 << COLORS) - 1;
 
 /// Inner iterations of the projected Gauss–Seidel fallback of the block solve.
 const BLOCK_ITERATIONS: usize = 4;
@@ -184,7 +185,8 @@ mod eight {
 /// Reused storage of the batched solver.
 pub struct Batches {
     sets: Lanesets,
-    color_bits: Vec<Vec<u64>>,
+    /// Per solver body, the colours it is used in (bit per colour).
+    body_colors: Vec<u32>,
     color_members: Vec<Vec<u32>>,
     singles: Vec<u32>,
     /// A colour's members ordered by `order_key` (reused).
@@ -212,7 +214,7 @@ impl Batches {
         };
         Batches {
             sets,
-            color_bits: Vec::new(),
+            body_colors: Vec::new(),
             color_members: Vec::new(),
             singles: Vec::new(),
             ordered: Vec::new(),
@@ -231,32 +233,32 @@ impl Batches {
     /// Colours the contacts of `refs` and packs their constraints into batches, building
     /// each lane's constraint from `sources`.
     pub fn build(&mut self, refs: &[ContactRef], sources: &Sources) {
-        let words = sources.states.len().div_ceil(64);
-        self.color_bits.resize_with(COLORS, Vec::new);
+        self.body_colors.clear();
+        self.body_colors.resize(sources.states.len(), 0);
         self.color_members.resize_with(COLORS, Vec::new);
-        for c in 0..COLORS {
-            self.color_bits[c].clear();
-            self.color_bits[c].resize(words, 0);
-            self.color_members[c].clear();
+        for members in self.color_members.iter_mut() {
+            members.clear();
         }
         self.singles.clear();
-        'next: for (ri, r) in refs.iter().enumerate() {
-            let (wa, wb) = (r.writes_a, r.writes_b);
-            for color in 0..COLORS {
-                let bits = &mut self.color_bits[color];
-                let used = |i: u32| bits[i as usize / 64] & (1u64 << (i % 64)) != 0;
-                if (wa && used(r.a)) || (wb && used(r.b)) {
-                    continue;
-                }
-                for (w, i) in [(wa, r.a), (wb, r.b)] {
-                    if w {
-                        bits[i as usize / 64] |= 1u64 << (i % 64);
-                    }
-                }
-                self.color_members[color].push(ri as u32);
-                continue 'next;
+        let colors = &mut self.body_colors;
+        for (ri, r) in refs.iter().enumerate() {
+            // The first colour neither written body uses yet.
+            let (a, b) = (r.a as usize, r.b as usize);
+            let used_a = if r.writes_a { colors[a] } else { 0 };
+            let used_b = if r.writes_b { colors[b] } else { 0 };
+            let free = !(used_a | used_b) & ALL_COLORS;
+            if free == 0 {
+                self.singles.push(ri as u32);
+                continue;
             }
-            self.singles.push(ri as u32);
+            let color = free.trailing_zeros();
+            if r.writes_a {
+                colors[a] |= 1 << color;
+            }
+            if r.writes_b {
+                colors[b] |= 1 << color;
+            }
+            self.color_members[color as usize].push(ri as u32);
         }
         for members in self.color_members.iter_mut() {
             order(members, &mut self.ordered, refs);
