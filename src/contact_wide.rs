@@ -654,7 +654,7 @@ fn rotation<L: Lanes>(x: L, y: L, z: L, w: L) -> M<L> {
 }
 
 #[inline(always)]
-fn gather<L: Lanes>(vel: &[Velocity], idx: &L::Indices) -> (V<L>, V<L>) {
+pub(crate) fn gather<L: Lanes>(vel: &[Velocity], idx: &L::Indices) -> (V<L>, V<L>) {
     let idx = idx.as_ref();
     (
         V::from_columns(L::gather(|i| &vel[idx[i] as usize].rows()[0])),
@@ -666,7 +666,7 @@ fn gather<L: Lanes>(vel: &[Velocity], idx: &L::Indices) -> (V<L>, V<L>) {
 /// velocity they gathered (their inverse mass and inertia are zero), and the colouring keeps
 /// the dynamic bodies of a batch distinct, so writing every lane is safe.
 #[inline(always)]
-fn scatter<L: Lanes>(vel: &mut [Velocity], idx: &L::Indices, v: V<L>, w: V<L>) {
+pub(crate) fn scatter<L: Lanes>(vel: &mut [Velocity], idx: &L::Indices, v: V<L>, w: V<L>) {
     let zero = L::zero();
     let vr = L::scatter([v.x, v.y, v.z, zero]);
     let wr = L::scatter([w.x, w.y, w.z, zero]);

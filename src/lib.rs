@@ -15,6 +15,7 @@ pub mod dynamic_tree;
 pub mod error;
 pub mod generators;
 pub(crate) mod hash;
+pub mod integrate_wide;
 pub mod island;
 pub mod joints;
 pub mod math;

@@ -9,9 +9,9 @@
 use crate::body::Body;
 use crate::contact_solver::{self, ContactRef, Sources};
 use crate::contact_wide;
+use crate::integrate_wide;
 use crate::math::{integrate_rotation, Mat3, Quat, Vec3};
 use crate::world::{Integrator, World};
-use glam::Vec4;
 
 /// Linear and angular velocity of one awake body: the only data the velocity sweeps touch.
 /// Padded to two rows of four floats so four bodies load and transpose into SIMD lanes.
@@ -134,23 +134,34 @@ pub enum Path {
 
 /// What the sub-steps read per body, kept small so the integration loops stream through it.
 #[derive(Clone, Copy, Debug)]
-#[repr(C, align(16))]
 pub struct Drive {
-    /// Velocity change per sub-step from gravity and applied force: `h·a` (fourth lane 0).
-    pub dv: [f32; 4],
-    /// What damping keeps of the velocities per sub-step: 1 / (1 + h·damping).
-    pub lin_keep: f32,
-    pub ang_keep: f32,
+    /// As rows of four floats (see `integrate_wide`): the velocity change per sub-step from
+    /// gravity and applied force (`h·a`) and what damping keeps of the linear velocity per
+    /// sub-step, 1 / (1 + h·damping); then what it keeps of the angular velocity.
+    pub rows: [[f32; 4]; 2],
     pub path: Path,
 }
 
 impl Drive {
     const FIXED: Drive = Drive {
-        dv: [0.0; 4],
-        lin_keep: 1.0,
-        ang_keep: 1.0,
+        rows: [[0.0, 0.0, 0.0, 1.0], [1.0, 0.0, 0.0, 0.0]],
         path: Path::Fixed,
     };
+
+    #[inline]
+    fn dv(&self) -> Vec3 {
+        Vec3::from_slice(&self.rows[0][..3])
+    }
+
+    #[inline]
+    fn lin_keep(&self) -> f32 {
+        self.rows[0][3]
+    }
+
+    #[inline]
+    fn ang_keep(&self) -> f32 {
+        self.rows[1][0]
+    }
 }
 
 /// Per-body data the integrator needs each sub-step, fixed for the step.
@@ -180,6 +191,7 @@ pub struct SolverScratch {
     pub states: Vec<BodyState>,
     pub sims: Vec<BodySim>,
     pub drives: Vec<Drive>,
+    pub paths: Paths,
     /// This step's contacts (`contact_solver::prepare`).
     pub refs: Vec<ContactRef>,
     /// Some contact has restitution.
@@ -306,9 +318,10 @@ pub fn prepare_bodies(world: &mut World, dt: f32, h: f32) {
         };
         let gyroscopic = dynamic && has_gyroscopic_term(&body.inertia_local);
         scratch.drives.push(Drive {
-            dv: (h * lin_accel).extend(0.0).to_array(),
-            lin_keep: 1.0 / (1.0 + h * body.linear_damping),
-            ang_keep: 1.0 / (1.0 + h * body.angular_damping),
+            rows: [
+                (h * lin_accel).extend(1.0 / (1.0 + h * body.linear_damping)).to_array(),
+                [1.0 / (1.0 + h * body.angular_damping), 0.0, 0.0, 0.0],
+            ],
             path: match (dynamic, gyroscopic || body.torque != Vec3::ZERO) {
                 (false, _) => Path::Kinematic,
                 (true, false) => Path::Plain,
@@ -331,81 +344,96 @@ pub fn prepare_bodies(world: &mut World, dt: f32, h: f32) {
     }
 }
 
-/// Applies the step's acceleration and damping to every awake dynamic body's velocities.
-fn integrate_velocities(
+/// Velocity update of a body with torque or gyroscopic motion (RK4 bodies are integrated in
+/// `integrate_general_positions`).
+fn integrate_general_velocities(
     vel: &mut [Velocity],
     drives: &[Drive],
     states: &[BodyState],
     sims: &[BodySim],
+    bodies: &[u32],
     h: f32,
     max_speed: f32,
 ) {
-    for (k, (u, d)) in vel.iter_mut().zip(drives).enumerate() {
-        match d.path {
-            Path::Fixed | Path::Kinematic => {}
-            Path::Plain => {
-                let rows = u.rows_mut();
-                let v = (Vec4::from_array(rows[0]) + Vec4::from_array(d.dv)) * d.lin_keep;
-                rows[0] = clamp_speed(v, max_speed).to_array();
-                rows[1] = (Vec4::from_array(rows[1]) * d.ang_keep).to_array();
-            }
-            Path::General => general_velocity(u, d, &states[k], &sims[k], h, max_speed),
+    for &k in bodies {
+        let (u, d, s, sim) = (
+            &mut vel[k as usize],
+            &drives[k as usize],
+            &states[k as usize],
+            &sims[k as usize],
+        );
+        if sim.rk4 {
+            continue;
+        }
+        let mut v = u.v + d.dv();
+        let mut w = u.w;
+        if sim.torque != Vec3::ZERO {
+            w += h * (s.inv_i() * sim.torque);
+        }
+        if sim.gyroscopic {
+            w = gyroscopic_step(w, s.dq() * sim.q0, &sim.inertia, &sim.inv_inertia, h);
+        }
+        v *= d.lin_keep();
+        let speed2 = v.length_squared();
+        if speed2 > max_speed * max_speed {
+            v *= max_speed / speed2.sqrt();
+        }
+        u.v = v;
+        u.w = w * d.ang_keep();
+    }
+}
+
+/// Moves the bodies with torque, gyroscopic motion or RK4 by their velocities.
+fn integrate_general_positions(
+    vel: &mut [Velocity],
+    states: &mut [BodyState],
+    sims: &[BodySim],
+    bodies: &[u32],
+    h: f32,
+) {
+    for &k in bodies {
+        let (u, s, sim) = (&mut vel[k as usize], &mut states[k as usize], &sims[k as usize]);
+        let dq = if sim.rk4 {
+            rk4_step(u, s, sim, h)
+        } else {
+            s.set_dp(s.dp() + h * u.v);
+            integrate_rotation(s.dq(), u.w, h)
+        };
+        s.set_rotation(dq);
+        if sim.gyroscopic {
+            // Anisotropic inertia turns with the body: keep the world inverse current.
+            let r = Mat3::from_quat(dq * sim.q0);
+            s.set_inv_i(r * sim.inv_inertia * r.transpose());
         }
     }
 }
 
-/// `v` (a 3-vector with fourth lane 0) no faster than `max_speed`.
-#[inline(always)]
-fn clamp_speed(v: Vec4, max_speed: f32) -> Vec4 {
-    let speed2 = v.length_squared();
-    if speed2 > max_speed * max_speed {
-        v * (max_speed / speed2.sqrt())
-    } else {
-        v
-    }
+/// The awake bodies by how the sub-steps integrate them (solver indices).
+#[derive(Default)]
+pub struct Paths {
+    /// Dynamic, plain (`Path::Plain`): velocities in lanes.
+    plain: Vec<u32>,
+    /// Plain or kinematic: positions in lanes.
+    moving: Vec<u32>,
+    /// `Path::General`: the scalar path.
+    general: Vec<u32>,
 }
 
-/// Velocity update of a body with torque or gyroscopic motion (RK4 bodies are integrated in
-/// `integrate_positions`).
-fn general_velocity(u: &mut Velocity, d: &Drive, s: &BodyState, sim: &BodySim, h: f32, max_speed: f32) {
-    if sim.rk4 {
-        return;
-    }
-    let v = Vec4::from_array(u.rows()[0]) + Vec4::from_array(d.dv);
-    let mut w = u.w;
-    if sim.torque != Vec3::ZERO {
-        w += h * (s.inv_i() * sim.torque);
-    }
-    if sim.gyroscopic {
-        w = gyroscopic_step(w, s.dq() * sim.q0, &sim.inertia, &sim.inv_inertia, h);
-    }
-    u.rows_mut()[0] = clamp_speed(v * d.lin_keep, max_speed).to_array();
-    u.w = w * d.ang_keep;
-}
-
-/// Moves every awake body by its velocity.
-fn integrate_positions(vel: &mut [Velocity], drives: &[Drive], states: &mut [BodyState], sims: &[BodySim], h: f32) {
-    for (k, ((u, s), d)) in vel.iter_mut().zip(states.iter_mut()).zip(drives).enumerate() {
-        match d.path {
-            Path::Fixed => {}
-            Path::Kinematic | Path::Plain => {
-                s.rows[0] = (Vec4::from_array(s.rows[0]) + h * Vec4::from_array(u.rows()[0])).to_array();
-                s.set_rotation(integrate_rotation(s.dq(), u.w, h));
-            }
-            Path::General => {
-                let sim = &sims[k];
-                let dq = if sim.rk4 {
-                    rk4_step(u, s, sim, h)
-                } else {
-                    s.set_dp(s.dp() + h * u.v);
-                    integrate_rotation(s.dq(), u.w, h)
-                };
-                s.set_rotation(dq);
-                if sim.gyroscopic {
-                    // Anisotropic inertia turns with the body: keep the world inverse current.
-                    let r = Mat3::from_quat(dq * sim.q0);
-                    s.set_inv_i(r * sim.inv_inertia * r.transpose());
+impl Paths {
+    fn sort(&mut self, drives: &[Drive]) {
+        self.plain.clear();
+        self.moving.clear();
+        self.general.clear();
+        for (k, d) in drives.iter().enumerate() {
+            let k = k as u32;
+            match d.path {
+                Path::Fixed => {}
+                Path::Kinematic => self.moving.push(k),
+                Path::Plain => {
+                    self.plain.push(k);
+                    self.moving.push(k);
                 }
+                Path::General => self.general.push(k),
             }
         }
     }
@@ -508,7 +536,10 @@ pub fn solve(world: &mut World, dt: f32) {
         vel: &scratch.vel,
     };
     scratch.batches.build(&scratch.refs, &sources);
+    scratch.paths.sort(&scratch.drives);
+    let eight = scratch.batches.lanes() == 8;
     let (vel, states, sims, drives) = (&mut scratch.vel, &mut scratch.states, &scratch.sims, &scratch.drives);
+    let paths = &scratch.paths;
     let batches = &mut scratch.batches;
     let inv_h = 1.0 / h;
     // Contacts stiffer than a quarter of the sub-step rate make Gauss–Seidel unstable.
@@ -521,7 +552,9 @@ pub fn solve(world: &mut World, dt: f32) {
     };
     contact_wide::set_softness(batches, &soft, inv_h);
     for sub in 0..substeps {
-        integrate_velocities(vel, drives, states, sims, h, settings.max_linear_speed);
+        let max_speed = settings.max_linear_speed;
+        integrate_wide::velocities(eight, vel, drives, &paths.plain, max_speed);
+        integrate_general_velocities(vel, drives, states, sims, &paths.general, h, max_speed);
         contact_wide::refresh(states, batches, sub == 0);
         crate::joints::solver::warm_start(joints, vel, states);
         contact_wide::warm_start(vel, batches);
@@ -531,7 +564,8 @@ pub fn solve(world: &mut World, dt: f32) {
         for k in 0..settings.velocity_iterations {
             contact_wide::solve(vel, batches, inv_h, (sub + k) % 2 == 0, Some(&soft));
         }
-        integrate_positions(vel, drives, states, sims, h);
+        integrate_wide::positions(eight, vel, states, &paths.moving, h);
+        integrate_general_positions(vel, states, sims, &paths.general, h);
         crate::joints::solver::solve(joints, vel, states, h, false);
         contact_wide::solve(vel, batches, inv_h, sub % 2 == 1, None);
     }
