@@ -33,8 +33,10 @@ const MAXP: usize = MAX_MANIFOLD_POINTS;
 const COLORS: usize = 24;
 const ALL_COLORS: u32 = (1 << COLORS) - 1;
 
-/// Inner iterations of the projected Gauss–Seidel fallback of the block solve.
-const BLOCK_ITERATIONS: usize = 4;
+/// Inner iterations of the projected Gauss–Seidel fallback of the block solve. The fallback
+/// runs in most four-point batches of a pile or pyramid (some lane has a lifting point); the
+/// 30-box tower and the 385-box pyramid rest to the same 0.1 mm with 1, 2 or 4 iterations.
+const BLOCK_ITERATIONS: usize = 2;
 
 /// Relative regularisation of K (four coplanar points constrain only three motions).
 const BLOCK_REGULARIZATION: f32 = 1.0e-3;
