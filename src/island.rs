@@ -21,11 +21,13 @@ fn find(parent: &mut [u32], mut x: u32) -> u32 {
     x
 }
 
-/// Updates each awake body's recency-weighted motion and sleep timer.
-pub fn update_motion(world: &mut World, dt: f32) {
+/// Updates each awake body's recency-weighted motion and sleep timer. Returns whether some
+/// body has been still for `time_to_sleep` (without one, no island can sleep).
+pub fn update_motion(world: &mut World, dt: f32) -> bool {
     let t = world.settings.sleep_threshold;
     let eps = t * t;
     let bias = 0.5f32.powf(dt);
+    let mut longest = 0.0f32;
     for &bi in &world.awake_bodies {
         let b = world.bodies.at_mut(bi);
         let current = b.v.length_squared() + b.w.length_squared();
@@ -34,14 +36,17 @@ pub fn update_motion(world: &mut World, dt: f32) {
             b.sleep_time = 0.0;
         } else {
             b.sleep_time += dt;
+            longest = longest.max(b.sleep_time);
         }
     }
+    longest >= world.settings.time_to_sleep
 }
 
-/// Puts to sleep every island that has been still long enough.
-pub fn sleep_islands(world: &mut World) {
+/// Puts to sleep every island that has been still long enough. `ready`: some body has been
+/// still long enough (`update_motion`); without one the islands are not built.
+pub fn sleep_islands(world: &mut World, ready: bool) {
     wake_joined_sleepers(world);
-    if !world.settings.enable_sleep {
+    if !world.settings.enable_sleep || !ready {
         return;
     }
     let n = world.awake_bodies.len();

@@ -71,8 +71,8 @@ impl World {
         // 8. Bounds: refit moved proxies, sweeping them along the coming motion.
         self.update_bounds(dt);
         // 9. Sleep.
-        crate::island::update_motion(self, dt);
-        crate::island::sleep_islands(self);
+        let ready = crate::island::update_motion(self, dt);
+        crate::island::sleep_islands(self, ready);
         self.counters.awake_bodies = self.awake_bodies.len();
         self.counters.contacts = self.contacts.len();
     }
