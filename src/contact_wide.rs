@@ -177,7 +177,7 @@ mod eight {
         pack_all(members: &[Vec<u32>], singles: &[u32], refs: &[ContactRef], sources: &Sources);
         set_softness_all(soft: &SoftSweep, inv_h: f32);
         refresh_all(states: &[BodyState], first: bool);
-        warm_start_all(vel: &mut [Velocity]);
+        refresh_warm_start_all(states: &[BodyState], vel: &mut [Velocity], first: bool);
         solve_all(vel: &mut [Velocity], inv_h: f32, forward: bool, bias: Option<&SoftSweep>);
         restitution_all(vel: &mut [Velocity], threshold: f32);
         store_all(refs: &[ContactRef], contacts: &mut Pool<Contact>);
@@ -952,19 +952,39 @@ fn rel<L: Lanes, const SB: bool>(va: V<L>, wa: V<L>, vb: V<L>, wb: V<L>, d: V<L>
     }
 }
 
-pub fn warm_start(vel: &mut [Velocity], batches: &mut Batches) {
-    dispatch!(&mut batches.sets, warm_start_all(vel))
+/// `refresh`, then the warm start (the last step's impulses applied to the velocities), batch
+/// by batch in one pass over the constraints. Refreshing reads positions only, so this is
+/// the same as refreshing every batch and then warm starting every batch.
+pub fn refresh_warm_start(states: &[BodyState], vel: &mut [Velocity], batches: &mut Batches, first: bool) {
+    dispatch!(&mut batches.sets, refresh_warm_start_all(states, vel, first))
 }
 
 #[inline(always)]
 #[allow(clippy::ptr_arg)] // all passes take the storage `pack_all` grows (see `dispatch!`)
-fn warm_start_all<L: Lanes>(batches: &mut Vec<WideContact<L>>, vel: &mut [Velocity]) {
-    for w in batches.iter() {
+fn refresh_warm_start_all<L: Lanes>(
+    batches: &mut Vec<WideContact<L>>,
+    states: &[BodyState],
+    vel: &mut [Velocity],
+    first: bool,
+) {
+    for w in batches.iter_mut() {
         match (w.count == 1, w.b_static) {
-            (true, true) => warm_start_batch::<L, 1, true>(vel, w),
-            (true, false) => warm_start_batch::<L, 1, false>(vel, w),
-            (false, true) => warm_start_batch::<L, MAXP, true>(vel, w),
-            (false, false) => warm_start_batch::<L, MAXP, false>(vel, w),
+            (true, true) => {
+                refresh_batch::<L, 1, true>(states, w, first);
+                warm_start_batch::<L, 1, true>(vel, w);
+            }
+            (true, false) => {
+                refresh_batch::<L, 1, false>(states, w, first);
+                warm_start_batch::<L, 1, false>(vel, w);
+            }
+            (false, true) => {
+                refresh_batch::<L, MAXP, true>(states, w, first);
+                warm_start_batch::<L, MAXP, true>(vel, w);
+            }
+            (false, false) => {
+                refresh_batch::<L, MAXP, false>(states, w, first);
+                warm_start_batch::<L, MAXP, false>(vel, w);
+            }
         }
     }
 }

@@ -555,9 +555,9 @@ pub fn solve(world: &mut World, dt: f32) {
         let max_speed = settings.max_linear_speed;
         integrate_wide::velocities(eight, vel, drives, &paths.plain, max_speed);
         integrate_general_velocities(vel, drives, states, sims, &paths.general, h, max_speed);
-        contact_wide::refresh(states, batches, sub == 0);
+        // Joints warm start first, then each contact batch is refreshed and warm started.
         crate::joints::solver::warm_start(joints, vel, states);
-        contact_wide::warm_start(vel, batches);
+        contact_wide::refresh_warm_start(states, vel, batches, sub == 0);
         // Soft, biased sweeps push overlap out and damp; positions move; a rigid relax sweep
         // removes the push velocity. Sweeps alternate direction through each manifold's points.
         crate::joints::solver::solve(joints, vel, states, h, true);
