@@ -3,8 +3,12 @@
 //! list of a step (after Box2D v3's soft step):
 //!
 //! prepare contacts and joints → per sub-step { integrate velocities, warm start (joints,
-//! then contacts), solve with bias (joints, then contacts), integrate positions, relax
-//! without bias (joints, then contacts) } → restitution → store impulses.
+//! then contacts, each batch refreshed first), solve with bias (joints, then contacts),
+//! integrate positions, relax without bias (joints, then contacts) } → restitution → store
+//! impulses.
+//!
+//! Plain and kinematic bodies are integrated in SIMD lanes (`integrate_wide.rs`); bodies with
+//! torque, gyroscopic motion or RK4 take the scalar path here.
 
 use crate::body::Body;
 use crate::contact_solver::{self, ContactRef, Sources};
@@ -126,7 +130,7 @@ pub enum Path {
     /// Kinematic: moves at its velocity; no forces.
     Kinematic,
     /// Dynamic with isotropic inertia and no torque: velocities change by the step's constant
-    /// acceleration and damping only, so one short loop handles it.
+    /// acceleration and damping only, so it is integrated in lanes (`integrate_wide`).
     Plain,
     /// Dynamic with torque, gyroscopic motion or RK4 (`BodySim`).
     General,
