@@ -462,7 +462,7 @@ fn on() -> f32 {
 const STICK_SPEED: f32 = 0.01;
 
 /// Two unit tangents completing the unit normal `n` to a right-handed basis (Duff et al. 2017,
-/// branch-free, lane by lane).
+/// branch-free): `math::orthonormal_basis` lane by lane.
 #[inline(always)]
 fn basis<L: Lanes>(n: V<L>) -> (V<L>, V<L>) {
     let one = L::one();
@@ -969,24 +969,23 @@ fn refresh_warm_start_all<L: Lanes>(
 ) {
     for w in batches.iter_mut() {
         match (w.count == 1, w.b_static) {
-            (true, true) => {
-                refresh_batch::<L, 1, true>(states, w, first);
-                warm_start_batch::<L, 1, true>(vel, w);
-            }
-            (true, false) => {
-                refresh_batch::<L, 1, false>(states, w, first);
-                warm_start_batch::<L, 1, false>(vel, w);
-            }
-            (false, true) => {
-                refresh_batch::<L, MAXP, true>(states, w, first);
-                warm_start_batch::<L, MAXP, true>(vel, w);
-            }
-            (false, false) => {
-                refresh_batch::<L, MAXP, false>(states, w, first);
-                warm_start_batch::<L, MAXP, false>(vel, w);
-            }
+            (true, true) => refresh_warm_start_batch::<L, 1, true>(states, vel, w, first),
+            (true, false) => refresh_warm_start_batch::<L, 1, false>(states, vel, w, first),
+            (false, true) => refresh_warm_start_batch::<L, MAXP, true>(states, vel, w, first),
+            (false, false) => refresh_warm_start_batch::<L, MAXP, false>(states, vel, w, first),
         }
     }
+}
+
+#[inline(always)]
+fn refresh_warm_start_batch<L: Lanes, const N: usize, const SB: bool>(
+    states: &[BodyState],
+    vel: &mut [Velocity],
+    w: &mut WideContact<L>,
+    first: bool,
+) {
+    refresh_batch::<L, N, SB>(states, w, first);
+    warm_start_batch::<L, N, SB>(vel, w);
 }
 
 #[inline(always)]
