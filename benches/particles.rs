@@ -6,11 +6,14 @@
 //!
 //! `cargo bench --bench particles`; `cargo bench --bench particles -- sleep_off` for one.
 
+#[path = "../tests/scenes/mod.rs"]
+#[allow(dead_code)]
+mod scenes;
 use criterion::{criterion_group, criterion_main, BatchSize, Criterion, Throughput};
 use hearth::generators::GeneratorDef;
 use hearth::math::Vec3;
 use hearth::particles::ParticleDef;
-use hearth::{scenes, World};
+use hearth::World;
 
 const PARTICLES: usize = 100_000;
 const STEPS: u64 = 60;

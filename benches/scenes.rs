@@ -4,8 +4,10 @@
 //!
 //! `cargo bench --bench scenes` runs all; `cargo bench --bench scenes -- pyramid` one.
 
+#[path = "../tests/scenes/mod.rs"]
+#[allow(dead_code)]
+mod scenes;
 use criterion::{criterion_group, criterion_main, BatchSize, Criterion, Throughput};
-use hearth::scenes;
 use hearth::World;
 
 const STEPS: u64 = 600;

@@ -13,10 +13,13 @@
 //!
 //! `cargo bench --bench soft`; `cargo bench --bench soft -- cloth` for one.
 
+#[path = "../tests/scenes/mod.rs"]
+#[allow(dead_code)]
+mod scenes;
 use criterion::{criterion_group, criterion_main, BatchSize, Criterion, Throughput};
 use hearth::math::{Quat, Transform, Vec3};
 use hearth::soft::{mesh, SoftBodyDef};
-use hearth::{scenes, World};
+use hearth::World;
 
 const STEPS: u64 = 60;
 const WARM_UP: usize = 120;

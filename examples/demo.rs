@@ -4,7 +4,10 @@
 //! (`hearth::World` and the shared scenes in `hearth::scenes`) and prints a line of
 //! statistics every half second of simulated time, then a short summary.
 
-use hearth::{scenes, BodyHandle, ShapeDef, Vec3, World};
+#[path = "../tests/scenes/mod.rs"]
+#[allow(dead_code)]
+mod scenes;
+use hearth::{BodyHandle, ShapeDef, Vec3, World};
 use std::time::Instant;
 
 /// Fixed time step (s) and number of steps: 6 simulated seconds.

@@ -3,7 +3,10 @@
 //! can be varied with SUBSTEPS=n, ITERATIONS=n and LANES=4 (no AVX2), the run with STEPS=n (default 600) and
 //! SLEEP=0/1 (only the scenes with sleep off/on; for profilers such as callgrind).
 
-use hearth::{scenes, LaneWidth, World, WorldSettings};
+#[path = "../tests/scenes/mod.rs"]
+#[allow(dead_code)]
+mod scenes;
+use hearth::{LaneWidth, World, WorldSettings};
 use std::time::Instant;
 
 type Build = fn(&mut World);

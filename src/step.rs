@@ -1,8 +1,8 @@
 //! The step, stage by stage. Read this file top to bottom to follow a frame.
 
-use crate::aabb::Aabb;
-use crate::body::NONE;
-use crate::broad_phase::{aabb_touches_plane, world_plane};
+use crate::collision::aabb::Aabb;
+use crate::collision::broad_phase::{aabb_touches_plane, world_plane};
+use crate::dynamics::body::NONE;
 use crate::world::World;
 
 /// Extra distance (m) within which contact points are kept before touching.
@@ -60,7 +60,7 @@ impl World {
     /// Stages 6–9: rigid solve, particles, bounds, sleep.
     pub fn finish_step(&mut self, dt: f32) {
         // 6. Integration and contact resolution, sub-stepped (solver.rs).
-        crate::solver::solve(self, dt);
+        crate::dynamics::solver::solve(self, dt);
         self.generated_contacts.clear();
         // 7. Particles: integration, contacts with shapes (two-way with dynamic bodies),
         //    rods and cables, sleep, lifetimes (particles/solver.rs).
@@ -71,8 +71,8 @@ impl World {
         // 8. Bounds: refit moved proxies, sweeping them along the coming motion.
         self.update_bounds(dt);
         // 9. Sleep.
-        let ready = crate::island::update_motion(self, dt);
-        crate::island::sleep_islands(self, ready);
+        let ready = crate::dynamics::island::update_motion(self, dt);
+        crate::dynamics::island::sleep_islands(self, ready);
         self.counters.awake_bodies = self.awake_bodies.len();
         self.counters.contacts = self.contacts.len();
     }
@@ -203,9 +203,9 @@ impl World {
 
 /// Are two shapes' tight bounds further apart than `margin` (so no contact point can exist)?
 fn apart(
-    a: &crate::shape::Shape,
+    a: &crate::collision::shape::Shape,
     xf_a: &crate::math::Transform,
-    b: &crate::shape::Shape,
+    b: &crate::collision::shape::Shape,
     xf_b: &crate::math::Transform,
     margin: f32,
 ) -> bool {
@@ -236,9 +236,9 @@ fn fat_overlap(
     proxy_a: u32,
     b: &Aabb,
     proxy_b: u32,
-    geom_b: &crate::shape::Geometry,
+    geom_b: &crate::collision::shape::Geometry,
     xf_b: &crate::math::Transform,
-    geom_a: &crate::shape::Geometry,
+    geom_a: &crate::collision::shape::Geometry,
     xf_a: &crate::math::Transform,
 ) -> bool {
     if proxy_b == NONE {

@@ -1,16 +1,16 @@
 //! The world: owns bodies, shapes and contacts, and the operations a host performs on them.
 //! The step itself is in `step.rs`.
 
-use crate::body::{Body, BodyDef, BodyHandle, BodyType, ShapeHandle, NONE};
-use crate::broad_phase::BroadPhase;
-use crate::contact::Contact;
-use crate::contact_wide::Batches;
-pub use crate::contact_wide::LaneWidth;
+use crate::collision::broad_phase::BroadPhase;
+use crate::collision::contact::Contact;
+use crate::collision::shape::{Geometry, MassProperties, Shape, ShapeDef};
+use crate::dynamics::body::{Body, BodyDef, BodyHandle, BodyType, ShapeHandle, NONE};
+use crate::dynamics::contact_wide::Batches;
+pub use crate::dynamics::contact_wide::LaneWidth;
+use crate::dynamics::solver::SolverScratch;
 use crate::error::{check_non_negative, check_positive, check_vec, invalid, Error, Result};
 use crate::math::{Transform, Vec3};
 use crate::pool::{next_world_tag, Handle, Pool};
-use crate::shape::{Geometry, MassProperties, Shape, ShapeDef};
-use crate::solver::SolverScratch;
 
 /// How unconstrained bodies are integrated.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -124,9 +124,9 @@ pub struct World {
     pub(crate) islands: Pool<Vec<u32>>,
     pub(crate) solver: SolverScratch,
     /// Contacts written by contact generators for the current step (cleared each step).
-    pub generated_contacts: Vec<crate::contact::GeneratedContact>,
+    pub generated_contacts: Vec<crate::collision::contact::GeneratedContact>,
     pub(crate) scratch_wake: Vec<u32>,
-    pub(crate) island_scratch: crate::island::IslandScratch,
+    pub(crate) island_scratch: crate::dynamics::island::IslandScratch,
     pub counters: StepCounters,
     /// Force and contact generators (issue 4, `generators/`).
     pub generators: Pool<crate::generators::Generator>,
@@ -134,7 +134,7 @@ pub struct World {
     /// The particle world (issue 4, `particles/`).
     pub particles: crate::particles::Particles,
     /// Joints (issue 5, `joints/`).
-    pub joints: crate::joints::Joints,
+    pub joints: crate::dynamics::joints::Joints,
     /// Soft bodies (issue 6, `soft/`).
     pub soft_bodies: crate::soft::SoftBodies,
 }
@@ -163,7 +163,7 @@ impl World {
             generators: Pool::new(tag),
             generator_scratch: Default::default(),
             particles: crate::particles::Particles::new(tag),
-            joints: crate::joints::Joints::new(tag),
+            joints: crate::dynamics::joints::Joints::new(tag),
             soft_bodies: crate::soft::SoftBodies::new(tag),
         })
     }
@@ -404,8 +404,8 @@ impl World {
             geometry,
             def: *def,
             proxy: NONE,
-            aabb: crate::aabb::Aabb::EMPTY,
-            fat_aabb: crate::aabb::Aabb::EMPTY,
+            aabb: crate::collision::aabb::Aabb::EMPTY,
+            fat_aabb: crate::collision::aabb::Aabb::EMPTY,
             in_move_buffer: false,
             extent: 0.0,
         };
@@ -529,7 +529,7 @@ impl World {
 
     pub(crate) fn create_contact(&mut self, sa: u32, sb: u32) {
         // Order so the narrowphase sees the lower shape kind first (it handles either order).
-        let key = crate::broad_phase::pair_key(sa, sb);
+        let key = crate::collision::broad_phase::pair_key(sa, sb);
         if self.broad.pairs.contains_key(&key) {
             return;
         }

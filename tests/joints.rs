@@ -2,6 +2,9 @@
 //! chain's stretch and stillness, a motor reaching its speed, limits under load, a ragdoll
 //! settling, Newton's cradle, breaking, the body-destruction rule and determinism.
 
+#[path = "scenes/mod.rs"]
+#[allow(dead_code)]
+mod scenes;
 use hearth::joints::{BallParams, DistanceParams, HingeParams, SliderParams};
 use hearth::math::{Quat, Transform, Vec3};
 use hearth::{BodyDef, BodyHandle, BodyType, Geometry, JointDef, JointKind, ShapeDef, World, WorldSettings};

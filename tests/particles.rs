@@ -4,6 +4,9 @@
 //! dynamic bodies (two-way), a rope bridge of particles carries a rigid box, sleep, no
 //! allocation in a steady step, determinism.
 
+#[path = "scenes/mod.rs"]
+#[allow(dead_code)]
+mod scenes;
 use std::alloc::{GlobalAlloc, Layout, System};
 use std::cell::Cell;
 
@@ -12,7 +15,7 @@ use hearth::math::{Quat, Transform, Vec3};
 use hearth::particles::emitter::BurstDef;
 use hearth::particles::ParticleDef;
 use hearth::pool::Handle;
-use hearth::{scenes, BodyDef, BodyType, Error, Geometry, ShapeDef, World, WorldSettings};
+use hearth::{BodyDef, BodyType, Error, Geometry, ShapeDef, World, WorldSettings};
 
 /// Counts allocations made by the current thread (tests run on several threads).
 struct Counting;

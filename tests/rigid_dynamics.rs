@@ -1,8 +1,10 @@
 //! Rigid-body physics against analytic answers: free fall, bounce heights from restitution,
 //! friction thresholds and sliding distances, conservation laws, gyroscopic motion.
 
+#[path = "scenes/mod.rs"]
+#[allow(dead_code)]
+mod scenes;
 use hearth::math::{Quat, Transform, Vec3};
-use hearth::scenes;
 use hearth::{BodyDef, BodyType, Geometry, Integrator, ShapeDef, World, WorldSettings};
 
 const DT: f32 = 1.0 / 60.0;

@@ -9,12 +9,15 @@
 //! follow bodies and are freed with them; settings change after creation; determinism and
 //! no allocation in a steady step.
 
+#[path = "scenes/mod.rs"]
+#[allow(dead_code)]
+mod scenes;
 use std::alloc::{GlobalAlloc, Layout, System};
 use std::cell::Cell;
 
 use hearth::math::{Quat, Transform, Vec3};
 use hearth::soft::{mesh, SoftBodyDef, SoftBodyHandle};
-use hearth::{scenes, BodyDef, BodyType, Geometry, ShapeDef, World, WorldSettings};
+use hearth::{BodyDef, BodyType, Geometry, ShapeDef, World, WorldSettings};
 
 struct Counting;
 

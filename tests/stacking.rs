@@ -1,8 +1,10 @@
 //! Contacts that rest and stack: towers, pyramids, toppling, tunnelling, sleep and wake,
 //! broad phase against brute force, determinism.
 
+#[path = "scenes/mod.rs"]
+#[allow(dead_code)]
+mod scenes;
 use hearth::math::{Quat, Transform, Vec3};
-use hearth::scenes;
 use hearth::{BodyDef, BodyHandle, BodyType, Geometry, ShapeDef, World};
 
 const DT: f32 = 1.0 / 60.0;

@@ -4,7 +4,7 @@ use super::error::*;
 use super::types::*;
 use super::validate::{self, DEF_COOKIE};
 use super::world::{world_mut, world_mut_in_phase, world_ref, HearthWorld, PHASE_FORCES};
-use crate::body::{BodyDef, BodyType};
+use crate::dynamics::body::{BodyDef, BodyType};
 use crate::math::Transform;
 
 /// Never moves; infinite mass. Planes go on static bodies.

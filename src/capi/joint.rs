@@ -11,7 +11,7 @@ use super::error::*;
 use super::types::*;
 use super::validate::{self, DEF_COOKIE};
 use super::world::{world_mut, world_ref, HearthWorld};
-use crate::joints::{BallParams, DistanceParams, HingeParams, JointDef, JointKind, SliderParams};
+use crate::dynamics::joints::{BallParams, DistanceParams, HingeParams, JointDef, JointKind, SliderParams};
 use crate::math::{Quat, Transform, Vec3};
 use crate::pool::Handle;
 

@@ -4,7 +4,7 @@ use super::error::*;
 use super::types::*;
 use super::validate::{self, DEF_COOKIE};
 use super::world::{world_mut, world_ref, HearthWorld};
-use crate::shape::{Geometry, ShapeDef};
+use crate::collision::shape::{Geometry, ShapeDef};
 
 /// Material of a shape. Get one from `hearth_shape_def_default()`, then edit it. Where two
 /// shapes touch, friction combines as the geometric mean and restitution as the maximum.

@@ -6,7 +6,7 @@
 //! it pushes.
 
 use super::{End, Generator, GeneratorDef, Spring};
-use crate::body::Body;
+use crate::dynamics::body::Body;
 use crate::math::Vec3;
 use crate::particles::Particles;
 use crate::pool::{Handle, Pool};

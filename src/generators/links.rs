@@ -18,8 +18,8 @@
 //! Links with a particle end are solved in the particle stage (`particles/solver.rs`).
 
 use super::{End, GeneratorDef};
-use crate::body::NONE;
-use crate::contact::GeneratedContact;
+use crate::collision::contact::GeneratedContact;
+use crate::dynamics::body::NONE;
 use crate::math::Vec3;
 use crate::world::World;
 

@@ -2,7 +2,7 @@
 //! bodies and fixed things, solved by sequential impulses (velocities) and non-linear
 //! Gauss–Seidel (positions); and the one-pass solver of a particle's lone contact.
 
-use crate::body::{Body, NONE};
+use crate::dynamics::body::{Body, NONE};
 use crate::generators::WARM_SLOTS;
 use crate::hash::IntMap;
 use crate::math::{Mat3, Quat, Vec3};

@@ -39,15 +39,15 @@
 use super::block::RodBlock;
 use super::constraint::{body_side, Constraint, Coupled, Kind, Side, Simple, Sys};
 use super::{ContactOther, ExpiredParticle, Particles, ALLOW_SLEEP, AWAKE, COLLIDE};
-use crate::aabb::Aabb;
-use crate::body::NONE;
-use crate::broad_phase::world_plane;
-use crate::collision::collide;
+use crate::collision::aabb::Aabb;
+use crate::collision::broad_phase::world_plane;
+use crate::collision::narrow_phase::collide;
+use crate::collision::shape::{Geometry, Shape};
+use crate::dynamics::body::NONE;
 use crate::generators::{End, GeneratorDef, WARM_SLOTS};
 use crate::hash::IntMap;
 use crate::math::{integrate_rotation, Quat, Transform, Vec3};
 use crate::pool::Handle;
-use crate::shape::{Geometry, Shape};
 use crate::world::World;
 
 const LINK_KEY: u64 = 1 << 63;

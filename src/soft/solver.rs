@@ -12,7 +12,7 @@
 //! 3. **Collision detection.** The vertices' box, grown by the motion of the step, is
 //!    queried in the broad-phase tree (read-only) for shapes, and tested against the
 //!    world's planes; each vertex keeps the deepest contact it finds as a plane (normal out
-//!    of the shape), found by `crate::collision::collide` with a sphere of the vertex
+//!    of the shape), found by `crate::collision::narrow_phase::collide` with a sphere of the vertex
 //!    radius. Against an awake dynamic body the plane is kept in the body's frame and the
 //!    body is coupled.
 //!
@@ -66,14 +66,14 @@
 //! candidate, plane and coupled-body lists in `SoftScratch` with capacity kept.
 
 use super::{SoftBody, VertexContact};
-use crate::aabb::Aabb;
-use crate::body::{Body, NONE};
-use crate::broad_phase::world_plane;
-use crate::collision::collide;
+use crate::collision::aabb::Aabb;
+use crate::collision::broad_phase::world_plane;
+use crate::collision::narrow_phase::collide;
+use crate::collision::shape::{Geometry, Shape};
+use crate::dynamics::body::{Body, NONE};
 use crate::hash::IntMap;
 use crate::math::{integrate_rotation, Mat3, Quat, Transform, Vec3};
 use crate::pool::{Handle, Pool};
-use crate::shape::{Geometry, Shape};
 use crate::world::World;
 
 /// Scratch of the stage, capacity kept between steps.
@@ -397,7 +397,7 @@ fn find_contacts(
     s: &mut SoftBody,
     bodies: &Pool<Body>,
     shapes: &Pool<Shape>,
-    broad: &crate::broad_phase::BroadPhase,
+    broad: &crate::collision::broad_phase::BroadPhase,
     sc: &mut SoftScratch,
     dt: f32,
     pass: u32,

@@ -1,6 +1,6 @@
 use super::super::collide;
+use crate::collision::shape::Geometry;
 use crate::math::{Quat, Transform, Vec3};
-use crate::shape::Geometry;
 use std::f32::consts::FRAC_PI_2;
 
 fn near(a: Vec3, b: Vec3) -> bool {

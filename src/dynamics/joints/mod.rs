@@ -34,7 +34,7 @@ pub mod slider;
 pub mod solver;
 pub mod tree;
 
-use crate::body::NONE;
+use crate::dynamics::body::NONE;
 use crate::error::{check_finite, check_non_negative, check_positive, check_quat, check_vec, invalid, Error, Result};
 use crate::math::{Transform, Vec3};
 use crate::pool::{Handle, Pool};

@@ -1,9 +1,10 @@
-//! Standard scenes, defined once and shared by tests, benches and examples.
+//! Standard scenes, defined once and shared by tests, benches and examples (not part of the
+//! shipped library: each includes this file with `#[path]`).
 
-use crate::body::{BodyDef, BodyHandle, BodyType};
-use crate::math::{Quat, Transform, Vec3};
-use crate::shape::{Geometry, ShapeDef};
-use crate::world::{World, WorldSettings};
+use hearth::math::{Quat, Transform, Vec3};
+use hearth::world::{World, WorldSettings};
+use hearth::{BodyDef, BodyHandle, BodyType};
+use hearth::{Geometry, ShapeDef};
 
 /// Half extent of the standard box.
 pub const H: f32 = 0.5;

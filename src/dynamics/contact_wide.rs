@@ -17,15 +17,15 @@
 //! would pull) and then its patch friction (static/dynamic coefficients, twist). After the
 //! sub-steps: `restitution`, then `store` writes the impulses back for warm starting.
 
-use crate::collision::MAX_MANIFOLD_POINTS;
-use crate::contact::{Contact, GeneratedContact};
-use crate::contact_solver::{self, ContactRef, LaneImpulses, Sources};
+use crate::collision::contact::{Contact, GeneratedContact};
+use crate::collision::narrow_phase::MAX_MANIFOLD_POINTS;
+use crate::dynamics::contact_solver::{self, ContactRef, LaneImpulses, Sources};
+use crate::dynamics::solver::{BodyState, Velocity};
 use crate::math::Vec3;
 use crate::pool::Pool;
 #[cfg(target_arch = "x86_64")]
 use crate::simd::F8;
 use crate::simd::{Lanes, F4, M, V};
-use crate::solver::{BodyState, Velocity};
 
 const MAXP: usize = MAX_MANIFOLD_POINTS;
 
@@ -419,7 +419,7 @@ impl<L: Lanes> Staging<L> {
     #[inline(always)]
     fn generated(&mut self, i: usize, r: &ContactRef, g: &GeneratedContact, s: &Sources) {
         let center = |b: u32| {
-            if b == crate::body::NONE {
+            if b == crate::dynamics::body::NONE {
                 g.point
             } else {
                 s.bodies.at(b).center
@@ -1034,9 +1034,9 @@ fn sum_impulses<L: Lanes, const N: usize>(w: &WideContact<L>) -> L {
 /// leak of accumulated impulse is what damps a deep stack's oscillations.
 #[derive(Clone, Copy, Debug)]
 pub struct SoftSweep {
-    pub soft: crate::solver::Softness,
+    pub soft: crate::dynamics::solver::Softness,
     /// Softness of contacts with a static or kinematic body (stiffer).
-    pub soft_static: crate::solver::Softness,
+    pub soft_static: crate::dynamics::solver::Softness,
     pub max_push: f32,
     pub slop: f32,
 }

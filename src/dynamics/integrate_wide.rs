@@ -6,9 +6,9 @@
 //! width, so results do not depend on it. Bodies with torque, gyroscopic motion or RK4 take
 //! the scalar path in `solver.rs`.
 
-use crate::contact_wide::{gather, scatter};
+use crate::dynamics::contact_wide::{gather, scatter};
+use crate::dynamics::solver::{BodyState, Drive, Velocity};
 use crate::simd::{Lanes, F4, V};
-use crate::solver::{BodyState, Drive, Velocity};
 
 #[cfg(target_arch = "x86_64")]
 use crate::simd::F8;

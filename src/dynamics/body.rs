@@ -1,9 +1,9 @@
 //! Rigid bodies: type, state, mass properties and the per-body lists (shapes, contacts).
 
+use crate::collision::shape::MassProperties;
 use crate::error::{check_non_negative, check_quat, check_vec, Result};
 use crate::math::{Mat3, Transform, Vec3};
 use crate::pool::Handle;
-use crate::shape::MassProperties;
 
 pub type BodyHandle = Handle;
 pub type ShapeHandle = Handle;

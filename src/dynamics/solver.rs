@@ -10,10 +10,10 @@
 //! Plain and kinematic bodies are integrated in SIMD lanes (`integrate_wide.rs`); bodies with
 //! torque, gyroscopic motion or RK4 take the scalar path here.
 
-use crate::body::Body;
-use crate::contact_solver::{self, ContactRef, Sources};
-use crate::contact_wide;
-use crate::integrate_wide;
+use crate::dynamics::body::Body;
+use crate::dynamics::contact_solver::{self, ContactRef, Sources};
+use crate::dynamics::contact_wide;
+use crate::dynamics::integrate_wide;
 use crate::math::{integrate_rotation, Mat3, Quat, Vec3};
 use crate::world::{Integrator, World};
 
@@ -511,7 +511,7 @@ pub fn solve(world: &mut World, dt: f32) {
     let h = dt / substeps as f32;
     prepare_bodies(world, dt, h);
     contact_solver::prepare(world);
-    crate::joints::solver::prepare(world, h);
+    crate::dynamics::joints::solver::prepare(world, h);
 
     let settings = world.settings;
     let joints = &mut world.joints.constraints;
@@ -525,7 +525,7 @@ pub fn solve(world: &mut World, dt: f32) {
             scratch.sims[r.a as usize].rk4 = false;
             scratch.sims[r.b as usize].rk4 = false;
         }
-        crate::joints::solver::mark_constrained(joints, &mut scratch.sims);
+        crate::dynamics::joints::solver::mark_constrained(joints, &mut scratch.sims);
         for (d, sim) in scratch.drives.iter_mut().zip(&scratch.sims) {
             if sim.rk4 {
                 d.path = Path::General;
@@ -560,17 +560,17 @@ pub fn solve(world: &mut World, dt: f32) {
         integrate_wide::velocities(eight, vel, drives, &paths.plain, max_speed);
         integrate_general_velocities(vel, drives, states, sims, &paths.general, h, max_speed);
         // Joints warm start first, then each contact batch is refreshed and warm started.
-        crate::joints::solver::warm_start(joints, vel, states);
+        crate::dynamics::joints::solver::warm_start(joints, vel, states);
         contact_wide::refresh_warm_start(states, vel, batches, sub == 0);
         // Soft, biased sweeps push overlap out and damp; positions move; a rigid relax sweep
         // removes the push velocity. Sweeps alternate direction through each manifold's points.
-        crate::joints::solver::solve(joints, vel, states, h, true);
+        crate::dynamics::joints::solver::solve(joints, vel, states, h, true);
         for k in 0..settings.velocity_iterations {
             contact_wide::solve(vel, batches, inv_h, (sub + k) % 2 == 0, Some(&soft));
         }
         integrate_wide::positions(eight, vel, states, &paths.moving, h);
         integrate_general_positions(vel, states, sims, &paths.general, h);
-        crate::joints::solver::solve(joints, vel, states, h, false);
+        crate::dynamics::joints::solver::solve(joints, vel, states, h, false);
         contact_wide::solve(vel, batches, inv_h, sub % 2 == 1, None);
     }
     if scratch.bounces {
@@ -578,7 +578,7 @@ pub fn solve(world: &mut World, dt: f32) {
         contact_wide::restitution(vel, batches, settings.restitution_threshold);
     }
     contact_wide::store(batches, &scratch.refs, &mut world.contacts);
-    crate::joints::solver::store(world, h);
+    crate::dynamics::joints::solver::store(world, h);
     finalize_bodies(world);
 }
 

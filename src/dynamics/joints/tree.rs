@@ -38,8 +38,8 @@
 
 use super::rows::{Eq, Row, Slot};
 use super::solver::{load, write, Ctx, Frames, JointConstraint};
+use crate::dynamics::solver::{BodyState, Velocity};
 use crate::math::Vec3;
-use crate::solver::{BodyState, Velocity};
 
 type V6 = [f32; 6];
 

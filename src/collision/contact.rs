@@ -2,9 +2,9 @@
 //! Each keeps its manifold and the impulses of its points between steps (warm starting),
 //! matched by feature id.
 
-use crate::collision::{collide, Manifold, MAX_MANIFOLD_POINTS};
+use crate::collision::narrow_phase::{collide, Manifold, MAX_MANIFOLD_POINTS};
+use crate::collision::shape::{Shape, ShapeDef};
 use crate::math::{Quat, Transform, Vec3};
-use crate::shape::{Shape, ShapeDef};
 use glam::{Mat3A, Vec3A};
 
 /// Impulses a manifold point carried at the end of the last step.
@@ -150,7 +150,7 @@ impl Contact {
             dynamic_friction: fd,
             restitution: e,
             touching: false,
-            awake_index: crate::body::NONE,
+            awake_index: crate::dynamics::body::NONE,
             key,
             radius_a: a.geometry.rounding_radius(),
             radius_b: b.geometry.rounding_radius(),
@@ -197,7 +197,7 @@ impl Contact {
 }
 
 /// A contact written by a contact generator (rod, cable, user callback) for one step: body
-/// slot indices (`crate::body::NONE` for the world), a world point, the normal from A to B,
+/// slot indices (`crate::dynamics::body::NONE` for the world), a world point, the normal from A to B,
 /// the penetration (> 0 when the constraint is violated) and materials.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct GeneratedContact {

@@ -90,8 +90,8 @@ pub(crate) fn sphere_plane(ca: Vec3, ra: f32, plane: &WorldPlane, speculative: f
 #[cfg(test)]
 mod tests {
     use super::super::collide;
+    use crate::collision::shape::Geometry;
     use crate::math::{Quat, Transform, Vec3};
-    use crate::shape::Geometry;
 
     fn near(a: Vec3, b: Vec3) -> bool {
         (a - b).length() < 1e-4

@@ -1,6 +1,6 @@
 //! Shape geometry in the local frame of its body, its bounds and its mass.
 
-use crate::aabb::Aabb;
+use crate::collision::aabb::Aabb;
 use crate::math::{Mat3, Quat, Transform, Vec3};
 
 /// Collision geometry, placed in the local frame of the body that owns it.
@@ -411,7 +411,7 @@ pub struct Shape {
     pub body: u32,
     pub geometry: Geometry,
     pub def: ShapeDef,
-    /// Tree proxy, or `crate::body::NONE` for planes.
+    /// Tree proxy, or `crate::dynamics::body::NONE` for planes.
     pub proxy: u32,
     /// Tight world bounds at the end of the last step (or at creation / teleport).
     pub aabb: Aabb,

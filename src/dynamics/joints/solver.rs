@@ -23,9 +23,9 @@
 use super::rows::Eq;
 use super::tree::Forest;
 use super::{Impulses, JointKind};
-use crate::body::NONE;
+use crate::dynamics::body::NONE;
+use crate::dynamics::solver::{BodySim, BodyState, Softness, Velocity};
 use crate::math::{Mat3, Quat, Transform, Vec3};
-use crate::solver::{BodySim, BodyState, Softness, Velocity};
 use crate::world::World;
 
 /// Stiffness of joint rows in the biased sweep as a fraction of the sub-step rate (Hz·s):

@@ -2,8 +2,8 @@
 //! the right shapes, swapped order flipping the normal, distinct ids.
 
 use super::{collide, Manifold};
+use crate::collision::shape::Geometry;
 use crate::math::{Quat, Transform, Vec3};
-use crate::shape::Geometry;
 
 struct Lcg(u64);
 impl Lcg {

@@ -70,7 +70,7 @@ pub fn sleep_islands(world: &mut World, ready: bool) {
     }
     // Joints (issue 5) join their dynamic bodies into one island.
     for (_, j) in world.joints.pool.iter() {
-        if j.broken || j.b == crate::body::NONE {
+        if j.broken || j.b == crate::dynamics::body::NONE {
             continue;
         }
         let (a, b) = (world.bodies.at(j.a), world.bodies.at(j.b));
@@ -123,7 +123,7 @@ fn wake_joined_sleepers(world: &mut World) {
     let mut wake = std::mem::take(&mut world.scratch_wake);
     wake.clear();
     for (_, j) in world.joints.pool.iter() {
-        if j.broken || j.b == crate::body::NONE {
+        if j.broken || j.b == crate::dynamics::body::NONE {
             continue;
         }
         let (a, b) = (world.bodies.at(j.a), world.bodies.at(j.b));

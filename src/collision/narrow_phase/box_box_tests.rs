@@ -1,7 +1,7 @@
 use super::super::{collide, Manifold};
 use super::{EDGE_FLAG, REF_ON_B_FLAG};
+use crate::collision::shape::Geometry;
 use crate::math::{Quat, Transform, Vec3};
-use crate::shape::Geometry;
 use std::f32::consts::{FRAC_PI_4, FRAC_PI_6};
 
 fn near(a: Vec3, b: Vec3, tol: f32) -> bool {

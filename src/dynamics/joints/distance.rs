@@ -6,8 +6,8 @@
 use super::rows::Row;
 use super::solver::{soft_impulse, Bodies, Ctx, Frames, Wrench};
 use super::{DistanceParams, Impulses};
+use crate::dynamics::solver::Softness;
 use crate::math::Vec3;
-use crate::solver::Softness;
 
 /// Unit direction from A's anchor to B's, and the length.
 pub(super) fn axis(f: &Frames) -> (Vec3, f32) {

@@ -1,7 +1,7 @@
 //! Top-down binned SAH rebuild of a [`DynamicTree`].
 
 use super::{DynamicTree, Stack, NULL_NODE};
-use crate::aabb::Aabb;
+use crate::collision::aabb::Aabb;
 use crate::math::Vec3;
 
 /// Number of bins per axis of the SAH rebuild.

@@ -5,12 +5,12 @@
 //! and read back; after the solve, `store` keeps each lane's impulses on its contact for warm
 //! starting.
 
-use crate::body::{Body, NONE};
-use crate::collision::MAX_MANIFOLD_POINTS;
-use crate::contact::{Contact, GeneratedContact};
+use crate::collision::contact::{Contact, GeneratedContact};
+use crate::collision::narrow_phase::MAX_MANIFOLD_POINTS;
+use crate::dynamics::body::{Body, NONE};
+use crate::dynamics::solver::{BodyState, Velocity};
 use crate::math::Vec3;
 use crate::pool::Pool;
-use crate::solver::{BodyState, Velocity};
 use crate::world::World;
 
 /// `ContactRef::source` bit of a generated contact (the rest indexes `World::generated_contacts`).

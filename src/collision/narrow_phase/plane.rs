@@ -62,8 +62,8 @@ pub(crate) fn box_plane(a: &WorldBox, plane: &WorldPlane, speculative: f32) -> M
 #[cfg(test)]
 mod tests {
     use super::super::collide;
+    use crate::collision::shape::Geometry;
     use crate::math::{Quat, Transform, Vec3};
-    use crate::shape::Geometry;
     use std::f32::consts::FRAC_PI_4;
 
     fn unit_box() -> Geometry {

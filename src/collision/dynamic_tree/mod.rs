@@ -10,7 +10,7 @@
 //!
 //! Every operation is deterministic: the same sequence of calls gives the same tree.
 
-use crate::aabb::Aabb;
+use crate::collision::aabb::Aabb;
 use crate::math::Vec3;
 
 /// The null node / proxy index.

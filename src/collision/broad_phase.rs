@@ -1,11 +1,11 @@
 //! Broad phase: a dynamic AABB tree of shape proxies plus the list of static planes, a move
 //! buffer of proxies whose fat box grew, and the set of pairs that already have a contact.
 
-use crate::aabb::Aabb;
-use crate::dynamic_tree::DynamicTree;
+use crate::collision::aabb::Aabb;
+use crate::collision::dynamic_tree::DynamicTree;
+use crate::collision::shape::Geometry;
 use crate::hash::IntMap;
 use crate::math::{Transform, Vec3};
-use crate::shape::Geometry;
 
 /// Key of an unordered shape pair (slot indices).
 #[inline]

@@ -8,8 +8,8 @@
 use super::rows::{Eq, Row, Spd};
 use super::solver::{soft_impulse, Bodies, Ctx, Frames, Wrench};
 use super::{HingeParams, Impulses};
+use crate::dynamics::solver::Softness;
 use crate::math::Vec3;
-use crate::solver::Softness;
 
 /// The hinge axis: halfway between the frames' Z axes.
 fn axis(f: &Frames) -> Vec3 {

@@ -1,0 +1,188 @@
+//! Narrowphase: contact manifolds between pairs of shapes.
+//!
+//! Every function here is pure geometry: shapes in their body's local frame plus the body
+//! transforms in, a [`Manifold`] out. The world's contact stage calls [`collide`].
+//!
+//! Conventions for every pair: the normal is a world-space unit vector from A to B; a
+//! point lies midway between the two surfaces along the normal; separation is signed
+//! (negative = penetration) and points are kept while it is at most `speculative`. When
+//! the geometry gives no direction (coincident centres, zero-length capsules) the normal
+//! is +Y. Nothing here allocates.
+//!
+//! One file per family: `sphere` (sphere against everything), `capsule` (capsule against
+//! capsule, box, plane), `box_box`, `plane` (box against plane); `geom` holds the shared
+//! helpers.
+
+mod box_box;
+mod capsule;
+mod geom;
+mod plane;
+mod sphere;
+
+use crate::collision::shape::Geometry;
+use crate::math::{Transform, Vec3};
+use geom::{WorldBox, WorldPlane};
+
+/// Most points a manifold carries (a face–face box contact is reduced to four).
+pub const MAX_MANIFOLD_POINTS: usize = 4;
+
+/// One contact point.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct ManifoldPoint {
+    /// World-space point midway between the two surfaces.
+    pub point: Vec3,
+    /// Signed distance along the normal: negative when penetrating, positive when
+    /// separated (speculative point).
+    pub separation: f32,
+    /// Feature key: stable across frames while the same features touch, used to match
+    /// points between frames for warm starting.
+    pub id: u32,
+}
+
+/// Contact manifold between shape A and shape B.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Manifold {
+    /// World-space unit normal pointing from A to B.
+    pub normal: Vec3,
+    pub points: [ManifoldPoint; MAX_MANIFOLD_POINTS],
+    pub count: usize,
+}
+
+impl Manifold {
+    pub const EMPTY: Manifold = Manifold {
+        normal: Vec3::ZERO,
+        points: [ManifoldPoint {
+            point: Vec3::ZERO,
+            separation: 0.0,
+            id: 0,
+        }; MAX_MANIFOLD_POINTS],
+        count: 0,
+    };
+
+    pub fn points(&self) -> &[ManifoldPoint] {
+        &self.points[..self.count]
+    }
+}
+
+/// Computes the contact manifold of `a` (on a body at `xf_a`) against `b` (at `xf_b`).
+/// Points are reported while their separation is at most `speculative` metres, so the
+/// solver can stop fast bodies before they pass through. Plane–plane gives no contact.
+///
+/// Pairs are handled with `kind(a) <= kind(b)`; the other order swaps the arguments and
+/// flips the normal (points, separations and ids are unchanged).
+pub fn collide(a: &Geometry, xf_a: &Transform, b: &Geometry, xf_b: &Transform, speculative: f32) -> Manifold {
+    if a.kind() > b.kind() {
+        let mut m = collide_ordered(b, xf_b, a, xf_a, speculative);
+        m.normal = -m.normal;
+        return m;
+    }
+    collide_ordered(a, xf_a, b, xf_b, speculative)
+}
+
+/// `collide` for `kind(a) <= kind(b)`.
+fn collide_ordered(a: &Geometry, xf_a: &Transform, b: &Geometry, xf_b: &Transform, speculative: f32) -> Manifold {
+    use Geometry as G;
+    match (*a, *b) {
+        (G::Sphere { center: ca, radius: ra }, G::Sphere { center: cb, radius: rb }) => {
+            sphere::sphere_sphere(xf_a.apply(ca), ra, xf_b.apply(cb), rb, speculative)
+        }
+        (
+            G::Sphere { center, radius },
+            G::Capsule {
+                a: pb,
+                b: qb,
+                radius: rb,
+            },
+        ) => sphere::sphere_capsule(
+            xf_a.apply(center),
+            radius,
+            xf_b.apply(pb),
+            xf_b.apply(qb),
+            rb,
+            speculative,
+        ),
+        (
+            G::Sphere { center, radius },
+            G::Box {
+                center: cb,
+                rotation,
+                half_extents,
+            },
+        ) => {
+            let bx = WorldBox::new(cb, rotation, half_extents, xf_b);
+            sphere::sphere_box(xf_a.apply(center), radius, &bx, speculative)
+        }
+        (G::Sphere { center, radius }, G::Plane { normal, offset }) => {
+            let plane = WorldPlane::new(normal, offset, xf_b);
+            sphere::sphere_plane(xf_a.apply(center), radius, &plane, speculative)
+        }
+        (
+            G::Capsule {
+                a: pa,
+                b: qa,
+                radius: ra,
+            },
+            G::Capsule {
+                a: pb,
+                b: qb,
+                radius: rb,
+            },
+        ) => capsule::capsule_capsule(
+            xf_a.apply(pa),
+            xf_a.apply(qa),
+            ra,
+            xf_b.apply(pb),
+            xf_b.apply(qb),
+            rb,
+            speculative,
+        ),
+        (
+            G::Capsule { a: pa, b: qa, radius },
+            G::Box {
+                center,
+                rotation,
+                half_extents,
+            },
+        ) => {
+            let bx = WorldBox::new(center, rotation, half_extents, xf_b);
+            capsule::capsule_box(xf_a.apply(pa), xf_a.apply(qa), radius, &bx, speculative)
+        }
+        (G::Capsule { a: pa, b: qa, radius }, G::Plane { normal, offset }) => {
+            let plane = WorldPlane::new(normal, offset, xf_b);
+            capsule::capsule_plane(xf_a.apply(pa), xf_a.apply(qa), radius, &plane, speculative)
+        }
+        (
+            G::Box {
+                center: ca,
+                rotation: qa,
+                half_extents: ha,
+            },
+            G::Box {
+                center: cb,
+                rotation: qb,
+                half_extents: hb,
+            },
+        ) => {
+            let ba = WorldBox::new(ca, qa, ha, xf_a);
+            let bb = WorldBox::new(cb, qb, hb, xf_b);
+            box_box::box_box(&ba, &bb, speculative)
+        }
+        (
+            G::Box {
+                center,
+                rotation,
+                half_extents,
+            },
+            G::Plane { normal, offset },
+        ) => {
+            let bx = WorldBox::new(center, rotation, half_extents, xf_a);
+            let plane = WorldPlane::new(normal, offset, xf_b);
+            plane::box_plane(&bx, &plane, speculative)
+        }
+        // Plane–plane, and (unreachable) out-of-order pairs.
+        _ => Manifold::EMPTY,
+    }
+}
+
+#[cfg(test)]
+mod fuzz_tests;
