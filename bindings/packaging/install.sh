@@ -104,12 +104,28 @@ install -m 644 "$root/bindings/cpp/hearth.hpp" "$prefix/include/hearth.hpp"
 
 # strip_static ARCHIVE OBJCOPY: drops debug info and the LLVM bitcode Rust's standard library
 # carries for link-time optimisation (C linkers never read it): 24 MB -> 6 MB on Linux.
+# Rust's MinGW archives also hold split-DWARF members (*.dwo) with no sections, which objcopy
+# refuses: they are removed first. On failure the archive is installed as built, with a warning.
 strip_static() {
     [ "$keep_debug" = 1 ] && return 0
-    if command -v "$2" >/dev/null 2>&1; then
-        "$2" --strip-debug --remove-section=.llvmbc --remove-section=.llvmcmd "$1"
-    else
+    if ! command -v "$2" >/dev/null 2>&1; then
         echo "install.sh: $2 not found; $1 keeps its debug info" >&2
+        return 0
+    fi
+    local work="$1.stripping" log
+    cp "$1" "$work"
+    # (binutils' LLVM plugin complains about Rust's newer bitcode on stderr: harmless.)
+    local dwo
+    dwo=$(ar t "$work" 2>/dev/null | grep '\.dwo$' || true)
+    if [ -n "$dwo" ]; then
+        # shellcheck disable=SC2086 # one member name per word
+        ar d "$work" $dwo >/dev/null 2>&1
+    fi
+    if log=$("$2" --strip-debug --remove-section=.llvmbc --remove-section=.llvmcmd "$work" 2>&1); then
+        mv "$work" "$1"
+    else
+        rm -f "$work"
+        echo "install.sh: could not strip $1 ($(printf '%s\n' "$log" | grep -v 'bfd plugin' | tail -n 1)); installed as built" >&2
     fi
 }
 
