@@ -168,17 +168,23 @@ static void test_force_lasts_for_its_frame() {
         CHECK_NEAR(velocity(sim, b).z, 1.0 / 60.0, 1e-5);
         CHECK_NEAR(spin(sim, b).y, 0.02 - 0.05 / 60.0 * 600.0, 2e-4); // (0.05,0,0) × (0,0,1) = (0,-0.05,0)
     }
-    // Forces on bodies that forces do not move are refused; so are NaN forces.
+    // Forces on bodies that forces do not move are refused; so are NaN forces, with an error.
     {
         Core::FSimulation sim;
+        ErrorLog log;
+        sim.SetErrorCallback(&ErrorLog::Receive, &log);
         CHECK(sim.Create(world_def(ZERO_G)));
         const HearthBodyId k = add_kinematic_box(sim, at(0, 0, 0), HearthVec3{1, 1, 1});
         CHECK(!sim.AddForce(k, HearthVec3{1, 0, 0}));
         const HearthBodyId b = add_box(sim, at(5, 0, 0), HearthVec3{0.05f, 0.05f, 0.05f}, 1.0);
         CHECK(!sim.AddForce(b, HearthVec3{NAN, 0, 0}));
+        CHECK(log.messages.size() == 1 && log.messages[0].find("AddForce: the force (nan, 0, 0) is not finite") == 0);
+        CHECK(!sim.AddTorque(b, HearthVec3{0, INFINITY, 0}));
+        CHECK(!sim.AddForceAtPoint(b, HearthVec3{1, 0, 0}, HearthVec3{0, 0, NAN}));
+        CHECK(log.messages.size() == 3);
         CHECK(!sim.AddForce(HearthBodyId{0, 0}, HearthVec3{1, 0, 0}));
         CHECK(sim.Advance(H) == 1);
-        CHECK(velocity(sim, b).x == 0.0f);
+        CHECK(velocity(sim, b).x == 0.0f && spin(sim, b).y == 0.0f);
     }
 }
 
@@ -412,6 +418,24 @@ struct Actor {
         rotation = HC::ToUnrealQuat<FQuat>(t.rotation);
     }
 };
+
+// The threshold of a gameplay move (README: more than 0.1 mm or 0.002°).
+static void test_same_pose_threshold() {
+    const HearthTransform a = at(3, 4, 5);
+    HearthTransform b = a;
+    b.position.x += 0.00009f;
+    CHECK(Core::SamePose(a, b));
+    b.position.x = a.position.x + 0.00012f;
+    CHECK(!Core::SamePose(a, b));
+    const auto turned = [&](double degrees) {
+        HearthTransform t = a;
+        t.rotation = hq_axis_angle(HearthVec3{0.3f, 1.0f, -0.2f}, degrees * M_PI / 180.0);
+        return t;
+    };
+    CHECK(Core::SamePose(a, turned(0.001)));
+    CHECK(!Core::SamePose(a, turned(0.003)));
+    CHECK(Core::SamePose(a, turned(360.0))); // q and -q
+}
 
 static void test_gameplay_moves_teleport() {
     Core::FSimulation sim;
@@ -820,6 +844,7 @@ int main() {
     test_rendered_motion_is_smooth();
     test_kinematic_platform_carries_a_box();
     test_kinematic_random_paths();
+    test_same_pose_threshold();
     test_gameplay_moves_teleport();
     test_random_sessions();
     test_gravity_followed();

@@ -340,7 +340,7 @@ public:
      * bodies only (false for others, as forces do not move them). */
     bool AddForce(HearthBodyId Id, const HearthVec3 &Force) {
         FBody *Body = Dynamic(Id);
-        if (!Body || !Finite(Force)) {
+        if (!Body || !Finite(Force, "AddForce", "force")) {
             return false;
         }
         Add(Body->FrameForce, Force, 1.0);
@@ -352,7 +352,7 @@ public:
     bool AddForceAtPoint(HearthBodyId Id, const HearthVec3 &Force, const HearthVec3 &Point) {
         FBody *Body = Dynamic(Id);
         HearthVec3 Com{0.0f, 0.0f, 0.0f};
-        if (!Body || !Finite(Force) || !Finite(Point) ||
+        if (!Body || !Finite(Force, "AddForceAtPoint", "force") || !Finite(Point, "AddForceAtPoint", "point") ||
             !Check(hearth_body_get_center_of_mass(World, Id, &Com), "hearth_body_get_center_of_mass")) {
             return false;
         }
@@ -365,7 +365,7 @@ public:
     /** A torque (N·m) for the duration of the current frame. */
     bool AddTorque(HearthBodyId Id, const HearthVec3 &Torque) {
         FBody *Body = Dynamic(Id);
-        if (!Body || !Finite(Torque)) {
+        if (!Body || !Finite(Torque, "AddTorque", "torque")) {
             return false;
         }
         Add(Body->FrameTorque, Torque, 1.0);
@@ -587,7 +587,18 @@ private:
         To.Z += static_cast<double>(V.z) * Scale;
     }
     static bool IsZero(const FVec &V) { return V.X == 0.0 && V.Y == 0.0 && V.Z == 0.0; }
-    static bool Finite(const HearthVec3 &V) { return std::isfinite(V.x) && std::isfinite(V.y) && std::isfinite(V.z); }
+    /** Whether V is finite; if not, reports "<What>: the <Name> is not finite" (the forces are
+     * accumulated here, not in Hearth, so this is where they are checked). */
+    bool Finite(const HearthVec3 &V, const char *What, const char *Name) {
+        if (std::isfinite(V.x) && std::isfinite(V.y) && std::isfinite(V.z)) {
+            return true;
+        }
+        char Message[160];
+        std::snprintf(Message, sizeof(Message), "%s: the %s (%g, %g, %g) is not finite; ignored", What, Name,
+                      static_cast<double>(V.x), static_cast<double>(V.y), static_cast<double>(V.z));
+        ReportError(What, Message);
+        return false;
+    }
     /** The force (or torque) that delivers Impulse over one step of H seconds. */
     static HearthVec3 PerStep(const FVec &Impulse, double H) {
         return HearthVec3{static_cast<float>(Impulse.X / H), static_cast<float>(Impulse.Y / H),
