@@ -42,7 +42,8 @@ void AHearthMovingPlatform::Tick(float DeltaSeconds)
 	}
 	Elapsed += DeltaSeconds;
 	// 0 -> 1 -> 0 over a cycle, eased (a cosine), so the platform starts and stops gently.
-	const double Phase = 2.0 * PI * Elapsed / FMath::Max(0.1, static_cast<double>(CycleSeconds));
+	constexpr double TwoPi = 6.283185307179586;
+	const double Phase = TwoPi * Elapsed / FMath::Max(0.1, static_cast<double>(CycleSeconds));
 	const double Along = 0.5 - 0.5 * FMath::Cos(Phase);
 	const FRotator Rotation = StartRotation + FRotator(0.0, YawDegreesPerSecond * Elapsed, 0.0);
 	// Moving the actor is all it takes: the kinematic Hearth body follows it (and pushes what
