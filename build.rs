@@ -26,6 +26,7 @@ fn main() {
     println!("cargo:rerun-if-changed=src");
     println!("cargo:rerun-if-changed=cbindgen.toml");
     println!("cargo:rerun-if-changed=build.rs");
+    shared_library_name(&major, &minor);
 
     let mut config = cbindgen::Config::from_file(crate_dir.join("cbindgen.toml")).expect("cbindgen.toml");
     config.header = Some(PREAMBLE.to_string());
@@ -58,4 +59,43 @@ fn main() {
     // A copy in OUT_DIR lets the freshness test compare without racing the build.
     let out = PathBuf::from(env::var("OUT_DIR").unwrap()).join("hearth.h");
     fs::write(out, &bytes).unwrap();
+}
+
+/// The ABI version: the major from 1.0 on; while the major is 0, Cargo's rule makes every
+/// minor a breaking release, so the ABI is `0.<minor>` (what `find_package(hearth)`'s version
+/// file and the bindings' version checks accept is the same).
+fn abi_version(major: &str, minor: &str) -> String {
+    if major == "0" {
+        format!("0.{minor}")
+    } else {
+        major.to_string()
+    }
+}
+
+/// Linux: the shared library's SONAME is `libhearth.so.<ABI>` (`libhearth.so.0.1` for 0.1.x),
+/// so programs record the ABI they were built against, and the install script lays out
+/// `libhearth.so -> libhearth.so.0.1 -> libhearth.so.0.1.0`. Programs linked against the
+/// build tree (`-Ltarget/release -lhearth`) ask for that name too, so it is created there as a
+/// link to the library cargo writes (in the profile directory and its `deps/`).
+fn shared_library_name(major: &str, minor: &str) {
+    if env::var("CARGO_CFG_TARGET_OS").as_deref() != Ok("linux") {
+        return;
+    }
+    let soname = format!("libhearth.so.{}", abi_version(major, minor));
+    println!("cargo:rustc-cdylib-link-arg=-Wl,-soname,{soname}");
+    // OUT_DIR is <target dir>/[<triple>/]<profile>/build/hearth-<hash>/out.
+    let out = PathBuf::from(env::var("OUT_DIR").unwrap());
+    let Some(profile_dir) = out.ancestors().nth(3) else {
+        return;
+    };
+    #[cfg(unix)]
+    for dir in [profile_dir.to_path_buf(), profile_dir.join("deps")] {
+        let link = dir.join(&soname);
+        if fs::symlink_metadata(&link).is_err() {
+            let _ = fs::create_dir_all(&dir);
+            let _ = std::os::unix::fs::symlink("libhearth.so", &link);
+        }
+    }
+    #[cfg(not(unix))]
+    let _ = profile_dir; // cross-building for Linux on Windows: no links in the build tree
 }

@@ -191,8 +191,17 @@ typedef struct HearthWorld HearthWorld;
  * A 3D vector of `float` (metres, m/s, N, ... by context).
  */
 typedef struct HearthVec3 {
+    /**
+     * X component.
+     */
     float x;
+    /**
+     * Y component (up, with the default gravity).
+     */
     float y;
+    /**
+     * Z component.
+     */
     float z;
 } HearthVec3;
 
@@ -200,9 +209,21 @@ typedef struct HearthVec3 {
  * A rotation quaternion `{x, y, z, w}`; need not be normalised, must not be zero.
  */
 typedef struct HearthQuat {
+    /**
+     * Vector part, X (`axis.x * sin(angle / 2)` for a unit quaternion).
+     */
     float x;
+    /**
+     * Vector part, Y.
+     */
     float y;
+    /**
+     * Vector part, Z.
+     */
     float z;
+    /**
+     * Scalar part (`cos(angle / 2)`); the identity is `{0, 0, 0, 1}`.
+     */
     float w;
 } HearthQuat;
 
@@ -210,7 +231,13 @@ typedef struct HearthQuat {
  * A rigid transform: rotation, then translation.
  */
 typedef struct HearthTransform {
+    /**
+     * Translation (m).
+     */
     struct HearthVec3 position;
+    /**
+     * Rotation, applied before the translation.
+     */
     struct HearthQuat rotation;
 } HearthTransform;
 
@@ -269,7 +296,13 @@ typedef struct HearthBodyDef {
  * other worlds are rejected with `HEARTH_ERROR_INVALID_ID`.
  */
 typedef struct HearthBodyId {
+    /**
+     * Slot of the body.
+     */
     uint32_t index;
+    /**
+     * Generation of the slot (0 only in the null id).
+     */
     uint32_t generation;
 } HearthBodyId;
 
@@ -1102,7 +1135,13 @@ typedef struct HearthShapeDef {
  * Sphere: centre in the body frame and radius (m, > 0).
  */
 typedef struct HearthSphere {
+    /**
+     * Centre in the body frame (m).
+     */
     struct HearthVec3 center;
+    /**
+     * Radius (m, > 0).
+     */
     float radius;
 } HearthSphere;
 
@@ -1110,7 +1149,13 @@ typedef struct HearthSphere {
  * Id of a shape inside its world. All-zero is the null id.
  */
 typedef struct HearthShapeId {
+    /**
+     * Slot of the shape.
+     */
     uint32_t index;
+    /**
+     * Generation of the slot (0 only in the null id).
+     */
     uint32_t generation;
 } HearthShapeId;
 
@@ -1118,8 +1163,17 @@ typedef struct HearthShapeId {
  * Box: centre and rotation in the body frame, half extents (m, each > 0).
  */
 typedef struct HearthBox {
+    /**
+     * Centre in the body frame (m).
+     */
     struct HearthVec3 center;
+    /**
+     * Rotation in the body frame.
+     */
     struct HearthQuat rotation;
+    /**
+     * Half the edge lengths along the box's own axes (m, each > 0).
+     */
     struct HearthVec3 half_extents;
 } HearthBox;
 
@@ -1127,8 +1181,17 @@ typedef struct HearthBox {
  * Capsule: segment end points `a`, `b` in the body frame and radius (m, > 0).
  */
 typedef struct HearthCapsule {
+    /**
+     * One end of the segment, in the body frame (m).
+     */
     struct HearthVec3 a;
+    /**
+     * The other end (m); may equal `a` (a sphere).
+     */
     struct HearthVec3 b;
+    /**
+     * Radius around the segment (m, > 0).
+     */
     float radius;
 } HearthCapsule;
 
@@ -1138,7 +1201,13 @@ typedef struct HearthCapsule {
  * normalised together with the offset) but must not be zero.
  */
 typedef struct HearthPlane {
+    /**
+     * Outward normal in the body frame (not zero).
+     */
     struct HearthVec3 normal;
+    /**
+     * Distance of the surface from the body origin along the normal (m).
+     */
     float offset;
 } HearthPlane;
 

@@ -4,8 +4,9 @@
 //!
 //! * `tests/cpp/test_hearth.cpp` exercises `bindings/cpp/hearth.hpp`: linked shared and
 //!   static, and built once more with `-fno-exceptions` for the no-exceptions API.
-//! * `tests/cpp/test_unreal_conversion.cpp` exercises the engine-independent header of the
-//!   Unreal plug-in (`bindings/unreal/HearthPhysics/.../HearthConversion.h`).
+//! * `tests/cpp/test_unreal_conversion.cpp` and `tests/cpp/test_unreal_simulation.cpp` exercise
+//!   the engine-independent core of the Unreal plug-in (`bindings/unreal/HearthPhysics/.../Public/`
+//!   `HearthConversion.h`, `HearthSimulation.h`, `HearthShapes.h`) in a real Hearth world.
 //! * `examples/cpp/pyramid.cpp` must print what `examples/c/pyramid.c` prints, line by line,
 //!   except the word naming the language.
 //!
@@ -109,16 +110,43 @@ fn cpp_pyramid_prints_what_the_c_pyramid_prints() {
     assert_eq!(cpp_out.lines().last(), Some("done"));
 }
 
+/// The include paths of the Unreal plug-in's engine-independent headers and the tests' stand-ins
+/// for Unreal types, and `-Wshadow` (Unreal builds treat shadowed names as errors).
+fn unreal_flags() -> Vec<String> {
+    let public = root().join("bindings/unreal/HearthPhysics/Source/HearthPhysics/Public");
+    vec![
+        format!("-I{}", public.display()),
+        format!("-I{}", root().join("tests/cpp").display()),
+        "-Wshadow".to_string(),
+    ]
+}
+
 #[test]
 fn unreal_conversion_header_passes() {
-    let public = root().join("bindings/unreal/HearthPhysics/Source/HearthPhysics/Public");
-    let include = format!("-I{}", public.display());
+    let flags = unreal_flags();
+    let flags: Vec<&str> = flags.iter().map(String::as_str).collect();
     let exe = build(
         "tests/cpp/test_unreal_conversion.cpp",
         "test_unreal_conversion",
         true,
         Link::Shared,
-        &[&include],
+        &flags,
     );
     run_test_program(&exe, 3000);
+}
+
+#[test]
+fn unreal_simulation_core_passes() {
+    // HearthSimulation.h and HearthShapes.h: frame-rate independent forces, interpolation,
+    // kinematic bodies, gameplay moves, gravity, throttled errors, collision elements.
+    let flags = unreal_flags();
+    let flags: Vec<&str> = flags.iter().map(String::as_str).collect();
+    let exe = build(
+        "tests/cpp/test_unreal_simulation.cpp",
+        "test_unreal_simulation",
+        true,
+        Link::Shared,
+        &flags,
+    );
+    run_test_program(&exe, 50_000);
 }

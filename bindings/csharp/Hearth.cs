@@ -8,8 +8,11 @@
 // and the library's detail message. Defs always start from the library's defaults
 // (BodyDef.Default(), ...).
 //
-// User generators: the World keeps each callback delegate alive while its generator lives
-// and releases it on DestroyGenerator or Dispose. An exception thrown by a callback is
+// User generators: native code calls one of two static trampolines (ForceTrampoline,
+// ContactTrampoline), marked [MonoPInvokeCallback] as Unity's IL2CPP requires (it can only
+// hand native code pointers to static methods known ahead of time, never to lambdas); the
+// generator's user_data is a GCHandle of its registration, which holds the handler. The
+// World frees the handle on DestroyGenerator or Dispose. An exception thrown by a handler is
 // caught before it reaches native code and rethrown by the Step() that ran it.
 //
 // Like the C API, a World is used by one thread at a time.
@@ -18,9 +21,34 @@ using System;
 using System.Collections.Generic;
 using System.Runtime.ExceptionServices;
 using System.Runtime.InteropServices;
+using System.Threading;
+#if UNITY_5_3_OR_NEWER
+using AOT; // Unity's MonoPInvokeCallbackAttribute
+#endif
+
+#if !UNITY_5_3_OR_NEWER
+namespace AOT
+{
+    /// <summary>
+    /// Marks a static method that native code calls through a function pointer. Unity defines
+    /// this attribute (AOT.MonoPInvokeCallbackAttribute) and IL2CPP compiles a native entry
+    /// point for every method carrying it; outside Unity it is defined here and changes nothing.
+    /// </summary>
+    [AttributeUsage(AttributeTargets.Method)]
+    public sealed class MonoPInvokeCallbackAttribute : Attribute
+    {
+        public MonoPInvokeCallbackAttribute(Type type) { Type = type; }
+
+        /// <summary>The delegate type native code calls the method as.</summary>
+        public Type Type { get; private set; }
+    }
+}
+#endif
 
 namespace Hearth
 {
+    using AOT;
+
     /// <summary>A failed Hearth call: the result code, its name and the library's detail message.</summary>
     public class HearthException : Exception
     {
@@ -222,12 +250,118 @@ namespace Hearth
     /// </summary>
     public sealed class World : IDisposable
     {
-        // A registered user generator: the delegate native code calls, kept reachable here.
+        // A registered user generator: its handler, and the GCHandle native code passes back to
+        // the trampoline as user_data (freed with Release).
         private sealed class Registration
         {
-            public Delegate Callback;
+            public World World;
+            public UserForceHandler ForceHandler;
+            public UserContactHandler ContactHandler;
             public GeneratorCall Call;
             public ContactSink Sink;
+            public GCHandle Handle;
+
+            public void Release()
+            {
+                if (Handle.IsAllocated)
+                {
+                    Handle.Free();
+                    Interlocked.Decrement(ref liveCallbackHandles);
+                }
+            }
+        }
+
+        // The trampolines native code calls for every user generator, and the delegates whose
+        // function pointers it gets: static, so they live as long as the program.
+        private static readonly ForceCallback ForceTrampolineDelegate = ForceTrampoline;
+        private static readonly ContactCallback ContactTrampolineDelegate = ContactTrampoline;
+        private static readonly IntPtr ForceTrampolinePointer = Marshal.GetFunctionPointerForDelegate(ForceTrampolineDelegate);
+        private static readonly IntPtr ContactTrampolinePointer = Marshal.GetFunctionPointerForDelegate(ContactTrampolineDelegate);
+        private static int liveCallbackHandles;
+
+        /// <summary>The function pointer every user force generator is created with (one for all).</summary>
+        public static IntPtr ForceCallbackPointer { get { return ForceTrampolinePointer; } }
+
+        /// <summary>The function pointer every user contact generator is created with (one for all).</summary>
+        public static IntPtr ContactCallbackPointer { get { return ContactTrampolinePointer; } }
+
+        /// <summary>GCHandles of user generators not yet released, over all worlds.</summary>
+        public static int LiveCallbackHandles { get { return Volatile.Read(ref liveCallbackHandles); } }
+
+        // The registration a native call's user_data names, or null (never throws).
+        private static Registration FromUserData(IntPtr userData)
+        {
+            if (userData == IntPtr.Zero)
+            {
+                return null;
+            }
+            try
+            {
+                GCHandle handle = GCHandle.FromIntPtr(userData);
+                return handle.IsAllocated ? handle.Target as Registration : null;
+            }
+            catch (InvalidOperationException)
+            {
+                return null; // not a live handle: nothing to call (an exception must not reach native code)
+            }
+        }
+
+        [MonoPInvokeCallback(typeof(ForceCallback))]
+        private static void ForceTrampoline(IntPtr userData, IntPtr world, IntPtr context)
+        {
+            Registration registration = FromUserData(userData);
+            if (registration == null)
+            {
+                return;
+            }
+            try
+            {
+                registration.Call.Enter(context);
+                registration.ForceHandler(registration.Call);
+            }
+            catch (Exception e)
+            {
+                registration.World.StoreCallbackException(e);
+            }
+            finally
+            {
+                registration.Call.Leave();
+            }
+        }
+
+        [MonoPInvokeCallback(typeof(ContactCallback))]
+        private static void ContactTrampoline(IntPtr userData, IntPtr world, IntPtr context, IntPtr sink)
+        {
+            Registration registration = FromUserData(userData);
+            if (registration == null)
+            {
+                return;
+            }
+            try
+            {
+                registration.Call.Enter(context);
+                registration.Sink.Pointer = sink;
+                registration.ContactHandler(registration.Call, registration.Sink);
+            }
+            catch (Exception e)
+            {
+                registration.World.StoreCallbackException(e);
+            }
+            finally
+            {
+                registration.Sink.Pointer = IntPtr.Zero;
+                registration.Call.Leave();
+            }
+        }
+
+        // Frees every registration's GCHandle and forgets them.
+        private void ReleaseRegistrations()
+        {
+            foreach (Registration registration in registrations.Values)
+            {
+                registration.Release();
+            }
+            registrations.Clear();
         }
 
         private readonly WorldHandle handle;
@@ -282,7 +416,7 @@ namespace Hearth
             handle.Dispose();
             if (stepDepth == 0)
             {
-                registrations.Clear();
+                ReleaseRegistrations();
             }
         }
 
@@ -315,7 +449,7 @@ namespace Hearth
                 stepDepth--;
                 if (stepDepth == 0 && disposed)
                 {
-                    registrations.Clear(); // Dispose was called from a callback
+                    ReleaseRegistrations(); // Dispose was called from a callback
                 }
             }
             if (stepDepth == 0 && callbackException != null)
@@ -493,31 +627,30 @@ namespace Hearth
             {
                 throw new ArgumentNullException("handler");
             }
-            var registration = new Registration();
-            ForceCallback callback = (userData, world, context) =>
-            {
-                try
-                {
-                    registration.Call.Enter(context);
-                    handler(registration.Call);
-                }
-                catch (Exception e)
-                {
-                    StoreCallbackException(e);
-                }
-                finally
-                {
-                    registration.Call.Leave();
-                }
-            };
-            registration.Callback = callback;
+            WorldHandle world = Handle; // throws when disposed, before anything is allocated
+            var registration = new Registration { World = this, ForceHandler = handler };
             UserForceGeneratorDef def = UserForceGeneratorDef.Default();
-            def.Callback = Marshal.GetFunctionPointerForDelegate(callback);
+            def.Callback = ForceTrampolinePointer;
+            def.UserData = Allocate(registration);
             GeneratorId id;
-            Check(Native.hearth_generator_create_user_force(Handle, ref def, out id), "hearth_generator_create_user_force");
+            Result result = Native.hearth_generator_create_user_force(world, ref def, out id);
+            if (result != Result.Ok)
+            {
+                string detail = Native.LastErrorMessage();
+                registration.Release();
+                throw new HearthException(result, "hearth_generator_create_user_force", detail);
+            }
             registration.Call = new GeneratorCall(this, id);
             registrations[id] = registration;
             return new Generator(this, id);
+        }
+
+        // A GCHandle of the registration, as the user_data native code passes back.
+        private static IntPtr Allocate(Registration registration)
+        {
+            registration.Handle = GCHandle.Alloc(registration);
+            Interlocked.Increment(ref liveCallbackHandles);
+            return GCHandle.ToIntPtr(registration.Handle);
         }
 
         /// <summary>CreateUserContactGenerator with the default capacity.</summary>
@@ -537,32 +670,20 @@ namespace Hearth
             {
                 throw new ArgumentNullException("handler");
             }
-            var registration = new Registration();
-            registration.Sink = new ContactSink();
-            ContactCallback callback = (userData, world, context, sink) =>
-            {
-                try
-                {
-                    registration.Call.Enter(context);
-                    registration.Sink.Pointer = sink;
-                    handler(registration.Call, registration.Sink);
-                }
-                catch (Exception e)
-                {
-                    StoreCallbackException(e);
-                }
-                finally
-                {
-                    registration.Sink.Pointer = IntPtr.Zero;
-                    registration.Call.Leave();
-                }
-            };
-            registration.Callback = callback;
+            WorldHandle world = Handle; // throws when disposed, before anything is allocated
+            var registration = new Registration { World = this, ContactHandler = handler, Sink = new ContactSink() };
             UserContactGeneratorDef def = UserContactGeneratorDef.Default();
-            def.Callback = Marshal.GetFunctionPointerForDelegate(callback);
+            def.Callback = ContactTrampolinePointer;
+            def.UserData = Allocate(registration);
             def.Capacity = capacity;
             GeneratorId id;
-            Check(Native.hearth_generator_create_user_contact(Handle, ref def, out id), "hearth_generator_create_user_contact");
+            Result result = Native.hearth_generator_create_user_contact(world, ref def, out id);
+            if (result != Result.Ok)
+            {
+                string detail = Native.LastErrorMessage();
+                registration.Release();
+                throw new HearthException(result, "hearth_generator_create_user_contact", detail);
+            }
             registration.Call = new GeneratorCall(this, id);
             registrations[id] = registration;
             return new Generator(this, id);
@@ -581,7 +702,12 @@ namespace Hearth
         public void DestroyGenerator(GeneratorId generator)
         {
             Check(Native.hearth_generator_destroy(Handle, generator), "hearth_generator_destroy");
-            registrations.Remove(generator);
+            Registration registration;
+            if (registrations.TryGetValue(generator, out registration))
+            {
+                registration.Release();
+                registrations.Remove(generator);
+            }
         }
 
         /// <summary>The wrapper of an existing generator id.</summary>

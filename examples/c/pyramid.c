@@ -92,7 +92,7 @@ int main(void) {
         return 1;
     }
 
-    HearthWorldDef world_def = hearth_world_def_default(); /* gravity -9.81 y, 4 substeps */
+    HearthWorldDef world_def = hearth_world_def_default(); /* gravity -9.81 y, 6 sub-steps */
     CHECK(hearth_world_create(&world_def, &g_world));
     add_ground();
 

@@ -7,8 +7,11 @@ use crate::pool::Handle;
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct HearthVec3 {
+    /// X component.
     pub x: f32,
+    /// Y component (up, with the default gravity).
     pub y: f32,
+    /// Z component.
     pub z: f32,
 }
 
@@ -16,9 +19,13 @@ pub struct HearthVec3 {
 #[repr(C)]
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct HearthQuat {
+    /// Vector part, X (`axis.x * sin(angle / 2)` for a unit quaternion).
     pub x: f32,
+    /// Vector part, Y.
     pub y: f32,
+    /// Vector part, Z.
     pub z: f32,
+    /// Scalar part (`cos(angle / 2)`); the identity is `{0, 0, 0, 1}`.
     pub w: f32,
 }
 
@@ -26,7 +33,9 @@ pub struct HearthQuat {
 #[repr(C)]
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct HearthTransform {
+    /// Translation (m).
     pub position: HearthVec3,
+    /// Rotation, applied before the translation.
     pub rotation: HearthQuat,
 }
 
@@ -74,7 +83,9 @@ impl From<Transform> for HearthTransform {
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct HearthBodyId {
+    /// Slot of the body.
     pub index: u32,
+    /// Generation of the slot (0 only in the null id).
     pub generation: u32,
 }
 
@@ -82,7 +93,9 @@ pub struct HearthBodyId {
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct HearthShapeId {
+    /// Slot of the shape.
     pub index: u32,
+    /// Generation of the slot (0 only in the null id).
     pub generation: u32,
 }
 
@@ -106,7 +119,9 @@ id_conversions!(HearthBodyId, HearthShapeId);
 #[repr(C)]
 #[derive(Clone, Copy, Debug)]
 pub struct HearthSphere {
+    /// Centre in the body frame (m).
     pub center: HearthVec3,
+    /// Radius (m, > 0).
     pub radius: f32,
 }
 
@@ -114,8 +129,11 @@ pub struct HearthSphere {
 #[repr(C)]
 #[derive(Clone, Copy, Debug)]
 pub struct HearthBox {
+    /// Centre in the body frame (m).
     pub center: HearthVec3,
+    /// Rotation in the body frame.
     pub rotation: HearthQuat,
+    /// Half the edge lengths along the box's own axes (m, each > 0).
     pub half_extents: HearthVec3,
 }
 
@@ -123,8 +141,11 @@ pub struct HearthBox {
 #[repr(C)]
 #[derive(Clone, Copy, Debug)]
 pub struct HearthCapsule {
+    /// One end of the segment, in the body frame (m).
     pub a: HearthVec3,
+    /// The other end (m); may equal `a` (a sphere).
     pub b: HearthVec3,
+    /// Radius around the segment (m, > 0).
     pub radius: f32,
 }
 
@@ -134,6 +155,8 @@ pub struct HearthCapsule {
 #[repr(C)]
 #[derive(Clone, Copy, Debug)]
 pub struct HearthPlane {
+    /// Outward normal in the body frame (not zero).
     pub normal: HearthVec3,
+    /// Distance of the surface from the body origin along the normal (m).
     pub offset: f32,
 }

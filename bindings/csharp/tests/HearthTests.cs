@@ -618,6 +618,53 @@ internal static class HearthTests
         }
     }
 
+    // IL2CPP can hand native code pointers only to static methods marked [MonoPInvokeCallback]:
+    // every user generator goes through the two static trampolines, with a GCHandle of its
+    // registration as user_data, freed by DestroyGenerator and Dispose.
+    private static void TestCallbacksGoThroughStaticTrampolines()
+    {
+        foreach (string name in new[] { "ForceTrampoline", "ContactTrampoline" })
+        {
+            MethodInfo method = typeof(World).GetMethod(name, BindingFlags.NonPublic | BindingFlags.Static);
+            Ensure(method != null, name + " is a static method of World");
+            bool marked = false;
+            foreach (object attribute in method.GetCustomAttributes(false))
+            {
+                marked |= attribute.GetType().Name == "MonoPInvokeCallbackAttribute";
+            }
+            Ensure(marked, name + " carries [MonoPInvokeCallback]");
+        }
+        Ensure(World.ForceCallbackPointer != IntPtr.Zero && World.ContactCallbackPointer != IntPtr.Zero, "trampoline pointers");
+        Ensure(World.ForceCallbackPointer != World.ContactCallbackPointer, "one trampoline per kind");
+
+        int before = World.LiveCallbackHandles;
+        int forceCalls = 0, contactCalls = 0;
+        var a = new World();
+        var b = new World();
+        Generator fa = a.CreateUserForceGenerator(call => forceCalls += 1);
+        b.CreateUserForceGenerator(call => forceCalls += 100);
+        b.CreateUserContactGenerator((call, sink) => contactCalls++);
+        Equal(World.LiveCallbackHandles, before + 3, "one GCHandle per user generator");
+        GC.Collect();
+        GC.WaitForPendingFinalizers();
+        a.Step(Dt);
+        b.Step(Dt);
+        Equal(forceCalls, 101, "each world's handler reached through user_data");
+        Equal(contactCalls, 1, "contact handler reached");
+        fa.Destroy();
+        Equal(World.LiveCallbackHandles, before + 2, "DestroyGenerator frees the handle");
+        a.Dispose();
+        b.Dispose();
+        Equal(World.LiveCallbackHandles, before, "Dispose frees the rest");
+        // A generator that cannot be made leaves no handle behind.
+        var c = new World();
+        Fails(Result.InvalidArgument, () => c.CreateUserContactGenerator((call, sink) => { }, 2000000u), "capacity too large");
+        Equal(World.LiveCallbackHandles, before, "no handle leaked by a refused generator");
+        c.Dispose();
+        Throws<ObjectDisposedException>(() => c.CreateUserForceGenerator(call => { }), "disposed world");
+        Equal(World.LiveCallbackHandles, before, "no handle leaked on a disposed world");
+    }
+
     // Dispose from inside a callback: the native world outlives the running step (the
     // SafeHandle is in use by it) and is destroyed when the step returns.
     private static void TestDisposeInsideACallback()
@@ -638,6 +685,7 @@ internal static class HearthTests
         Ensure(handle.IsClosed, "native world destroyed once the step returned");
         Equal(world.RegisteredCallbackCount, 0, "callbacks released after the step");
         Throws<ObjectDisposedException>(() => world.Step(Dt), "no more steps");
+        Equal(World.LiveCallbackHandles, 0, "the callback's GCHandle freed after the step");
 
         // An exception after the Dispose in the same callback still reaches the caller.
         var second = new World();
@@ -1135,6 +1183,7 @@ internal static class HearthTests
             new KeyValuePair<string, Action>("callback exception is rethrown from Step", TestCallbackExceptionIsRethrownFromStep),
             new KeyValuePair<string, Action>("generator call only valid inside the callback", TestGeneratorCallIsOnlyValidInsideTheCallback),
             new KeyValuePair<string, Action>("dispose inside a callback", TestDisposeInsideACallback),
+            new KeyValuePair<string, Action>("callbacks go through static trampolines", TestCallbacksGoThroughStaticTrampolines),
             new KeyValuePair<string, Action>("contact generator makes a floor", TestContactGeneratorMakesAFloor),
             new KeyValuePair<string, Action>("built-in generators", TestBuiltInGenerators),
             new KeyValuePair<string, Action>("joints", TestJoints),

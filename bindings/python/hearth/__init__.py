@@ -12,7 +12,8 @@
         print(box.position)
 
 The library is found through $HEARTH_LIBRARY, next to the package, or on the system library
-path (see `_lib.py`); its major version must equal the binding's. Every failing call raises
+path (see `_lib.py`); its ABI version (the major, and the minor before 1.0) must equal
+the binding's. Every failing call raises
 a HearthError subclass carrying the library's code, name and message. The raw C layer (every
 struct and function of include/hearth.h under its C name) is `hearth.ffi` and `hearth.lib`.
 """

@@ -36,13 +36,23 @@ def version_string(version):
     return f"{version >> 16}.{(version >> 8) & 0xFF}.{version & 0xFF}"
 
 
-def check_version(library_version, binding_major=_ffi.HEARTH_VERSION_MAJOR):
-    """Raises ImportError when the library's major version is not the binding's."""
-    if library_version >> 16 != binding_major:
+def abi_version(version):
+    """The ABI a version belongs to: its major, or (0, minor) while the major is 0 (every 0.x
+    minor may break the ABI, as Cargo treats it; the library's SONAME is libhearth.so.0.<minor>)."""
+    major, minor = version >> 16, (version >> 8) & 0xFF
+    return (0, minor) if major == 0 else (major,)
+
+
+def check_version(library_version, binding_version=_ffi.HEARTH_VERSION):
+    """Raises ImportError when the library's ABI is not the binding's: another major version,
+    or another minor version while the major is 0. Patch versions may always differ."""
+    if abi_version(library_version) != abi_version(binding_version):
+        abi = ".".join(str(n) for n in abi_version(binding_version))
         raise ImportError(
             f"the Hearth library is version {version_string(library_version)} but this Python binding "
-            f"was written for version {version_string(_ffi.HEARTH_VERSION)} (major {binding_major}); "
-            "the major versions must match: use the binding that came with the library"
+            f"was written for version {version_string(binding_version)} (ABI {abi}); "
+            "the ABI versions must match (the major version, and the minor before 1.0): "
+            "use the binding that came with the library"
         )
 
 

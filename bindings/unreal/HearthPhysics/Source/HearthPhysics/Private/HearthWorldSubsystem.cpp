@@ -1,21 +1,17 @@
-// NOT COMPILED in the Hearth repository; see ../../../README.md.
+// NOT COMPILED in the Hearth repository (no Unreal Engine there); see ../../../README.md.
 #include "HearthWorldSubsystem.h"
-#include "HearthBodyComponent.h"
+
+#include "Engine/Engine.h"
 #include "Engine/World.h"
+#include "HearthBodyComponent.h"
+#include "HearthConversion.h"
+#include "HearthPhysicsModule.h"
 
 namespace HC = HearthConversion;
 
-bool UHearthWorldSubsystem::Check(HearthResult Result, const TCHAR* What)
+void UHearthWorldSubsystem::LogError(void* /*UserData*/, const char* Message)
 {
-	if (Result == HEARTH_OK)
-	{
-		return true;
-	}
-	char Message[256];
-	hearth_last_error_message(Message, sizeof(Message));
-	UE_LOG(LogTemp, Error, TEXT("Hearth: %s failed: %s (%s)"), What, UTF8_TO_TCHAR(hearth_result_name(Result)),
-		UTF8_TO_TCHAR(Message));
-	return false;
+	UE_LOG(LogHearth, Error, TEXT("%s"), UTF8_TO_TCHAR(Message));
 }
 
 bool UHearthWorldSubsystem::DoesSupportWorldType(const EWorldType::Type WorldType) const
@@ -23,28 +19,32 @@ bool UHearthWorldSubsystem::DoesSupportWorldType(const EWorldType::Type WorldTyp
 	return WorldType == EWorldType::Game || WorldType == EWorldType::PIE;
 }
 
+UHearthWorldSubsystem* UHearthWorldSubsystem::GetHearthSubsystem(const UObject* WorldContextObject)
+{
+	const UWorld* World = GEngine ? GEngine->GetWorldFromContextObject(WorldContextObject, EGetWorldErrorMode::ReturnNull) : nullptr;
+	return World ? World->GetSubsystem<UHearthWorldSubsystem>() : nullptr;
+}
+
 void UHearthWorldSubsystem::Initialize(FSubsystemCollectionBase& Collection)
 {
 	Super::Initialize(Collection);
-	if (hearth_version() != HEARTH_VERSION)
+	if (!FHearthPhysicsModule::IsLibraryReady())
 	{
-		UE_LOG(LogTemp, Error, TEXT("Hearth: library version differs from the header's"));
-		return;
+		return; // the module logged why
 	}
+	Simulation.SetErrorCallback(&UHearthWorldSubsystem::LogError, nullptr);
 	HearthWorldDef Def = hearth_world_def_default();
-	// Unreal's gravity (cm/s² along Z) in Hearth terms.
 	Def.gravity = HC::ToHearthVector(FVector(0.0, 0.0, GetWorld()->GetGravityZ()));
-	Check(hearth_world_create(&Def, &World), TEXT("hearth_world_create"));
+	HearthCore::FSimulationSettings Settings;
+	Settings.StepSeconds = StepSeconds;
+	Settings.MaxStepsPerFrame = MaxStepsPerFrame;
+	Simulation.Create(Def, Settings); // a failure is logged through LogError
 }
 
 void UHearthWorldSubsystem::Deinitialize()
 {
-	hearth_world_destroy(World); // NULL is a no-op
-	World = nullptr;
+	Simulation.Destroy();
 	Components.Reset();
-	Bodies.Reset();
-	Previous.Reset();
-	Current.Reset();
 	Super::Deinitialize();
 }
 
@@ -55,57 +55,43 @@ TStatId UHearthWorldSubsystem::GetStatId() const
 
 HearthBodyId UHearthWorldSubsystem::AddBody(UHearthBodyComponent* Component, const HearthBodyDef& Def)
 {
-	HearthBodyId Body{0, 0};
-	if (World && Check(hearth_body_create(World, &Def, &Body), TEXT("hearth_body_create")))
+	if (!Simulation.IsRunning())
 	{
-		Components.Add(Component);
-		Bodies.Add(Body);
-		Previous.Add(Def.transform);
-		Current.Add(Def.transform);
+		return HearthBodyId{0, 0};
+	}
+	const HearthBodyId Body = Simulation.AddBody(Def);
+	if (Body.generation != 0)
+	{
+		Components.AddUnique(Component);
 	}
 	return Body;
 }
 
-void UHearthWorldSubsystem::RemoveBody(UHearthBodyComponent* Component)
+void UHearthWorldSubsystem::RemoveBody(UHearthBodyComponent* Component, HearthBodyId Body)
 {
-	const int32 Index = Components.IndexOfByKey(Component);
-	if (Index == INDEX_NONE)
-	{
-		return;
-	}
-	Check(hearth_body_destroy(World, Bodies[Index]), TEXT("hearth_body_destroy"));
-	Components.RemoveAtSwap(Index);
-	Bodies.RemoveAtSwap(Index);
-	Previous.RemoveAtSwap(Index);
-	Current.RemoveAtSwap(Index);
+	Components.Remove(Component);
+	Simulation.RemoveBody(Body);
 }
 
 void UHearthWorldSubsystem::Tick(float DeltaTime)
 {
 	Super::Tick(DeltaTime);
-	if (!World)
+	if (!Simulation.IsRunning())
 	{
 		return;
 	}
-	const int32 Steps = Accumulator.Advance(DeltaTime);
-	for (int32 Step = 0; Step < Steps; ++Step)
+	// Gravity is followed every frame (a game mode or a level script may change it).
+	Simulation.SetGravity(HC::ToHearthVector(FVector(0.0, 0.0, GetWorld()->GetGravityZ())));
+	// Actor ticks ran before this one (tickable objects tick after the tick groups): push what
+	// gameplay did to the actors, step, then show the interpolated poses.
+	Components.RemoveAll([](const TWeakObjectPtr<UHearthBodyComponent>& Weak) { return !Weak.IsValid(); });
+	for (const TWeakObjectPtr<UHearthBodyComponent>& Weak : Components)
 	{
-		Previous = Current;
-		if (!Check(hearth_world_step(World, static_cast<float>(Accumulator.GetStepSeconds())), TEXT("hearth_world_step")) ||
-			!Check(hearth_world_get_transforms(World, Bodies.GetData(), Bodies.Num(), Current.GetData()),
-				TEXT("hearth_world_get_transforms")))
-		{
-			return;
-		}
+		Weak->PushToHearth(Simulation);
 	}
-	// Draw every body between its last two physics states.
-	const double Alpha = Accumulator.Alpha();
-	for (int32 i = 0; i < Components.Num(); ++i)
+	Simulation.Advance(DeltaTime);
+	for (const TWeakObjectPtr<UHearthBodyComponent>& Weak : Components)
 	{
-		if (UHearthBodyComponent* Component = Components[i].Get())
-		{
-			const HearthTransform Pose = HC::Interpolate(Previous[i], Current[i], Alpha);
-			Component->ApplyHearthPose(HC::ToUnrealVector<FVector>(Pose.position), HC::ToUnrealQuat<FQuat>(Pose.rotation));
-		}
+		Weak->PullFromHearth(Simulation);
 	}
 }

@@ -192,8 +192,11 @@ public:
 
     /** Adds a frame's time (negative or non-finite times count as 0); returns the steps to run. */
     int Advance(double FrameSeconds) {
+        LastFrameSeconds = 0.0;
+        LastDroppedSeconds = 0.0;
         if (FrameSeconds > 0.0 && std::isfinite(FrameSeconds)) {
             Accumulated += FrameSeconds;
+            LastFrameSeconds = FrameSeconds;
         }
         // A step is due when the accumulator reaches it up to rounding (1/30 s is two 1/60 s steps).
         const double Due = StepSeconds * (1.0 - 1e-9);
@@ -206,11 +209,19 @@ public:
             Accumulated = 0.0;
         }
         if (Accumulated >= Due) { // capped: drop whole steps that did not run, keep the fraction
-            Accumulated = std::fmod(Accumulated, StepSeconds);
+            const double Kept = std::fmod(Accumulated, StepSeconds);
+            LastDroppedSeconds = Accumulated - Kept;
+            Accumulated = Kept;
             DroppedFrames += 1;
         }
         return Steps;
     }
+    /** The time the last Advance added that the simulation will really cover: its frame time
+     * (0 if invalid) minus the time it dropped at the cap. Forces applied during that frame act
+     * for this long (HearthSimulation.h). */
+    double GetLastSimulatedSeconds() const { return LastFrameSeconds - LastDroppedSeconds; }
+    /** Whole steps' worth of time the last Advance dropped at the cap (0 when not capped). */
+    double GetLastDroppedSeconds() const { return LastDroppedSeconds; }
     /** Leftover time as a fraction of a step, in [0, 1): the interpolation weight of the newest state. */
     double Alpha() const {
         const double A = Accumulated / StepSeconds;
@@ -223,6 +234,8 @@ public:
     int GetDroppedFrames() const { return DroppedFrames; }
     void Reset() {
         Accumulated = 0.0;
+        LastFrameSeconds = 0.0;
+        LastDroppedSeconds = 0.0;
         DroppedFrames = 0;
     }
 
@@ -230,6 +243,8 @@ private:
     double StepSeconds;
     int MaxStepsPerFrame;
     double Accumulated = 0.0;
+    double LastFrameSeconds = 0.0;
+    double LastDroppedSeconds = 0.0;
     int DroppedFrames = 0;
 };
 

@@ -1,12 +1,15 @@
-// UHearthWorldSubsystem - one Hearth world per game world, stepped on a fixed time step with
-// an accumulator; actors are drawn at the pose interpolated between the last two steps.
+// UHearthWorldSubsystem - one Hearth world per game world, stepped on a fixed time step.
 // NOT COMPILED in the Hearth repository (no Unreal Engine there); see ../../../README.md.
-// All unit and axis conversion is in HearthConversion.h, which is compiled and tested there.
+//
+// Thin glue: the stepping, the force and kinematic semantics, the interpolation, gameplay-move
+// detection and error throttling are HearthCore::FSimulation (HearthSimulation.h), and every
+// unit and axis conversion is HearthConversion.h; both are compiled and tested in the Hearth
+// repository. This class only feeds them Unreal's frame time, gravity and actor poses.
 #pragma once
 
 #include "CoreMinimal.h"
+#include "HearthSimulation.h"
 #include "Subsystems/WorldSubsystem.h"
-#include "HearthConversion.h"
 #include "hearth.h"
 #include "HearthWorldSubsystem.generated.h"
 
@@ -18,27 +21,43 @@ class HEARTHPHYSICS_API UHearthWorldSubsystem : public UTickableWorldSubsystem
 	GENERATED_BODY()
 
 public:
+	/** The fixed step (s) and the most steps one frame may run (longer frames drop the rest). */
+	static constexpr double StepSeconds = 1.0 / 60.0;
+	static constexpr int32 MaxStepsPerFrame = 8;
+
 	virtual void Initialize(FSubsystemCollectionBase& Collection) override;
 	virtual void Deinitialize() override;
 	virtual void Tick(float DeltaTime) override;
 	virtual TStatId GetStatId() const override;
 	virtual bool DoesSupportWorldType(const EWorldType::Type WorldType) const override;
 
-	/** Creates the component's body from a Hearth def (metres, Y up) and starts driving it. */
-	HearthBodyId AddBody(UHearthBodyComponent* Component, const HearthBodyDef& Def);
-	/** Destroys the body and stops driving the component. */
-	void RemoveBody(UHearthBodyComponent* Component);
-	HearthWorld* GetHearthWorld() const { return World; }
+	/** The subsystem of the world WorldContextObject is in (null outside game worlds). */
+	UFUNCTION(BlueprintPure, Category = "Hearth", meta = (WorldContext = "WorldContextObject"))
+	static UHearthWorldSubsystem* GetHearthSubsystem(const UObject* WorldContextObject);
 
-	/** Logs a failed Hearth call with its result name and message; returns true on success. */
-	static bool Check(HearthResult Result, const TCHAR* What);
+	/** Whether the Hearth world exists and steps (false when the library failed to load). */
+	UFUNCTION(BlueprintPure, Category = "Hearth")
+	bool IsSimulating() const { return Simulation.IsRunning(); }
+
+	/** Bodies driven by Hearth Body components. */
+	UFUNCTION(BlueprintPure, Category = "Hearth")
+	int32 GetBodyCount() const { return Simulation.GetBodyCount(); }
+
+	/** Fixed steps run since play began. */
+	UFUNCTION(BlueprintPure, Category = "Hearth")
+	int64 GetStepCount() const { return static_cast<int64>(Simulation.GetStepCount()); }
+
+	/** Registers a component's body (Hearth units, from hearth_body_def_default()). */
+	HearthBodyId AddBody(UHearthBodyComponent* Component, const HearthBodyDef& Def);
+	/** Destroys the component's body. */
+	void RemoveBody(UHearthBodyComponent* Component, HearthBodyId Body);
+
+	HearthCore::FSimulation& GetSimulation() { return Simulation; }
 
 private:
-	HearthWorld* World = nullptr;
-	HearthConversion::FixedStepAccumulator Accumulator{1.0 / 60.0, 8};
-	// Parallel arrays, one entry per driven body (swap-removed).
+	/** FSimulation's error callback: LogHearth, already throttled. */
+	static void LogError(void* UserData, const char* Message);
+
+	HearthCore::FSimulation Simulation;
 	TArray<TWeakObjectPtr<UHearthBodyComponent>> Components;
-	TArray<HearthBodyId> Bodies;
-	TArray<HearthTransform> Previous; // state before the last step
-	TArray<HearthTransform> Current;  // state after the last step
 };
