@@ -55,7 +55,7 @@ fn record(world: &mut World, steps: usize, options: RecordOptions) -> Vec<u8> {
 }
 
 /// Position error of a recorded pose: exact f32; rotation error of smallest-three (each
-/// component within 2.2e-5, so a rotated unit axis within 1e-4).
+/// component within 2.2e-5, so a rotated unit axis within 1.5e-4).
 fn assert_pose_close(recorded: Transform, actual: Transform, what: &str) {
     assert_eq!(recorded.p, actual.p, "{what}: positions are stored as f32");
     for axis in [Vec3::X, Vec3::Y, Vec3::Z] {

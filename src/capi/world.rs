@@ -85,6 +85,8 @@ pub struct HearthWorld {
     pub(crate) scratch: UnsafeCell<super::callback::CallbackScratch>,
     /// The contact sink handed to user contact generators.
     pub(crate) sink: UnsafeCell<super::callback::HearthContactSink>,
+    /// The running recording, if any (`capi/record.rs`).
+    pub(crate) recording: UnsafeCell<Option<super::record::Recording>>,
 }
 
 /// Not stepping.
@@ -95,6 +97,8 @@ pub(crate) const PHASE_CORE: u8 = 1;
 pub(crate) const PHASE_FORCES: u8 = 2;
 /// User contact generators run: contacts may be added to the sink.
 pub(crate) const PHASE_CONTACTS: u8 = 3;
+/// A recording's write callback runs: reads only.
+pub(crate) const PHASE_RECORD: u8 = 4;
 
 /// Shared access for reads.
 ///
@@ -213,6 +217,7 @@ pub unsafe extern "C" fn hearth_world_create(
             world: UnsafeCell::new(world),
             scratch: UnsafeCell::new(Default::default()),
             sink: UnsafeCell::new(Default::default()),
+            recording: UnsafeCell::new(None),
         });
         *out = Box::into_raw(boxed);
         Ok(())
@@ -263,9 +268,17 @@ pub unsafe extern "C" fn hearth_world_step(world: *mut HearthWorld, dt: f32) -> 
         if !dt.is_finite() || dt < 0.0 {
             return Err(Failure::invalid(format!("dt must be finite and >= 0, got {dt}")));
         }
+        // A recording whose output failed after the last step says so now, and this step
+        // does not run.
+        super::record::take_failure(handle)?;
         handle.locked.set(true);
         handle.phase.set(PHASE_CORE);
-        let r = catch_unwind(AssertUnwindSafe(|| drive_step(world, dt)));
+        let r = catch_unwind(AssertUnwindSafe(|| {
+            let started = std::time::Instant::now();
+            drive_step(world, dt)?;
+            super::record::after_step(world, dt, started.elapsed().as_secs_f32());
+            Ok(())
+        }));
         handle.phase.set(PHASE_IDLE);
         handle.locked.set(false);
         match r {
