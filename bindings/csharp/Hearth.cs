@@ -18,6 +18,7 @@ using System;
 using System.Collections.Generic;
 using System.Runtime.ExceptionServices;
 using System.Runtime.InteropServices;
+using System.Text;
 
 namespace Hearth
 {
@@ -233,6 +234,7 @@ namespace Hearth
         private readonly WorldHandle handle;
         private readonly Dictionary<GeneratorId, Registration> registrations = new Dictionary<GeneratorId, Registration>();
         private ExceptionDispatchInfo callbackException;
+        private RecordWriteFn recordWrite; // the recording's write callback, kept reachable while recording
         private int stepDepth;
         private bool disposed; // set at once, while the handle may stay open until a running step returns
 
@@ -268,6 +270,9 @@ namespace Hearth
 
         /// <summary>True after Dispose.</summary>
         public bool IsDisposed { get { return disposed || handle.IsClosed; } }
+
+        /// <summary>Whether this world keeps a recording's write callback alive (RecordTo until StopRecording).</summary>
+        public bool KeepsRecordCallback { get { return recordWrite != null; } }
 
         /// <summary>Number of user generators whose callbacks this world keeps alive.</summary>
         public int RegisteredCallbackCount { get { return registrations.Count; } }
@@ -569,6 +574,82 @@ namespace Hearth
         }
 
         // Called inside a native callback: must not throw.
+        // ---- recording (for the browser viewer, viewer/index.html) -------------------------
+
+        /// <summary>
+        /// hearth_world_record_start_file: records the world into the file at
+        /// <paramref name="path"/> — the current state now, then every step. With
+        /// <paramref name="contacts"/> the contact manifolds too. Ends with StopRecording or Dispose.
+        /// </summary>
+        public void RecordToFile(string path, bool contacts = false)
+        {
+            if (path == null)
+            {
+                throw new ArgumentNullException("path");
+            }
+            RecordDef def = RecordDef.Default();
+            def.RecordContacts = new Flag((byte)(contacts ? 1 : 0));
+            byte[] utf8 = Encoding.UTF8.GetBytes(path + "\0");
+            Check(Native.hearth_world_record_start_file(Handle, utf8, ref def), "hearth_world_record_start_file");
+        }
+
+        /// <summary>
+        /// hearth_world_record_start_callback: <paramref name="write"/> receives the recording's
+        /// bytes now and after every step. An exception from it stops the recording: it is
+        /// rethrown by the call or step it happened in, and the next Step (or StopRecording)
+        /// throws with Result.Io.
+        /// </summary>
+        public void RecordTo(Action<byte[]> write, bool contacts = false)
+        {
+            if (write == null)
+            {
+                throw new ArgumentNullException("write");
+            }
+            RecordWriteFn callback = (userData, bytes, len) =>
+            {
+                try
+                {
+                    var data = new byte[(int)len.ToUInt64()];
+                    Marshal.Copy(bytes, data, 0, data.Length);
+                    write(data);
+                    return 0;
+                }
+                catch (Exception e)
+                {
+                    StoreCallbackException(e);
+                    return 1;
+                }
+            };
+            RecordDef def = RecordDef.Default();
+            def.RecordContacts = new Flag((byte)(contacts ? 1 : 0));
+            def.Write = Marshal.GetFunctionPointerForDelegate(callback);
+            callbackException = null;
+            Result result = Native.hearth_world_record_start_callback(Handle, ref def);
+            if (result == Result.Ok)
+            {
+                recordWrite = callback;
+            }
+            if (callbackException != null)
+            {
+                ExceptionDispatchInfo pending = callbackException;
+                callbackException = null;
+                pending.Throw();
+            }
+            Check(result, "hearth_world_record_start_callback");
+            GC.KeepAlive(callback);
+        }
+
+        /// <summary>hearth_world_record_stop: ends the recording (Result.Io if a write had failed).</summary>
+        public void StopRecording()
+        {
+            Result result = Native.hearth_world_record_stop(Handle);
+            if (result != Result.WorldLocked)
+            {
+                recordWrite = null;
+            }
+            Check(result, "hearth_world_record_stop");
+        }
+
         private void StoreCallbackException(Exception e)
         {
             if (callbackException == null)
