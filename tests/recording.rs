@@ -124,6 +124,24 @@ fn a_recorded_pile_replays_every_body_where_the_world_put_it() {
             }
         }
     }
+    // A body record is 31 bytes (README): the 200 falling bodies of frame 1 are all written,
+    // slots one apart; the step chunk's fixed part is 84 bytes (docs/recording-format.md).
+    let frame1 = {
+        let mut at = HEADER_LEN;
+        let mut steps = 0;
+        loop {
+            let len = u32::from_le_bytes(bytes[at + 4..at + 8].try_into().unwrap()) as usize;
+            if bytes[at..at + 4] == TAG_STEP {
+                steps += 1;
+                if steps == 2 {
+                    break CHUNK_HEADER_LEN + len;
+                }
+            }
+            at += CHUNK_HEADER_LEN + len;
+        }
+    };
+    assert_eq!(r.frames[1].bodies.len(), 200);
+    assert_eq!((frame1 - 84) as f64 / 200.0, 31.0, "bytes per body record");
     // Only moved bodies are written: once the pile sleeps, frames carry no bodies.
     for _ in 0..600 {
         w.step(DT).unwrap();
