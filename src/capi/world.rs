@@ -21,6 +21,8 @@
 //!   `hearth_body_apply_torque`, `hearth_body_apply_force_at_point` and
 //!   `hearth_particle_apply_force` work too;
 //! * in the contact phase (`PHASE_CONTACTS`) `hearth_contact_sink_add` works;
+//! * in the record phase (`PHASE_RECORD`, a recording's write callback after the core's
+//!   stages, `capi/record.rs`) only reads work;
 //! * every other mutation (create, destroy, set, attach, step) returns
 //!   `HEARTH_ERROR_WORLD_LOCKED` before any `&mut` to the world is formed, and
 //!   `hearth_world_destroy` is ignored.
