@@ -228,7 +228,7 @@ const HRender = (() => {
       this.line = compile(gl, LINE_VS, LINE_FS);
       this.point = compile(gl, POINT_VS, POINT_FS);
       this.meshes = {};
-      for (const [name, m] of [['sphere', sphereMesh(16, 24)], ['box', boxMesh()], ['cylinder', cylinderMesh(24)]]) {
+      for (const [name, m] of [['sphere', sphereMesh(12, 20)], ['box', boxMesh()], ['cylinder', cylinderMesh(24)]]) {
         this.meshes[name] = this.makeMesh(m);
       }
       this.quad = this.makeMesh({ v: [-1, 0, -1, 0, 1, 0, 1, 0, -1, 0, 1, 0, 1, 0, 1, 0, 1, 0, -1, 0, 1, 0, 1, 0], idx: [0, 2, 1, 0, 3, 2] });
