@@ -6,7 +6,10 @@
 //! per body per step, bytes per written body record, and the time spent in `record_step` as a
 //! share of the time spent in `step` in the same run (so a busy machine slows both alike).
 //!
-//! `cargo bench --bench record`
+//! `cargo bench --bench record`. With `HEARTH_RECORD_REPORT_STEPS=n` only the report runs, for
+//! n steps (repeatable instruction counts: run the bench binary under
+//! `valgrind --tool=callgrind` and compare the inclusive cost of `Recorder::record_step` with
+//! that of `World::step`).
 
 #[path = "../tests/scenes/mod.rs"]
 #[allow(dead_code)]
@@ -26,13 +29,13 @@ fn pile() -> World {
     w
 }
 
-fn report(contacts: bool) {
+fn report(contacts: bool, steps: u64) {
     let mut w = pile();
     let mut rec = Recorder::new(&w, RecordOptions { contacts });
     let mut bytes = rec.bytes().to_vec();
     rec.clear();
     let (mut stepping, mut recording) = (Duration::ZERO, Duration::ZERO);
-    for _ in 0..STEPS {
+    for _ in 0..steps {
         let t = Instant::now();
         w.step(DT).unwrap();
         let t1 = Instant::now();
@@ -61,12 +64,12 @@ fn report(contacts: bool) {
         }
         total
     };
-    let per_body_step = step_bytes as f64 / (BODIES as f64 * STEPS as f64);
+    let per_body_step = step_bytes as f64 / (BODIES as f64 * steps as f64);
     let share = 100.0 * recording.as_secs_f64() / stepping.as_secs_f64();
-    let ms = |d: Duration| 1e3 * d.as_secs_f64() / STEPS as f64;
+    let ms = |d: Duration| 1e3 * d.as_secs_f64() / steps as f64;
     if contacts {
         println!(
-            "pile {BODIES} bodies, {STEPS} steps, contacts on: {:.1} MB; {per_body_step:.2} bytes per body per step; \
+            "pile {BODIES} bodies, {steps} steps, contacts on: {:.1} MB; {per_body_step:.2} bytes per body per step; \
              recording took {share:.1} % of the step time ({:.2} of {:.2} ms/step)",
             bytes.len() as f64 / 1e6,
             ms(recording),
@@ -76,12 +79,12 @@ fn report(contacts: bool) {
         // A step chunk's fixed part: chunk header 8, step header 16, counters 40 and the five
         // section counts 20; the rest are body records.
         println!(
-            "pile {BODIES} bodies, {STEPS} steps, contacts off: {:.1} MB; {per_body_step:.2} bytes per body per step; \
+            "pile {BODIES} bodies, {steps} steps, contacts off: {:.1} MB; {per_body_step:.2} bytes per body per step; \
              {:.1} bytes per written body record ({:.1} % of body-steps written); \
              recording took {share:.1} % of the step time ({:.2} of {:.2} ms/step)",
             bytes.len() as f64 / 1e6,
-            (step_bytes as f64 - STEPS as f64 * 84.0) / records as f64,
-            100.0 * records as f64 / (BODIES as f64 * STEPS as f64),
+            (step_bytes as f64 - steps as f64 * 84.0) / records as f64,
+            100.0 * records as f64 / (BODIES as f64 * steps as f64),
             ms(recording),
             ms(stepping),
         );
@@ -89,8 +92,15 @@ fn report(contacts: bool) {
 }
 
 fn benches(c: &mut Criterion) {
-    report(false);
-    report(true);
+    if let Some(steps) = std::env::var("HEARTH_RECORD_REPORT_STEPS")
+        .ok()
+        .and_then(|s| s.parse().ok())
+    {
+        report(false, steps);
+        return;
+    }
+    report(false, STEPS);
+    report(true, STEPS);
     let mut group = c.benchmark_group("record");
     group.sample_size(10);
     group.throughput(Throughput::Elements(STEPS));
