@@ -247,7 +247,9 @@ pub unsafe extern "C" fn hearth_world_destroy(world: *mut HearthWorld) {
 ///
 /// Errors: `HEARTH_ERROR_NULL_POINTER`, `HEARTH_ERROR_INVALID_ARGUMENT` (bad dt),
 /// `HEARTH_ERROR_WORLD_LOCKED` (called from a callback), `HEARTH_ERROR_PANIC` (an internal
-/// error; the world then refuses further steps).
+/// error; the world then refuses further steps), `HEARTH_ERROR_IO` (the world's recording
+/// failed to write after the last step: the recording has stopped, this step did not run, and
+/// the next one will).
 ///
 /// # Safety
 /// `world` must be NULL or a live world.
