@@ -61,8 +61,14 @@ const SMALLEST_THREE_STEPS: f32 = 32767.0;
 /// three in order, each mapped from [-1/√2, 1/√2] to 15 bits. The largest is made positive
 /// (q and -q are the same rotation) and rebuilt as √(1 − Σc²). Error per component ≤ 2.2e-5;
 /// a rotated unit vector is off by less than 1.5e-4 (about 0.01°).
+#[inline]
 pub fn pack_quat(q: Quat) -> [u8; 6] {
-    let q = q.normalize();
+    // Bodies keep unit rotations; renormalise only one that drifted.
+    let q = if (q.length_squared() - 1.0).abs() > 1.0e-5 {
+        q.normalize()
+    } else {
+        q
+    };
     let c = [q.x, q.y, q.z, q.w];
     let mut largest = 0;
     for i in 1..4 {
@@ -109,7 +115,22 @@ pub fn unpack_quat(b: [u8; 6]) -> Quat {
 
 /// IEEE 754 binary16 of `v`, rounded to nearest even; beyond ±65504 it saturates there (a
 /// recording never holds an infinity), NaN stays NaN.
+#[inline]
 pub fn f32_to_f16(v: f32) -> u16 {
+    let x = v.to_bits();
+    let abs = x & 0x7fff_ffff;
+    // Fast path: results that are normal halves and cannot round up to infinity
+    // (2^-14 <= |v| < 65520). Adding 0x0fff plus the lowest kept bit rounds to nearest even;
+    // a carry moves into the exponent, which is still right.
+    if (0x3880_0000..0x477f_f000).contains(&abs) {
+        let sign = ((x >> 16) & 0x8000) as u16;
+        return sign | ((abs + 0x0fff + ((abs >> 13) & 1) - 0x3800_0000) >> 13) as u16;
+    }
+    f32_to_f16_general(v)
+}
+
+/// `f32_to_f16` for every input: zero, subnormal results, saturation, NaN.
+fn f32_to_f16_general(v: f32) -> u16 {
     let x = v.to_bits();
     let sign = ((x >> 16) & 0x8000) as u16;
     let exp = ((x >> 23) & 0xff) as i32;
@@ -231,6 +252,33 @@ mod tests {
             if v.is_finite() {
                 assert_eq!(f32_to_f16(v), h, "{h:#06x} = {v}");
             }
+        }
+    }
+
+    #[test]
+    fn the_fast_half_float_path_agrees_with_the_general_one() {
+        let mut s = 0x9e37_79b9_u32;
+        for i in 0..2_000_000u32 {
+            s ^= s << 13;
+            s ^= s >> 17;
+            s ^= s << 5;
+            // Random bit patterns, and a dense sweep around the fast path's edges.
+            let bits = if i % 2 == 0 {
+                s
+            } else {
+                0x3880_0000u32.wrapping_sub(50_000).wrapping_add(i)
+            };
+            let v = f32::from_bits(bits);
+            let (a, b) = (f32_to_f16(v), f32_to_f16_general(v));
+            assert!(
+                a == b || (v.is_nan() && a & 0x7e00 == 0x7e00),
+                "{v:e} ({bits:#x}): {a:#x} vs {b:#x}"
+            );
+        }
+        for bits in 0x477f_0000u32..0x4780_1000 {
+            let v = f32::from_bits(bits);
+            assert_eq!(f32_to_f16(v), f32_to_f16_general(v), "{v}");
+            assert_eq!(f32_to_f16(-v), f32_to_f16_general(-v), "{}", -v);
         }
     }
 

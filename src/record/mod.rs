@@ -104,12 +104,6 @@ fn put_quat(out: &mut Vec<u8>, q: Quat) {
     put_f32(out, q.z);
     put_f32(out, q.w);
 }
-#[inline]
-fn put_half3(out: &mut Vec<u8>, v: Vec3) {
-    for c in [v.x, v.y, v.z] {
-        out.extend_from_slice(&f32_to_f16(c).to_le_bytes());
-    }
-}
 
 /// Starts a chunk; returns where its length goes (patched by `end_chunk`).
 fn begin_chunk(out: &mut Vec<u8>, tag: [u8; 4]) -> usize {
@@ -342,11 +336,28 @@ impl Recorder {
             count += 1;
             let delta = (h.index as i64 - previous) as u32;
             previous = h.index as i64;
-            put_varint(out, (delta << 1) | b.awake as u32);
-            put_vec3(out, b.xf.p);
-            out.extend_from_slice(&pack_quat(b.xf.q));
-            put_half3(out, b.v);
-            put_half3(out, b.w);
+            // One record, built on the stack and appended at once.
+            let mut rec = [0u8; 35];
+            let mut n = 0;
+            let mut v = (delta << 1) | b.awake as u32;
+            while v >= 0x80 {
+                rec[n] = (v as u8) | 0x80;
+                v >>= 7;
+                n += 1;
+            }
+            rec[n] = v as u8;
+            n += 1;
+            for c in [b.xf.p.x, b.xf.p.y, b.xf.p.z] {
+                rec[n..n + 4].copy_from_slice(&c.to_le_bytes());
+                n += 4;
+            }
+            rec[n..n + 6].copy_from_slice(&pack_quat(b.xf.q));
+            n += 6;
+            for c in [b.v.x, b.v.y, b.v.z, b.w.x, b.w.y, b.w.z] {
+                rec[n..n + 2].copy_from_slice(&f32_to_f16(c).to_le_bytes());
+                n += 2;
+            }
+            out.extend_from_slice(&rec[..n]);
         }
         out[count_at..count_at + 4].copy_from_slice(&count.to_le_bytes());
     }
