@@ -32,6 +32,7 @@ RULES = [
     ("generator", r"^(hearth_generator_\w+|hearth_\w+_generator_def_default|Hearth\w*Generator\w*|HEARTH_GENERATOR_\w+"
                   r"|hearth_contact_sink_\w+|HearthContactSink|HearthGeneratedContact|Hearth(Force|Contact)Callback"
                   r"|HearthLinkEnd|HEARTH_LINK_\w+)$"),
+    ("recording", r"^(hearth_record_\w+|hearth_world_record_\w+|HearthRecord\w*)$"),
     ("shape", r"^(hearth_shape_\w+|HearthShape\w*|HearthSphere|HearthBox|HearthCapsule|HearthPlane)$"),
     ("body", r"^(hearth_body_\w+|HearthBody\w*|HEARTH_BODY_\w+)$"),
     ("world", r"^(hearth_world_\w+|HearthWorld\w*|HEARTH_INTEGRATOR_\w+)$"),

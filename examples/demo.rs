@@ -11,16 +11,17 @@
 //! land one after another and bounce off. It prints what happens every half second in SI
 //! units, then whether the pyramid stood and how many bodies fell asleep.
 //!
-//! The stepping loop in `main` (one `hearth_world_step` per iteration) is where a recording
-//! for a viewer would be written, one frame per step.
+//! The run is recorded for the viewer: `target/demo.hrec` (or the path given as the first
+//! argument); open it with `viewer/index.html`.
 
 use hearth::capi::body::*;
 use hearth::capi::error::HearthResult;
+use hearth::capi::record::*;
 use hearth::capi::shape::*;
 use hearth::capi::types::*;
 use hearth::capi::world::*;
 use hearth::capi::{hearth_last_error_message, hearth_result_name, hearth_version};
-use std::ffi::{c_char, CStr};
+use std::ffi::{c_char, CStr, CString};
 use std::time::Instant;
 
 /// Fixed time step (s) and number of steps: 6 simulated seconds.
@@ -243,6 +244,7 @@ fn main() {
     let start = snapshot(world, &bodies, &masses, &mut poses);
     let top = *crates.last().expect("the pyramid has crates");
     let top_start = poses[crates.len() - 1].position;
+    let recording = start_recording(world);
 
     println!(
         "Hearth {}.{}.{} demo: a pyramid of crates hit by falling bodies, through the C API\n",
@@ -343,5 +345,28 @@ fn main() {
         step_seconds * 1000.0 / STEPS as f64
     );
     // SAFETY: `world` is live and not used afterwards.
+    // SAFETY: `world` is the live world created above.
+    unsafe { check(hearth_world_record_stop(world), "hearth_world_record_stop") };
+    println!(
+        "\nRecorded to {} — open it with viewer/index.html (file picker or drag and drop).",
+        recording
+    );
     unsafe { hearth_world_destroy(world) };
+}
+
+/// Starts recording the world into the path given as the first argument, or `target/demo.hrec`.
+fn start_recording(world: *mut HearthWorld) -> String {
+    let path = std::env::args()
+        .nth(1)
+        .unwrap_or_else(|| concat!(env!("CARGO_MANIFEST_DIR"), "/target/demo.hrec").to_string());
+    let c_path = CString::new(path.clone()).expect("a path without NUL bytes");
+    let def = hearth_record_def_default();
+    // SAFETY: `world` is live; `c_path` and `def` outlive the call.
+    unsafe {
+        check(
+            hearth_world_record_start_file(world, c_path.as_ptr(), &def),
+            "hearth_world_record_start_file",
+        )
+    };
+    path
 }

@@ -171,6 +171,11 @@ enum HearthResult
      * further steps with this code.
      */
     HEARTH_ERROR_PANIC = 6,
+    /**
+     * Reading or writing a file (or a host's write callback) failed; the message says what
+     * and why.
+     */
+    HEARTH_ERROR_IO = 7,
 };
 #ifndef __cplusplus
 typedef int32_t HearthResult;
@@ -1098,6 +1103,38 @@ typedef struct HearthExpiredParticle {
      */
     uint64_t user_data;
 } HearthExpiredParticle;
+
+/**
+ * Receives the next `len` bytes of a recording (`bytes` is valid only during the call).
+ * Return 0 when they were written; any other value stops the recording, and the next
+ * `hearth_world_step` or `hearth_world_record_stop` reports `HEARTH_ERROR_IO`.
+ */
+typedef int32_t (*HearthRecordWriteFn)(void *user_data, const uint8_t *bytes, size_t len);
+
+/**
+ * How to record. Get one from `hearth_record_def_default()`, then edit it.
+ */
+typedef struct HearthRecordDef {
+    /**
+     * 1 to record every touching contact manifold each step (points, normal, normal
+     * impulses; about 25 bytes per point), 0 not to (default).
+     */
+    uint8_t record_contacts;
+    /**
+     * `hearth_world_record_start_callback` only (NULL for a file): called with the
+     * recording's bytes, in order, once when recording starts and once after every step.
+     */
+    HearthRecordWriteFn write;
+    /**
+     * Passed to `write` unchanged. The host owns it; it must stay valid until the recording
+     * stops (or the world is destroyed).
+     */
+    void *user_data;
+    /**
+     * Set by `hearth_record_def_default()`; do not change.
+     */
+    uint32_t internal_value;
+} HearthRecordDef;
 
 /**
  * Material of a shape. Get one from `hearth_shape_def_default()`, then edit it. Where two
@@ -2668,6 +2705,68 @@ HearthResult hearth_world_set_particle_iterations(struct HearthWorld *world,
                                                   uint32_t position_iterations);
 
 /**
+ * The default recording settings: no contacts, no callback.
+ */
+struct HearthRecordDef hearth_record_def_default(void);
+
+/**
+ * Starts recording `world` into the file at `path` (UTF-8; created, or truncated if it
+ * exists). The header, every body with its shapes and the current state are written at once;
+ * then every `hearth_world_step` appends the step (open the file with `viewer/index.html`).
+ * The recording ends with `hearth_world_record_stop` or `hearth_world_destroy`. A write that
+ * fails later stops the recording; the next step (which then does not run) or stop returns
+ * `HEARTH_ERROR_IO` with the system's message.
+ *
+ * Errors: `HEARTH_ERROR_NULL_POINTER` (world, path or def NULL),
+ * `HEARTH_ERROR_INVALID_ARGUMENT` (def not from `hearth_record_def_default()`, a flag not
+ * 0/1, `def.write` not NULL, path empty or not UTF-8, the world already recording),
+ * `HEARTH_ERROR_IO` (the file cannot be created or written; the message names the path),
+ * `HEARTH_ERROR_WORLD_LOCKED` (called from a callback).
+ *
+ * # Safety
+ * `world` must be NULL or a live world; `path` NULL or a NUL-terminated string; `def` NULL
+ * or a `HearthRecordDef`.
+ */
+HearthResult hearth_world_record_start_file(struct HearthWorld *world,
+                                            const char *path,
+                                            const struct HearthRecordDef *def);
+
+/**
+ * Starts recording `world` through the host's `def->write` callback (for hosts with their own
+ * file systems or streams). `write` is called at once with the header, every body and the
+ * current state, then after every `hearth_world_step` with that step, on the stepping
+ * thread; the world is locked during the call (reads work, changes return
+ * `HEARTH_ERROR_WORLD_LOCKED`). A non-zero return stops the recording; the start (if it was
+ * the first call), the next step (which then does not run) or the stop returns
+ * `HEARTH_ERROR_IO`.
+ *
+ * Errors: `HEARTH_ERROR_NULL_POINTER` (world or def NULL), `HEARTH_ERROR_INVALID_ARGUMENT`
+ * (def not from `hearth_record_def_default()`, a flag not 0/1, `def.write` NULL, the world
+ * already recording), `HEARTH_ERROR_IO` (the first write failed),
+ * `HEARTH_ERROR_WORLD_LOCKED` (called from a callback).
+ *
+ * # Safety
+ * `world` must be NULL or a live world; `def` NULL or a `HearthRecordDef` whose `write` and
+ * `user_data` stay valid until the recording stops.
+ */
+HearthResult hearth_world_record_start_callback(struct HearthWorld *world,
+                                                const struct HearthRecordDef *def);
+
+/**
+ * Stops the world's recording and closes its file (the callback is not called again). Every
+ * step recorded so far is in the output.
+ *
+ * Errors: `HEARTH_ERROR_NULL_POINTER`, `HEARTH_ERROR_INVALID_ARGUMENT` (the world is not
+ * recording), `HEARTH_ERROR_IO` (a write had failed since the last step: the recording is
+ * stopped all the same and the message says what failed), `HEARTH_ERROR_WORLD_LOCKED`
+ * (called from a callback).
+ *
+ * # Safety
+ * `world` must be NULL or a live world.
+ */
+HearthResult hearth_world_record_stop(struct HearthWorld *world);
+
+/**
  * Defaults: density 1000 kg/m³, friction 0.6 (static and dynamic), no bounce.
  */
 struct HearthShapeDef hearth_shape_def_default(void);
@@ -3230,7 +3329,9 @@ void hearth_world_destroy(struct HearthWorld *world);
  *
  * Errors: `HEARTH_ERROR_NULL_POINTER`, `HEARTH_ERROR_INVALID_ARGUMENT` (bad dt),
  * `HEARTH_ERROR_WORLD_LOCKED` (called from a callback), `HEARTH_ERROR_PANIC` (an internal
- * error; the world then refuses further steps).
+ * error; the world then refuses further steps), `HEARTH_ERROR_IO` (the world's recording
+ * failed to write after the last step: the recording has stopped, this step did not run, and
+ * the next one will).
  *
  * # Safety
  * `world` must be NULL or a live world.

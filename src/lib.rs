@@ -12,6 +12,7 @@ pub(crate) mod hash;
 pub mod math;
 pub mod particles;
 pub mod pool;
+pub mod record;
 pub mod simd;
 pub mod soft;
 pub mod step;

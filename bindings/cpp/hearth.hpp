@@ -70,6 +70,7 @@ using GeneratorId = HearthGeneratorId;
 
 using WorldDef = HearthWorldDef;
 using WorldCounters = HearthWorldCounters;
+using RecordDef = HearthRecordDef;
 using BodyDef = HearthBodyDef;
 using ShapeDef = HearthShapeDef;
 using Sphere = HearthSphere;
@@ -160,6 +161,7 @@ enum class GeneratorType : uint32_t {
 
 // Defaults: always start a def from these (the C layer rejects defs made any other way).
 inline WorldDef world_def() noexcept { return hearth_world_def_default(); }
+inline RecordDef record_def() noexcept { return hearth_record_def_default(); }
 inline BodyDef body_def() noexcept { return hearth_body_def_default(); }
 inline BodyDef body_def(BodyType type, Vec3 position = Vec3{0, 0, 0}) noexcept {
     BodyDef d = hearth_body_def_default();
@@ -206,6 +208,7 @@ enum class Code : int32_t {
     WorldLocked = HEARTH_ERROR_WORLD_LOCKED,
     BufferTooSmall = HEARTH_ERROR_BUFFER_TOO_SMALL,
     Panic = HEARTH_ERROR_PANIC,
+    Io = HEARTH_ERROR_IO,
     /** A generator lambda threw something other than hearth::Error (nothrow API only; the
      * throwing API rethrows the original exception). */
     CallbackException = 1000,
@@ -1169,6 +1172,8 @@ struct CallbackBox {
 struct WorldState {
     HearthWorld *world = nullptr;
     std::map<uint64_t, std::unique_ptr<CallbackBox>> boxes;
+    /** The recording's write lambda (World::record_to), kept while it may be called. */
+    std::unique_ptr<CallbackBox> record_box;
     bool failed = false;
     Code code = Code::Ok;
     std::string message;
@@ -1272,6 +1277,17 @@ template <class P, class F> struct ContactBox final : CallbackBox {
             BasicContactContext<P> ctx(world, c, sink);
             invoke_generator(self->fn, ctx, *self->state);
         });
+    }
+};
+/** The heap home of a recording's write lambda: `bool(const uint8_t *, size_t)`. */
+template <class P, class F> struct RecordBox final : CallbackBox {
+    RecordBox(WorldState *s, F f) : CallbackBox(s), fn(std::move(f)) {}
+    F fn;
+    static int32_t trampoline(void *user_data, const uint8_t *bytes, size_t len) noexcept {
+        RecordBox *self = static_cast<RecordBox *>(user_data);
+        bool ok = false;
+        guarded(*self->state, [&] { ok = self->fn(bytes, len); });
+        return ok ? 0 : 1;
     }
 };
 } // namespace detail
@@ -1385,6 +1401,54 @@ public:
         const HearthResult r = hearth_generator_destroy(this->world_, g.id());
         if (r == HEARTH_OK && state_) {
             state_->boxes.erase(detail::WorldState::key(g.id()));
+        }
+        return P::check(r);
+    }
+
+    /**
+     * Records the world into the file at `path` (hearth_world_record_start_file): the
+     * current state now, then every step; open the file with viewer/index.html. `contacts`
+     * records the contact manifolds too. Ends with stop_recording() or the World.
+     */
+    Ret<void> record_to_file(const std::string &path, bool contacts = false) {
+        RecordDef def = record_def();
+        def.record_contacts = contacts ? 1 : 0;
+        return P::check(hearth_world_record_start_file(this->world_, path.c_str(), &def));
+    }
+
+    /**
+     * Records the world through `write(const uint8_t *bytes, size_t len) -> bool`
+     * (hearth_world_record_start_callback), called now and after every step on the stepping
+     * thread. Returning false, or throwing, stops the recording: a throw is reported like a
+     * generator lambda's (by this call or by the step it happened in), and the next step (or
+     * stop_recording) fails with Code::Io.
+     */
+    template <class F> Ret<void> record_to(F &&write, bool contacts = false) {
+        using Box = detail::RecordBox<P, std::decay_t<F>>;
+        if (!state_) {
+            return P::fail(Code::NullPointer, "hearth.hpp: empty World");
+        }
+        std::unique_ptr<Box> box(new Box(state_.get(), std::forward<F>(write)));
+        RecordDef def = record_def();
+        def.record_contacts = contacts ? 1 : 0;
+        def.write = &Box::trampoline;
+        def.user_data = box.get();
+        state_->clear_failure();
+        const HearthResult r = hearth_world_record_start_callback(this->world_, &def);
+        if (r == HEARTH_OK) {
+            state_->record_box = std::move(box);
+        }
+        if (state_->failed) {
+            return report_callback_failure();
+        }
+        return P::check(r);
+    }
+
+    /** Ends the recording (hearth_world_record_stop); Code::Io if a write had failed. */
+    Ret<void> stop_recording() {
+        const HearthResult r = hearth_world_record_stop(this->world_);
+        if (state_ && r != HEARTH_ERROR_WORLD_LOCKED) {
+            state_->record_box.reset(); // the C world no longer calls it
         }
         return P::check(r);
     }

@@ -34,6 +34,8 @@ namespace Hearth
         BufferTooSmall = 5,
         /// <summary>HEARTH_ERROR_PANIC: an internal bug caught at the boundary; the world refuses further steps.</summary>
         Panic = 6,
+        /// <summary>HEARTH_ERROR_IO: writing a recording (a file, or the write callback) failed.</summary>
+        Io = 7,
     }
 
     /// <summary>HEARTH_BODY_*: body type codes (BodyDef.Type, Body.Type).</summary>
@@ -115,6 +117,13 @@ namespace Hearth
     /// </summary>
     [UnmanagedFunctionPointer(CallingConvention.Cdecl)]
     public delegate void ContactCallback(IntPtr userData, IntPtr world, IntPtr context, IntPtr sink);
+
+    /// <summary>
+    /// HearthRecordWriteFn: <c>int32_t (*)(void *user_data, const uint8_t *bytes, size_t len)</c>;
+    /// returns 0 when the bytes were written.
+    /// </summary>
+    [UnmanagedFunctionPointer(CallingConvention.Cdecl)]
+    public delegate int RecordWriteFn(IntPtr userData, IntPtr bytes, UIntPtr len);
 
     /// <summary>A 3D vector of <c>float</c> (metres, m/s, N, ... by context).</summary>
     [StructLayout(LayoutKind.Sequential)]
@@ -1044,6 +1053,23 @@ namespace Hearth
         public uint InternalValue;
     }
 
+    /// <summary>How to record a world (hearth_world_record_start_file / _callback).</summary>
+    [StructLayout(LayoutKind.Sequential)]
+    public struct RecordDef
+    {
+        /// <summary>The defaults of <c>hearth_record_def_default()</c>; start every def from here.</summary>
+        public static RecordDef Default() { return Native.hearth_record_def_default(); }
+
+        /// <summary>1 to record every touching contact manifold each step. Default 0.</summary>
+        public Flag RecordContacts;
+        /// <summary>A RecordWriteFn for hearth_world_record_start_callback (NULL for a file). Default NULL.</summary>
+        public IntPtr Write;
+        /// <summary>Passed to Write as is. Default NULL.</summary>
+        public IntPtr UserData;
+        /// <summary>Set by <c>hearth_record_def_default()</c>; do not change.</summary>
+        public uint InternalValue;
+    }
+
     /// <summary>Counters of a world, for tools and tests.</summary>
     [StructLayout(LayoutKind.Sequential)]
     public struct WorldCounters
@@ -1414,6 +1440,19 @@ namespace Hearth
 
         [DllImport(Lib, CallingConvention = CallingConvention.Cdecl)]
         public static extern Result hearth_world_set_particle_iterations(WorldHandle world, uint velocityIterations, uint positionIterations);
+
+        [DllImport(Lib, CallingConvention = CallingConvention.Cdecl)]
+        public static extern RecordDef hearth_record_def_default();
+
+        /// <summary><paramref name="path"/>: NUL-terminated UTF-8 (see World.RecordToFile).</summary>
+        [DllImport(Lib, CallingConvention = CallingConvention.Cdecl)]
+        public static extern Result hearth_world_record_start_file(WorldHandle world, [In] byte[] path, ref RecordDef def);
+
+        [DllImport(Lib, CallingConvention = CallingConvention.Cdecl)]
+        public static extern Result hearth_world_record_start_callback(WorldHandle world, ref RecordDef def);
+
+        [DllImport(Lib, CallingConvention = CallingConvention.Cdecl)]
+        public static extern Result hearth_world_record_stop(WorldHandle world);
 
         [DllImport(Lib, CallingConvention = CallingConvention.Cdecl)]
         public static extern ShapeDef hearth_shape_def_default();

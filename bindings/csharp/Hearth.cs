@@ -21,6 +21,7 @@ using System;
 using System.Collections.Generic;
 using System.Runtime.ExceptionServices;
 using System.Runtime.InteropServices;
+using System.Text;
 using System.Threading;
 #if UNITY_5_3_OR_NEWER
 using AOT; // Unity's MonoPInvokeCallbackAttribute
@@ -362,11 +363,13 @@ namespace Hearth
                 registration.Release();
             }
             registrations.Clear();
+            ReleaseRecordSink();
         }
 
         private readonly WorldHandle handle;
         private readonly Dictionary<GeneratorId, Registration> registrations = new Dictionary<GeneratorId, Registration>();
         private ExceptionDispatchInfo callbackException;
+        private GCHandle recordSink; // the recording's RecordSink, allocated while recording to a callback
         private int stepDepth;
         private bool disposed; // set at once, while the handle may stay open until a running step returns
 
@@ -402,6 +405,9 @@ namespace Hearth
 
         /// <summary>True after Dispose.</summary>
         public bool IsDisposed { get { return disposed || handle.IsClosed; } }
+
+        /// <summary>Whether this world keeps a recording's write callback alive (RecordTo until StopRecording).</summary>
+        public bool KeepsRecordCallback { get { return recordSink.IsAllocated; } }
 
         /// <summary>Number of user generators whose callbacks this world keeps alive.</summary>
         public int RegisteredCallbackCount { get { return registrations.Count; } }
@@ -690,6 +696,130 @@ namespace Hearth
         }
 
         // Called inside a native callback: must not throw.
+        // ---- recording (for the browser viewer, viewer/index.html) -------------------------
+
+        /// <summary>
+        /// hearth_world_record_start_file: records the world into the file at
+        /// <paramref name="path"/> — the current state now, then every step. With
+        /// <paramref name="contacts"/> the contact manifolds too. Ends with StopRecording or Dispose.
+        /// </summary>
+        public void RecordToFile(string path, bool contacts = false)
+        {
+            if (path == null)
+            {
+                throw new ArgumentNullException("path");
+            }
+            RecordDef def = RecordDef.Default();
+            def.RecordContacts = new Flag((byte)(contacts ? 1 : 0));
+            byte[] utf8 = Encoding.UTF8.GetBytes(path + "\0");
+            Check(Native.hearth_world_record_start_file(Handle, utf8, ref def), "hearth_world_record_start_file");
+        }
+
+        /// <summary>
+        /// hearth_world_record_start_callback: <paramref name="write"/> receives the recording's
+        /// bytes now and after every step. An exception from it stops the recording: it is
+        /// rethrown by the call or step it happened in, and the next Step (or StopRecording)
+        /// throws with Result.Io.
+        /// </summary>
+        public void RecordTo(Action<byte[]> write, bool contacts = false)
+        {
+            if (write == null)
+            {
+                throw new ArgumentNullException("write");
+            }
+            var sink = new RecordSink(this, write);
+            GCHandle sinkHandle = GCHandle.Alloc(sink);
+            RecordDef def = RecordDef.Default();
+            def.RecordContacts = new Flag((byte)(contacts ? 1 : 0));
+            def.Write = RecordTrampolinePointer;
+            def.UserData = GCHandle.ToIntPtr(sinkHandle);
+            callbackException = null;
+            Result result = Native.hearth_world_record_start_callback(Handle, ref def);
+            if (result == Result.Ok)
+            {
+                ReleaseRecordSink();
+                recordSink = sinkHandle;
+            }
+            else
+            {
+                sinkHandle.Free();
+            }
+            if (callbackException != null)
+            {
+                ExceptionDispatchInfo pending = callbackException;
+                callbackException = null;
+                pending.Throw();
+            }
+            Check(result, "hearth_world_record_start_callback");
+        }
+
+        // What a recording's user_data names: the world (for exceptions) and the host's writer.
+        private sealed class RecordSink
+        {
+            public readonly World World;
+            public readonly Action<byte[]> Write;
+
+            public RecordSink(World world, Action<byte[]> write)
+            {
+                World = world;
+                Write = write;
+            }
+        }
+
+        private static readonly RecordWriteFn RecordTrampolineDelegate = RecordTrampoline;
+        private static readonly IntPtr RecordTrampolinePointer = Marshal.GetFunctionPointerForDelegate(RecordTrampolineDelegate);
+
+        // The one write function every callback recording is started with; user_data is a
+        // GCHandle of the RecordSink. An exception never reaches native code: it is stored and
+        // rethrown, and the non-zero result stops the recording.
+        [MonoPInvokeCallback(typeof(RecordWriteFn))]
+        private static int RecordTrampoline(IntPtr userData, IntPtr bytes, UIntPtr len)
+        {
+            RecordSink sink = null;
+            try
+            {
+                sink = GCHandle.FromIntPtr(userData).Target as RecordSink;
+            }
+            catch (InvalidOperationException)
+            {
+            }
+            if (sink == null)
+            {
+                return 1;
+            }
+            try
+            {
+                var data = new byte[(int)len.ToUInt64()];
+                Marshal.Copy(bytes, data, 0, data.Length);
+                sink.Write(data);
+                return 0;
+            }
+            catch (Exception e)
+            {
+                sink.World.StoreCallbackException(e);
+                return 1;
+            }
+        }
+
+        private void ReleaseRecordSink()
+        {
+            if (recordSink.IsAllocated)
+            {
+                recordSink.Free();
+            }
+        }
+
+        /// <summary>hearth_world_record_stop: ends the recording (Result.Io if a write had failed).</summary>
+        public void StopRecording()
+        {
+            Result result = Native.hearth_world_record_stop(Handle);
+            if (result != Result.WorldLocked)
+            {
+                ReleaseRecordSink();
+            }
+            Check(result, "hearth_world_record_stop");
+        }
+
         private void StoreCallbackException(Exception e)
         {
             if (callbackException == null)

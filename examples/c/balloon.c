@@ -82,7 +82,7 @@ static void add_box(HearthVec3 p, HearthVec3 half) {
     CHECK(hearth_shape_create_box(g_world, body, &sd, &box, &shape));
 }
 
-int main(void) {
+int main(int argc, char **argv) {
     if (hearth_version() != HEARTH_VERSION) {
         fprintf(stderr, "error: header version %u, library version %u\n", (unsigned)HEARTH_VERSION,
                 (unsigned)hearth_version());
@@ -128,6 +128,12 @@ int main(void) {
     printf("%8s %16s %14s %10s\n", "t [s]", "centre y [m]", "volume [m^3]", "vs rest");
 
     float worst = 0.0f, lowest = 0.0f, last_y = 0.0f, second_ago = 0.0f;
+    /* With a path argument, record the run for the browser viewer (viewer/index.html). */
+    if (argc > 1) {
+        HearthRecordDef record = hearth_record_def_default();
+        record.record_contacts = 1;
+        CHECK(hearth_world_record_start_file(g_world, argv[1], &record));
+    }
     for (int step = 1; step <= STEPS; step++) {
         CHECK(hearth_world_step(g_world, DT));
         /* What a host does every frame: one call for positions, one for normals. */
@@ -159,6 +165,10 @@ int main(void) {
     int ok = worst < 0.05f && fabsf(last_y - second_ago) < 0.01f && lowest > -0.02f;
     printf("worst volume change after the drop %.2f %%, lowest vertex %.3f m, moved %.4f m in the last second: %s\n",
            100.0 * (double)worst, (double)lowest, (double)fabsf(last_y - second_ago), ok ? "OK" : "FAILED");
+    if (argc > 1) {
+        CHECK(hearth_world_record_stop(g_world));
+        fprintf(stderr, "recorded %s: open it with viewer/index.html\n", argv[1]);
+    }
     cleanup();
     return ok ? 0 : 1;
 }

@@ -48,7 +48,7 @@ static const float LINK = 0.4f; /* joint to joint (m) */
 static const float DOOR_OPEN = 1.5f; /* rad */
 static const float DOOR_SPEED = 1.0f; /* rad/s */
 
-int main(void) {
+int main(int argc, char **argv) {
     HearthWorldDef wd = hearth_world_def_default();
     wd.substeps = 12; /* joints sag as 1/substeps^2: 12 keep the heavy chain within 1% */
     HearthWorld *w = NULL;
@@ -128,6 +128,12 @@ int main(void) {
     const float dt = 1.0f / 60.0f;
     float worst_stretch = 0.0f, worst_door = 0.0f, mid_speed_error = 0.0f;
     int reversals = 0;
+    /* With a path argument, record the run for the browser viewer (viewer/index.html). */
+    if (argc > 1) {
+        HearthRecordDef record = hearth_record_def_default();
+        record.record_contacts = 1;
+        check(hearth_world_record_start_file(w, argv[1], &record), "hearth_world_record_start_file");
+    }
     for (int step = 1; step <= 480; step++) {
         check(hearth_world_step(w, dt), "hearth_world_step");
         HearthTransform end;
@@ -170,6 +176,10 @@ int main(void) {
     }
     printf("chain: largest stretch %.3f%%; door: widest %.3f rad (limit %.1f), speed error mid-swing %.3f rad/s, %d reversals\n",
            100.0f * worst_stretch, worst_door, DOOR_OPEN, mid_speed_error, reversals);
+    if (argc > 1) {
+        check(hearth_world_record_stop(w), "hearth_world_record_stop");
+        fprintf(stderr, "recorded %s: open it with viewer/index.html\n", argv[1]);
+    }
     hearth_world_destroy(w);
     if (worst_stretch > 0.01f || worst_door > DOOR_OPEN + 0.05f || mid_speed_error > 0.05f || reversals < 3) {
         fprintf(stderr, "chain_door: outcome out of tolerance\n");

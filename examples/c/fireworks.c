@@ -109,7 +109,7 @@ static void burst(HearthVec3 p, HearthVec3 direction, float cone, uint32_t count
     g_bursts++;
 }
 
-int main(void) {
+int main(int argc, char **argv) {
     HearthWorldDef wd = hearth_world_def_default();
     CHECK(hearth_world_create(&wd, &g_world));
 
@@ -134,6 +134,12 @@ int main(void) {
     CHECK(hearth_generator_create_user_force(g_world, &wdef, &g_wind));
 
     int launched = 0, rockets_burst = 0;
+    /* With a path argument, record the run for the browser viewer (viewer/index.html). */
+    if (argc > 1) {
+        HearthRecordDef record = hearth_record_def_default();
+        record.record_contacts = 1;
+        CHECK(hearth_world_record_start_file(g_world, argv[1], &record));
+    }
     for (int step = 0; step < STEPS; step++) {
         /* A rocket every half second for the first three seconds, with a tiny mass so drag
          * does not matter for it. */
@@ -181,6 +187,10 @@ int main(void) {
     int ok = launched == ROCKETS && rockets_burst == ROCKETS && left == 0 && wind.calls == STEPS;
     printf("%d rockets, %d bursts in all, %zu particles left, wind called %d times: %s\n", rockets_burst, g_bursts,
            left, wind.calls, ok ? "ok" : "FAILED");
+    if (argc > 1) {
+        CHECK(hearth_world_record_stop(g_world));
+        fprintf(stderr, "recorded %s: open it with viewer/index.html\n", argv[1]);
+    }
     hearth_world_destroy(g_world);
     return ok ? 0 : 1;
 }

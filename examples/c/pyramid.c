@@ -85,7 +85,7 @@ static void add_ground(void) {
     CHECK(hearth_shape_create_plane(g_world, ground, &sd, &plane, &shape));
 }
 
-int main(void) {
+int main(int argc, char **argv) {
     if (hearth_version() != HEARTH_VERSION) {
         fprintf(stderr, "error: header version %u, library version %u\n", (unsigned)HEARTH_VERSION,
                 (unsigned)hearth_version());
@@ -126,6 +126,12 @@ int main(void) {
     printf("%8s %14s %8s\n", "t [s]", "top box y [m]", "awake");
 
     HearthTransform transforms[MAX_BODIES]; /* caller-owned, filled in one call per report */
+    /* With a path argument, record the run for the browser viewer (viewer/index.html). */
+    if (argc > 1) {
+        HearthRecordDef record = hearth_record_def_default();
+        record.record_contacts = 1;
+        CHECK(hearth_world_record_start_file(g_world, argv[1], &record));
+    }
     for (int step = 1; step <= STEPS; step++) {
         CHECK(hearth_world_step(g_world, DT));
         if (step % REPORT_EVERY != 0) {
@@ -142,6 +148,10 @@ int main(void) {
         printf("%8.2f %14.3f %4d/%d\n", t, (double)transforms[top].position.y, awake, (int)count);
     }
 
+    if (argc > 1) {
+        CHECK(hearth_world_record_stop(g_world));
+        fprintf(stderr, "recorded %s: open it with viewer/index.html\n", argv[1]);
+    }
     hearth_world_destroy(g_world);
     g_world = NULL;
     printf("done\n");

@@ -64,7 +64,7 @@ static HearthBodyId post(float x) {
     return b;
 }
 
-int main(void) {
+int main(int argc, char **argv) {
     HearthWorldDef wd = hearth_world_def_default();
     CHECK(hearth_world_create(&wd, &g_world));
 
@@ -135,6 +135,12 @@ int main(void) {
 
     float low = 1e9f, high = -1e9f, worst = 0.0f;
     HearthVec3 positions[N];
+    /* With a path argument, record the run for the browser viewer (viewer/index.html). */
+    if (argc > 1) {
+        HearthRecordDef record = hearth_record_def_default();
+        record.record_contacts = 1;
+        CHECK(hearth_world_record_start_file(g_world, argv[1], &record));
+    }
     for (int step = 1; step <= 720; step++) {
         CHECK(hearth_world_step(g_world, DT));
         HearthTransform t;
@@ -164,6 +170,10 @@ int main(void) {
     int ok = high - low < 0.005f && low > 2.5f && worst < 1e-3f;
     printf("box rests between %.4f and %.4f m over the last 6 s (%.2f mm); worst rod error %.1e m: %s\n",
            (double)low, (double)high, 1000.0 * (double)(high - low), (double)worst, ok ? "ok" : "FAILED");
+    if (argc > 1) {
+        CHECK(hearth_world_record_stop(g_world));
+        fprintf(stderr, "recorded %s: open it with viewer/index.html\n", argv[1]);
+    }
     hearth_world_destroy(g_world);
     return ok ? 0 : 1;
 }

@@ -28,6 +28,9 @@ pub enum HearthResult {
     /// An internal bug was caught at the boundary. A world that panicked mid-step refuses
     /// further steps with this code.
     HEARTH_ERROR_PANIC = 6,
+    /// Reading or writing a file (or a host's write callback) failed; the message says what
+    /// and why.
+    HEARTH_ERROR_IO = 7,
 }
 
 pub use HearthResult::*;

@@ -21,6 +21,8 @@
 //!   `hearth_body_apply_torque`, `hearth_body_apply_force_at_point` and
 //!   `hearth_particle_apply_force` work too;
 //! * in the contact phase (`PHASE_CONTACTS`) `hearth_contact_sink_add` works;
+//! * in the record phase (`PHASE_RECORD`, a recording's write callback after the core's
+//!   stages, `capi/record.rs`) only reads work;
 //! * every other mutation (create, destroy, set, attach, step) returns
 //!   `HEARTH_ERROR_WORLD_LOCKED` before any `&mut` to the world is formed, and
 //!   `hearth_world_destroy` is ignored.
@@ -85,6 +87,8 @@ pub struct HearthWorld {
     pub(crate) scratch: UnsafeCell<super::callback::CallbackScratch>,
     /// The contact sink handed to user contact generators.
     pub(crate) sink: UnsafeCell<super::callback::HearthContactSink>,
+    /// The running recording, if any (`capi/record.rs`).
+    pub(crate) recording: UnsafeCell<Option<super::record::Recording>>,
 }
 
 /// Not stepping.
@@ -95,6 +99,8 @@ pub(crate) const PHASE_CORE: u8 = 1;
 pub(crate) const PHASE_FORCES: u8 = 2;
 /// User contact generators run: contacts may be added to the sink.
 pub(crate) const PHASE_CONTACTS: u8 = 3;
+/// A recording's write callback runs: reads only.
+pub(crate) const PHASE_RECORD: u8 = 4;
 
 /// Shared access for reads.
 ///
@@ -213,6 +219,7 @@ pub unsafe extern "C" fn hearth_world_create(
             world: UnsafeCell::new(world),
             scratch: UnsafeCell::new(Default::default()),
             sink: UnsafeCell::new(Default::default()),
+            recording: UnsafeCell::new(None),
         });
         *out = Box::into_raw(boxed);
         Ok(())
@@ -240,7 +247,9 @@ pub unsafe extern "C" fn hearth_world_destroy(world: *mut HearthWorld) {
 ///
 /// Errors: `HEARTH_ERROR_NULL_POINTER`, `HEARTH_ERROR_INVALID_ARGUMENT` (bad dt),
 /// `HEARTH_ERROR_WORLD_LOCKED` (called from a callback), `HEARTH_ERROR_PANIC` (an internal
-/// error; the world then refuses further steps).
+/// error; the world then refuses further steps), `HEARTH_ERROR_IO` (the world's recording
+/// failed to write after the last step: the recording has stopped, this step did not run, and
+/// the next one will).
 ///
 /// # Safety
 /// `world` must be NULL or a live world.
@@ -263,9 +272,17 @@ pub unsafe extern "C" fn hearth_world_step(world: *mut HearthWorld, dt: f32) -> 
         if !dt.is_finite() || dt < 0.0 {
             return Err(Failure::invalid(format!("dt must be finite and >= 0, got {dt}")));
         }
+        // A recording whose output failed after the last step says so now, and this step
+        // does not run.
+        super::record::take_failure(handle)?;
         handle.locked.set(true);
         handle.phase.set(PHASE_CORE);
-        let r = catch_unwind(AssertUnwindSafe(|| drive_step(world, dt)));
+        let r = catch_unwind(AssertUnwindSafe(|| {
+            let started = std::time::Instant::now();
+            drive_step(world, dt)?;
+            super::record::after_step(world, dt, started.elapsed().as_secs_f32());
+            Ok(())
+        }));
         handle.phase.set(PHASE_IDLE);
         handle.locked.set(false);
         match r {

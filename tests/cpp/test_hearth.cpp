@@ -18,6 +18,8 @@
 #include <type_traits>
 #include <vector>
 
+static std::string g_program; // argv[0]: test files go next to the program
+
 static int g_passed = 0;
 static int g_failed = 0;
 
@@ -702,6 +704,68 @@ static void test_builtin_generators() {
     CHECK_NEAR(b.position().y, 10.0, 0.01); // hangs on the rod
 }
 
+static void test_recording() {
+    hearth::World w = make_world();
+    hearth::Body b = add_ball(w, hearth::vec3(0, 5, 0));
+    // Into a file next to this program (each build variant has its own).
+    const std::string path = g_program + ".hrec";
+    w.record_to_file(path, true);
+    CHECK_THROWS(w.record_to_file(path), hearth::Code::InvalidArgument); // already recording
+    for (int i = 0; i < 10; i++) {
+        w.step(DT);
+    }
+    w.stop_recording();
+    CHECK_THROWS(w.stop_recording(), hearth::Code::InvalidArgument); // not recording
+    std::FILE *f = std::fopen(path.c_str(), "rb");
+    char head[8] = {0};
+    CHECK(f != nullptr && std::fread(head, 1, 8, f) == 8 && std::memcmp(head, "HEARTHRC", 8) == 0);
+    if (f != nullptr) {
+        std::fseek(f, 0, SEEK_END);
+        CHECK(std::ftell(f) > 16 + 10 * 31); // a falling ball: its 31-byte record every step
+        std::fclose(f);
+    }
+    std::remove(path.c_str());
+    CHECK_THROWS(w.record_to_file("/nonexistent-dir/x.hrec"), hearth::Code::Io);
+    // Through a lambda.
+    std::vector<uint8_t> bytes;
+    int calls = 0;
+    w.record_to([&](const uint8_t *data, size_t len) {
+        calls++;
+        bytes.insert(bytes.end(), data, data + len);
+        return true;
+    });
+    CHECK(calls == 1 && bytes.size() > 16 && std::memcmp(bytes.data(), "HEARTHRC", 8) == 0);
+    w.step(DT);
+    CHECK(calls == 2);
+    w.stop_recording();
+    // A lambda that throws: the step it throws in rethrows it; the next step reports Io and
+    // does not run; then the world steps without recording.
+    int writes = 0;
+    w.record_to([&](const uint8_t *, size_t) -> bool {
+        if (++writes == 2) {
+            throw std::runtime_error("disk full");
+        }
+        return true;
+    });
+    try {
+        w.step(DT);
+        CHECK(false);
+    } catch (const std::runtime_error &e) {
+        CHECK(std::string(e.what()) == "disk full");
+    }
+    const float y = b.position().y;
+    CHECK_THROWS(w.step(DT), hearth::Code::Io);
+    CHECK(b.position().y == y);
+    w.step(DT);
+    CHECK(writes == 2 && b.position().y < y);
+}
+
+static void test_recording_start_failure() {
+    hearth::World w = make_world();
+    CHECK_THROWS(w.record_to([](const uint8_t *, size_t) { return false; }), hearth::Code::Io);
+    CHECK_THROWS(w.stop_recording(), hearth::Code::InvalidArgument);
+}
+
 static void run_throwing_tests() {
     test_box_rests_on_plane();
     test_errors_as_exceptions();
@@ -715,6 +779,8 @@ static void run_throwing_tests() {
     test_soft_bodies();
     test_soft_body_settings();
     test_builtin_generators();
+    test_recording();
+    test_recording_start_failure();
 }
 #endif // HEARTH_CPP_EXCEPTIONS
 
@@ -773,6 +839,24 @@ static void test_nothrow_results() {
     CHECK_OK(moved.step(DT));
     nt::World empty;
     CHECK_CODE(empty.add_force_generator([](nt::ForceContext &) {}), hearth::Code::NullPointer);
+}
+
+static void test_nothrow_recording() {
+    nt::World w = nt::World::create().value();
+    size_t total = 0;
+    CHECK_OK(w.record_to([&](const uint8_t *, size_t len) {
+        total += len;
+        return true;
+    }));
+    CHECK(total > 16);
+    CHECK_OK(w.step(DT));
+    CHECK(w.record_to_file("x.hrec").code() == hearth::Code::InvalidArgument); // already recording
+    CHECK_OK(w.stop_recording());
+    CHECK(w.stop_recording().code() == hearth::Code::InvalidArgument);
+    CHECK(w.record_to([](const uint8_t *, size_t) { return false; }).code() == hearth::Code::Io);
+    nt::World empty;
+    CHECK(empty.record_to([](const uint8_t *, size_t) { return true; }).code() == hearth::Code::NullPointer);
+    CHECK(empty.record_to_file("x.hrec").code() == hearth::Code::NullPointer);
 }
 
 static void test_nothrow_lambdas() {
@@ -897,7 +981,8 @@ static void test_nothrow_handles() {
     CHECK(hearth::version() == HEARTH_VERSION);
 }
 
-int main() {
+int main(int argc, char **argv) {
+    g_program = argc > 0 ? argv[0] : "test_hearth";
 #if HEARTH_CPP_EXCEPTIONS
     run_throwing_tests();
     const char *mode = "exceptions";
@@ -907,6 +992,7 @@ int main() {
     test_nothrow_results();
     test_nothrow_lambdas();
     test_nothrow_handles();
+    test_nothrow_recording();
     std::printf("test_hearth (%s): %d passed, %d failed\n", mode, g_passed, g_failed);
     return g_failed == 0 ? 0 : 1;
 }

@@ -8,6 +8,7 @@
 // constant as the C compiler sees them; the layout test compares them with the binding's.
 
 using System;
+using System.Text;
 using System.Collections.Generic;
 using System.Globalization;
 using System.IO;
@@ -1165,6 +1166,56 @@ internal static class HearthTests
 
     // ---- driver -------------------------------------------------------------------------------
 
+    private static void TestRecording()
+    {
+        string path = System.IO.Path.Combine(System.IO.Path.GetTempPath(), "hearth_csharp_test_" + System.Diagnostics.Process.GetCurrentProcess().Id + ".hrec");
+        using (var world = new World())
+        {
+            Body ball = DynamicBox(world, new Vec3(0f, 5f, 0f), 0.5f);
+            world.RecordToFile(path, true);
+            Fails(Result.InvalidArgument, () => world.RecordToFile(path), "already recording");
+            for (int i = 0; i < 10; i++)
+            {
+                world.Step(Dt);
+            }
+            world.StopRecording();
+            Fails(Result.InvalidArgument, () => world.StopRecording(), "not recording");
+            byte[] file = System.IO.File.ReadAllBytes(path);
+            Equal(Encoding.ASCII.GetString(file, 0, 8), "HEARTHRC", "magic");
+            Equal((int)file[12], 1, "contacts flag");
+            Ensure(file.Length > 16 + 10 * 31, "a falling box's 31-byte record every step: " + file.Length);
+            System.IO.File.Delete(path);
+            Fails(Result.Io, () => world.RecordToFile("/nonexistent-dir/x.hrec"), "bad directory");
+
+            var chunks = new List<byte[]>();
+            world.RecordTo(chunks.Add);
+            Equal(chunks.Count, 1, "the start is written at once");
+            world.Step(Dt);
+            Equal(chunks.Count, 2, "then once per step");
+            Ensure(world.KeepsRecordCallback, "the callback is kept while recording");
+            world.StopRecording();
+            Ensure(!world.KeepsRecordCallback, "and released by StopRecording");
+
+            int writes = 0;
+            world.RecordTo(data =>
+            {
+                if (++writes == 2)
+                {
+                    throw new CallbackBoom("disk full");
+                }
+            });
+            CallbackBoom e = Throws<CallbackBoom>(() => world.Step(Dt), "the write's exception");
+            Equal(e.Message, "disk full", "original exception");
+            float y = ball.Position.Y;
+            Fails(Result.Io, () => world.Step(Dt), "the next step reports the failed recording");
+            Equal(ball.Position.Y, y, "and does not step");
+            world.Step(Dt);
+            Ensure(ball.Position.Y < y, "then the world steps again");
+            Throws<CallbackBoom>(() => world.RecordTo(data => { throw new CallbackBoom("at once"); }), "first write fails");
+            Fails(Result.InvalidArgument, () => world.StopRecording(), "not recording after a failed start");
+        }
+    }
+
     private static int Main(string[] args)
     {
         layoutPath = args.Length > 0 ? args[0] : null;
@@ -1190,6 +1241,7 @@ internal static class HearthTests
             new KeyValuePair<string, Action>("particles", TestParticles),
             new KeyValuePair<string, Action>("soft bodies", TestSoftBodies),
             new KeyValuePair<string, Action>("soft body settings", TestSoftBodySettings),
+            new KeyValuePair<string, Action>("recording", TestRecording),
         };
         int passed = 0, failed = 0;
         foreach (var test in tests)

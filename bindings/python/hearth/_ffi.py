@@ -72,6 +72,7 @@ HEARTH_ERROR_INVALID_ARGUMENT = 3
 HEARTH_ERROR_WORLD_LOCKED = 4
 HEARTH_ERROR_BUFFER_TOO_SMALL = 5
 HEARTH_ERROR_PANIC = 6
+HEARTH_ERROR_IO = 7
 
 # ---------------------------------------------------------------------------- types
 
@@ -545,6 +546,19 @@ class HearthWorldCounters(_Struct):
     ]
 
 
+# int32_t (*HearthRecordWriteFn)(void *user_data, const uint8_t *bytes, size_t len)
+HearthRecordWriteFn = CFUNCTYPE(c_int32, c_void_p, POINTER(c_uint8), c_size_t)
+
+
+class HearthRecordDef(_Struct):
+    _fields_ = [
+        ("record_contacts", c_uint8),
+        ("write", HearthRecordWriteFn),
+        ("user_data", c_void_p),
+        ("internal_value", c_uint32),
+    ]
+
+
 # ---------------------------------------------------------------------------- functions
 
 # name -> (restype, argtypes), in header order.
@@ -767,6 +781,10 @@ _fn(
     POINTER(POINTER(HearthExpiredParticle)), POINTER(c_size_t),
 )
 _fn("hearth_world_set_particle_iterations", HearthResult, POINTER(HearthWorld), c_uint32, c_uint32)
+_fn("hearth_record_def_default", HearthRecordDef)
+_fn("hearth_world_record_start_file", HearthResult, POINTER(HearthWorld), c_char_p, POINTER(HearthRecordDef))
+_fn("hearth_world_record_start_callback", HearthResult, POINTER(HearthWorld), POINTER(HearthRecordDef))
+_fn("hearth_world_record_stop", HearthResult, POINTER(HearthWorld))
 _fn("hearth_shape_def_default", HearthShapeDef)
 _fn(
     "hearth_shape_create_sphere", HearthResult, POINTER(HearthWorld), HearthBodyId, POINTER(HearthShapeDef),

@@ -132,3 +132,19 @@ def contact_trampoline(world, callback):
             sink._ptr = None  # a sink kept past its callback must not reach a dangling pointer
 
     return _ffi.HearthContactCallback(trampoline)
+
+
+def record_write_trampoline(world, write):
+    """A HearthRecordWriteFn that passes each piece of a recording to `write(data)` as `bytes`.
+    An exception stops the recording (the callback returns 1): it is re-raised by the step
+    it happened in, and the next step (or `stop_recording`) raises Io."""
+
+    def trampoline(_user_data, data, length):
+        try:
+            write(ctypes.string_at(data, length))
+            return 0
+        except BaseException as e:  # noqa: BLE001 - nothing may cross into C
+            world._callback_failed(e)
+            return 1
+
+    return _ffi.HearthRecordWriteFn(trampoline)

@@ -1,13 +1,14 @@
 """The World: owner of everything in a simulation (`HearthWorld *`)."""
 
 import ctypes
+import os
 from collections import namedtuple
 from ctypes import POINTER, byref
 
 from . import _ffi
 from ._convert import c_view, check_format, fill, from_vec3, new_buffer, to_record, to_vec3
 from ._lib import lib
-from .callbacks import contact_trampoline, force_trampoline
+from .callbacks import contact_trampoline, force_trampoline, record_write_trampoline
 from .errors import HearthError
 from .handles import (
     Body,
@@ -78,6 +79,7 @@ class World:
     def __init__(self, **settings):
         self._ptr = None
         self._callbacks = {}  # (index, generation) of a user generator -> its ctypes trampoline
+        self._record_write = None  # the recording's write trampoline, kept alive while recording
         self._stepping = False
         self._callback_error = None
         wd = _def(lib.hearth_world_def_default, settings)
@@ -95,6 +97,7 @@ class World:
             lib.hearth_world_destroy(self._ptr)
             self._ptr = None
         self._callbacks.clear()
+        self._record_write = None
 
     @property
     def closed(self):
@@ -137,6 +140,37 @@ class World:
             raise error
         if failure is not None:
             raise failure
+
+    # -- recording (for the browser viewer, viewer/index.html)
+    def record(self, path=None, write=None, contacts=False):
+        """Starts recording the world: into the file at `path` (`hearth_world_record_start_file`),
+        or through `write(data: bytes)` (`hearth_world_record_start_callback`), called now with
+        the recording's start and after every step with that step. `contacts` records every
+        touching contact manifold too. Stops with `stop_recording()` or `close()`. A failed write
+        stops the recording and the next `step()` raises Io (the exception `write` raised
+        is re-raised by the step it happened in)."""
+        if (path is None) == (write is None):
+            raise ValueError("give either a path or a write callable")
+        rd = _def(lib.hearth_record_def_default, {"record_contacts": int(bool(contacts))})
+        if path is not None:
+            lib.hearth_world_record_start_file(self._ptr, os.fsencode(path), byref(rd))
+            return
+        trampoline = record_write_trampoline(self, write)
+        rd.write = trampoline
+        try:
+            lib.hearth_world_record_start_callback(self._ptr, byref(rd))
+        except HearthError as failure:
+            error, self._callback_error = self._callback_error, None
+            raise failure from error
+        self._record_write = trampoline
+
+    def stop_recording(self):
+        """`hearth_world_record_stop`: ends the recording (Io if a write had failed)."""
+        try:
+            lib.hearth_world_record_stop(self._ptr)
+        finally:
+            if not self._stepping:
+                self._record_write = None
 
     def _callback_failed(self, error):
         if self._callback_error is None:
