@@ -1364,7 +1364,9 @@ typedef struct HearthWorldDef {
      */
     float restitution_threshold;
     /**
-     * Largest speed a body may reach (m/s). Default 400.
+     * Largest speed a body's centre of mass may reach (m/s), > 0. Default 400. Every
+     * velocity a body gets (set by the host, from forces, impulses, contacts, joints,
+     * particles, soft bodies, kinematic targets) is capped at it, keeping its direction.
      */
     float max_linear_speed;
     /**
@@ -1376,6 +1378,12 @@ typedef struct HearthWorldDef {
      * Set by `hearth_world_def_default()`; do not change.
      */
     uint32_t internal_value;
+    /**
+     * Largest angular speed a body may reach (rad/s), > 0. Default 100π ≈ 314.16 (50 turns
+     * a second). Capped like `max_linear_speed`. (After `internal_value`: fields are only
+     * ever appended, so existing offsets stay.)
+     */
+    float max_angular_speed;
 } HearthWorldDef;
 
 /**
