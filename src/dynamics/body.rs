@@ -261,6 +261,13 @@ impl Body {
         self.w = clamp_length_f64(w, limits.1);
     }
 
+    /// Sets the velocities, capped at the speed limits (m/s, rad/s): the write-back of the
+    /// stages that move bodies outside the solver (particles, soft bodies).
+    pub fn set_velocities_capped(&mut self, v: Vec3, w: Vec3, limits: (f32, f32)) {
+        self.v = crate::math::clamp_length(v, limits.0);
+        self.w = crate::math::clamp_length(w, limits.1);
+    }
+
     /// Velocity of a world point attached to the body.
     #[inline]
     pub fn point_velocity(&self, p: Vec3) -> Vec3 {

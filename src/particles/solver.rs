@@ -690,9 +690,9 @@ impl World {
                 // sleeps once they do.
                 s.wake.push(c.slot);
             }
+            let limits = (self.settings.max_linear_speed, self.settings.max_angular_speed);
             let b = self.bodies.at_mut(c.slot);
-            b.v = c.v;
-            b.w = c.w;
+            b.set_velocities_capped(c.v, c.w, limits);
             b.set_center_rotation(c.center, c.q.normalize());
             b.update_world_inertia();
         }
