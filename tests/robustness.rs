@@ -1073,6 +1073,16 @@ fn extreme_values_leave_every_body_finite_and_within_the_limits() {
         let g = w.create_generator(def).unwrap();
         w.attach_body(g, bodies[i]).unwrap();
     }
+    // Particles too: f32::MAX-scale gravity scale, acceleration, force and mass.
+    let particle = w
+        .create_particle(&hearth::particles::ParticleDef {
+            position: Vec3::new(0.0, 10.0, 5.0),
+            acceleration: Vec3::new(big, big, -big),
+            inverse_mass: big,
+            gravity_scale: -big,
+            ..Default::default()
+        })
+        .unwrap();
     let last = bodies[7];
     w.set_angular_velocity(last, Vec3::new(big, -big, 0.0)).unwrap();
     w.set_linear_velocity(last, Vec3::new(big, big, big)).unwrap();
@@ -1091,7 +1101,17 @@ fn extreme_values_leave_every_body_finite_and_within_the_limits() {
         w.apply_impulse_at_point(bodies[6], Vec3::splat(big), Vec3::new(-big, big, 0.0), true)
             .unwrap();
         w.apply_angular_impulse(bodies[5], Vec3::splat(-big), true).unwrap();
+        w.apply_particle_force(particle, Vec3::splat(big), true).unwrap();
+        w.apply_particle_force(particle, Vec3::splat(big), true).unwrap();
         w.step(DT).unwrap();
+        let (pp, pv) = (
+            w.particle_position(particle).unwrap(),
+            w.particle_velocity(particle).unwrap(),
+        );
+        assert!(
+            pp.is_finite() && pv.is_finite() && pv.length() <= max_v * 1.0001,
+            "particle {pp} {pv}"
+        );
         for &b in &bodies {
             let o = w.body(b).unwrap();
             assert!(
