@@ -496,6 +496,8 @@ typedef struct HearthGravityGeneratorDef {
 
 /**
  * Drag `-v̂ (k1 |v| + k2 |v|²)` on every attached body (at its centre of mass) and particle.
+ * Any finite coefficients are stable: within a step, drag may stop a motion but never turn
+ * it back (the force is capped there).
  */
 typedef struct HearthDragGeneratorDef {
     /**
@@ -536,6 +538,13 @@ typedef struct HearthLinkEnd {
  * A spring from each attached body or particle to `other`. With `other` a world point it is
  * an anchored spring; with `other` a dynamic body or a particle that end feels the equal
  * and opposite force (a spring between two objects: attach one, name the other).
+ *
+ * Between bodies and world points the spring acts at every sub-step, from the poses then,
+ * so an attachment off a body's centre turns the body without pumping energy into it.
+ * Any finite stiffness and damping are stable: `m` being the ends' combined effective mass
+ * at the attachment points (which includes the bodies' turning), a spring stiffer than
+ * `m / h²` (`h` the sub-step; `m / dt²` with a particle end) acts as if it were that stiff,
+ * and damping above `m / h` (`m / dt`) as that.
  */
 typedef struct HearthSpringGeneratorDef {
     /**
@@ -567,8 +576,10 @@ typedef struct HearthSpringGeneratorDef {
 /**
  * A stiff damped spring (rest length 0) from each attached object to `anchor`, whose force
  * makes the step reproduce the exact damped harmonic motion: the discrete motion has the
- * continuous system's frequency and decay for any stiffness, where an explicit spring
- * would explode. The anchor end is followed but feels no reaction.
+ * continuous system's frequency and decay for any finite stiffness and damping, where an
+ * explicit spring would explode. For a point off a body's centre the motion is that of the
+ * point's effective mass (which includes the body's turning) in its most mobile direction.
+ * The anchor end is followed but feels no reaction.
  */
 typedef struct HearthStiffSpringGeneratorDef {
     /**
@@ -729,7 +740,9 @@ typedef struct HearthCableGeneratorDef {
 } HearthCableGeneratorDef;
 
 /**
- * The fields every joint def starts with.
+ * The fields every joint def starts with. The frames may be any poses: frames that do not
+ * meet where the bodies are (anchors apart, axes turned) are pulled together in the first
+ * steps; that pull does work, after it the joint adds no energy.
  */
 typedef struct HearthJointBase {
     /**
@@ -781,7 +794,9 @@ typedef struct HearthBallJointDef {
      */
     float swing_limit;
     /**
-     * 1 to keep B's twist about Z within `lower_twist..=upper_twist`. Default 0.
+     * 1 to keep B's twist about Z within `lower_twist..=upper_twist`. Default 0. Twist is
+     * not defined at a half-turn swing, so a twist limit also keeps the swing within 0.9π
+     * (162°).
      */
     uint8_t enable_twist_limit;
     /**
@@ -1470,7 +1485,9 @@ typedef struct HearthWorldDef {
      */
     float restitution_threshold;
     /**
-     * Largest speed a body may reach (m/s). Default 400.
+     * Largest speed a body's centre of mass may reach (m/s), > 0. Default 400. Every
+     * velocity a body gets (set by the host, from forces, impulses, contacts, joints,
+     * particles, soft bodies, kinematic targets) is capped at it, keeping its direction.
      */
     float max_linear_speed;
     /**
@@ -1482,6 +1499,12 @@ typedef struct HearthWorldDef {
      * Set by `hearth_world_def_default()`; do not change.
      */
     uint32_t internal_value;
+    /**
+     * Largest angular speed a body may reach (rad/s), > 0. Default 100π ≈ 314.16 (50 turns
+     * a second). Capped like `max_linear_speed`. (After `internal_value`: fields are only
+     * ever appended, so existing offsets stay.)
+     */
+    float max_angular_speed;
 } HearthWorldDef;
 
 /**
@@ -1679,8 +1702,13 @@ HearthResult hearth_body_set_transform(struct HearthWorld *world,
                                        const struct HearthTransform *transform);
 
 /**
- * Kinematic bodies: move to `target` by the end of the next step (velocities are set to
- * get there, so touching bodies are carried along).
+ * Kinematic bodies: move to `target` by velocity, so touching and jointed bodies are
+ * carried along. The next step sets the velocities that reach the target by its end; the
+ * body then sits exactly on the target and stops (velocities zero) unless given a new
+ * target. A target farther than the world's speed limits allow in one step
+ * (`max_linear_speed`, `max_angular_speed`) is approached at the limits and kept until
+ * reached. `hearth_body_set_transform` drops a pending target; a pending target overrides
+ * the velocities set with `hearth_body_set_linear_velocity` / `_angular_velocity`.
  *
  * Errors: as `hearth_body_set_transform`, and `HEARTH_ERROR_INVALID_ARGUMENT` for a body that
  * is not kinematic.
@@ -1694,7 +1722,8 @@ HearthResult hearth_body_set_target_transform(struct HearthWorld *world,
 
 /**
  * Sets the velocity of the centre of mass (m/s); a non-zero value wakes the body.
- * Ignored for static bodies.
+ * Ignored for static bodies. A speed above the world's `max_linear_speed` is capped to it
+ * (direction kept).
  *
  * Errors: `HEARTH_ERROR_NULL_POINTER`, `HEARTH_ERROR_INVALID_ID`,
  * `HEARTH_ERROR_INVALID_ARGUMENT` (NaN or infinite), `HEARTH_ERROR_WORLD_LOCKED`.
@@ -1708,7 +1737,8 @@ HearthResult hearth_body_set_linear_velocity(struct HearthWorld *world,
 
 /**
  * Sets the angular velocity (rad/s, world frame); a non-zero value wakes the body.
- * Ignored for static bodies.
+ * Ignored for static bodies. Above the world's `max_angular_speed` it is capped to it
+ * (axis kept).
  *
  * Errors: `HEARTH_ERROR_NULL_POINTER`, `HEARTH_ERROR_INVALID_ID`,
  * `HEARTH_ERROR_INVALID_ARGUMENT` (NaN or infinite), `HEARTH_ERROR_WORLD_LOCKED`.
@@ -1752,8 +1782,8 @@ HearthResult hearth_body_apply_torque(struct HearthWorld *world,
                                       struct HearthVec3 value);
 
 /**
- * Applies an impulse (N·s) at the centre of mass: changes the velocity at once. Wakes
- * the body.
+ * Applies an impulse (N·s) at the centre of mass: changes the velocity at once, capped at
+ * the world's speed limits. Wakes the body.
  *
  * Errors: `HEARTH_ERROR_NULL_POINTER`, `HEARTH_ERROR_INVALID_ID`,
  * `HEARTH_ERROR_INVALID_ARGUMENT` (NaN or infinite), `HEARTH_ERROR_WORLD_LOCKED`.
@@ -1766,7 +1796,8 @@ HearthResult hearth_body_apply_linear_impulse(struct HearthWorld *world,
                                               struct HearthVec3 value);
 
 /**
- * Applies an angular impulse (N·m·s, world frame). Wakes the body.
+ * Applies an angular impulse (N·m·s, world frame); the angular velocity is capped at
+ * `max_angular_speed`. Wakes the body.
  *
  * Errors: `HEARTH_ERROR_NULL_POINTER`, `HEARTH_ERROR_INVALID_ID`,
  * `HEARTH_ERROR_INVALID_ARGUMENT` (NaN or infinite), `HEARTH_ERROR_WORLD_LOCKED`.
@@ -1794,7 +1825,8 @@ HearthResult hearth_body_apply_force_at_point(struct HearthWorld *world,
                                               struct HearthVec3 point);
 
 /**
- * Applies an impulse (N·s) at a world point (m). Wakes the body.
+ * Applies an impulse (N·s) at a world point (m); the velocities are capped at the world's
+ * speed limits. Wakes the body.
  *
  * Errors: as `hearth_body_apply_force`.
  *
@@ -2416,7 +2448,8 @@ HearthResult hearth_joint_get_spring(const struct HearthWorld *world,
 /**
  * Reads the force (N) and torque (N·m) the joint applied to body B during the last step,
  * in world space (the torque leaves out the moment of the force about B's anchor). Zero
- * before the first step and for a broken joint after it broke.
+ * before the first step, and zero from the moment the joint breaks (a broken joint applies
+ * nothing).
  *
  * Errors: `HEARTH_ERROR_NULL_POINTER`, `HEARTH_ERROR_INVALID_ID`.
  *

@@ -71,6 +71,45 @@ pub fn orthonormal_basis(n: Vec3) -> (Vec3, Vec3) {
     (t1, t2)
 }
 
+/// `v` shortened to at most `max` (`max > 0`) long, keeping its direction. Safe for any
+/// input: where the squared length overflows `f32` the vector is scaled down first, an
+/// infinite component gives the direction of its sign, and NaN components count as zero.
+#[inline]
+pub fn clamp_length(v: Vec3, max: f32) -> Vec3 {
+    let s2 = v.length_squared();
+    if s2 <= max * max {
+        return v;
+    }
+    if s2.is_finite() {
+        return v * (max / s2.sqrt());
+    }
+    let v = Vec3::select(v.is_nan_mask(), Vec3::ZERO, v);
+    let infinite = v.abs().cmpeq(Vec3::INFINITY);
+    let dir = if infinite.any() {
+        Vec3::select(infinite, v.signum(), Vec3::ZERO)
+    } else {
+        let m = v.abs().max_element();
+        if m > 0.0 {
+            v / m
+        } else {
+            Vec3::ZERO
+        }
+    };
+    dir.normalize_or_zero() * max
+}
+
+/// `v` shortened to at most `max` long (keeping its direction) and converted to f32; `v`
+/// must be finite.
+#[inline]
+pub fn clamp_length_f64(v: glam::DVec3, max: f32) -> Vec3 {
+    let l = v.length();
+    if l > max as f64 {
+        (v * (max as f64 / l)).as_vec3()
+    } else {
+        v.as_vec3()
+    }
+}
+
 /// Integrates an orientation by an angular velocity over `h` seconds and renormalises.
 #[inline]
 pub fn integrate_rotation(q: Quat, w: Vec3, h: f32) -> Quat {
@@ -101,6 +140,19 @@ mod tests {
             assert!(t1.dot(n).abs() < 1e-6 && t2.dot(n).abs() < 1e-6 && t1.dot(t2).abs() < 1e-6);
             assert!((t1.length() - 1.0).abs() < 1e-6 && (t2.length() - 1.0).abs() < 1e-6);
         }
+    }
+
+    #[test]
+    fn clamp_length_is_safe_for_any_input() {
+        let v = Vec3::new(3.0, 4.0, 0.0);
+        assert_eq!(clamp_length(v, 10.0), v);
+        assert!((clamp_length(v, 1.0) - Vec3::new(0.6, 0.8, 0.0)).length() < 1e-6);
+        let big = clamp_length(Vec3::new(3.0e38, -3.0e38, 0.0), 2.0);
+        assert!((big - Vec3::new(2.0f32.sqrt(), -(2.0f32.sqrt()), 0.0)).length() < 1e-5);
+        let inf = clamp_length(Vec3::new(f32::INFINITY, 1.0, f32::NEG_INFINITY), 2.0);
+        assert!((inf - Vec3::new(2.0f32.sqrt(), 0.0, -(2.0f32.sqrt()))).length() < 1e-5);
+        assert_eq!(clamp_length(Vec3::new(f32::NAN, f32::NAN, f32::NAN), 1.0), Vec3::ZERO);
+        assert!(clamp_length(Vec3::new(f32::NAN, 5.0, 0.0), 1.0).is_finite());
     }
 
     #[test]

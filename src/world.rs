@@ -45,12 +45,21 @@ pub struct WorldSettings {
     pub restitution_threshold: f32,
     /// Overlap allowed without correction (m); keeps resting contacts steady.
     pub linear_slop: f32,
-    /// Fastest speed a body may reach (m/s).
+    /// Fastest speed a body's centre of mass may reach (m/s). Every velocity a body gets —
+    /// set by the host, from forces, impulses, contacts, joints, particles, soft bodies or a
+    /// kinematic target — is capped at it, keeping its direction.
     pub max_linear_speed: f32,
+    /// Fastest a body may spin (rad/s), capped the same way. The default, 100π rad/s (50
+    /// turns a second), turns a body by at most 0.87 rad per sub-step at 60 Hz with six
+    /// sub-steps.
+    pub max_angular_speed: f32,
     /// Contact constraints solved at once: eight where the CPU has AVX2 (`Auto`), or four.
     /// Results are bit for bit the same either way.
     pub lane_width: LaneWidth,
 }
+
+/// Default `WorldSettings::max_angular_speed`: 100π rad/s.
+pub const DEFAULT_MAX_ANGULAR_SPEED: f32 = 100.0 * std::f32::consts::PI;
 
 impl Default for WorldSettings {
     fn default() -> Self {
@@ -68,6 +77,7 @@ impl Default for WorldSettings {
             restitution_threshold: 1.0,
             linear_slop: 0.0002,
             max_linear_speed: 400.0,
+            max_angular_speed: DEFAULT_MAX_ANGULAR_SPEED,
             lane_width: LaneWidth::Auto,
         }
     }
@@ -93,6 +103,7 @@ impl WorldSettings {
         check_non_negative("restitution_threshold", self.restitution_threshold)?;
         check_non_negative("linear_slop", self.linear_slop)?;
         check_positive("max_linear_speed", self.max_linear_speed)?;
+        check_positive("max_angular_speed", self.max_angular_speed)?;
         Ok(())
     }
 }
@@ -131,6 +142,8 @@ pub struct World {
     /// Force and contact generators (issue 4, `generators/`).
     pub generators: Pool<crate::generators::Generator>,
     pub(crate) generator_scratch: crate::generators::forces::GeneratorScratch,
+    /// Springs between bodies and world points for this step's sub-steps.
+    pub(crate) body_springs: crate::generators::springs::BodySprings,
     /// The particle world (issue 4, `particles/`).
     pub particles: crate::particles::Particles,
     /// Joints (issue 5, `joints/`).
@@ -162,6 +175,7 @@ impl World {
             counters: StepCounters::default(),
             generators: Pool::new(tag),
             generator_scratch: Default::default(),
+            body_springs: Default::default(),
             particles: crate::particles::Particles::new(tag),
             joints: crate::dynamics::joints::Joints::new(tag),
             soft_bodies: crate::soft::SoftBodies::new(tag),
@@ -171,7 +185,10 @@ impl World {
     // ---------------------------------------------------------------- bodies
 
     pub fn create_body(&mut self, def: &BodyDef) -> Result<BodyHandle> {
-        let def = def.validated()?;
+        let mut def = def.validated()?;
+        // Velocities above the world's limits are capped, as everywhere.
+        def.linear_velocity = crate::math::clamp_length(def.linear_velocity, self.settings.max_linear_speed);
+        def.angular_velocity = crate::math::clamp_length(def.angular_velocity, self.settings.max_angular_speed);
         let h = self.bodies.insert(Body::new(&def));
         if def.body_type != BodyType::Static {
             if def.awake {
@@ -247,7 +264,12 @@ impl World {
         Ok(())
     }
 
-    /// Kinematic bodies: move to `target` by the end of the next step, by velocity.
+    /// Kinematic bodies: move to `target` by velocity. The step after this call sets the
+    /// velocities that reach the target by the end of that step; the body then sits exactly
+    /// on it and stops (velocities zero) unless given a new target. A target farther than the
+    /// speed limits allow in one step is approached at the limits and kept until reached.
+    /// `set_transform` drops a pending target; a pending target overrides velocities set
+    /// with `set_linear_velocity` / `set_angular_velocity`.
     pub fn set_kinematic_target(&mut self, h: BodyHandle, target: Transform) -> Result<()> {
         let index = self.body_index(h)?;
         if self.bodies.at(index).body_type != BodyType::Kinematic {
@@ -268,28 +290,33 @@ impl World {
         Ok(self.body(h)?.w)
     }
 
+    /// Sets the linear velocity (m/s), capped at `max_linear_speed`. Static bodies ignore it.
     pub fn set_linear_velocity(&mut self, h: BodyHandle, v: Vec3) -> Result<()> {
         let index = self.body_index(h)?;
         check_vec("linear velocity", v)?;
+        let max = self.settings.max_linear_speed;
         let body = self.bodies.at_mut(index);
         if body.is_static() {
             return Ok(());
         }
-        body.v = v;
+        body.v = crate::math::clamp_length(v, max);
         if v != Vec3::ZERO {
             self.wake_body(index);
         }
         Ok(())
     }
 
+    /// Sets the angular velocity (rad/s), capped at `max_angular_speed`. Static bodies
+    /// ignore it.
     pub fn set_angular_velocity(&mut self, h: BodyHandle, w: Vec3) -> Result<()> {
         let index = self.body_index(h)?;
         check_vec("angular velocity", w)?;
+        let max = self.settings.max_angular_speed;
         let body = self.bodies.at_mut(index);
         if body.is_static() {
             return Ok(());
         }
-        body.w = w;
+        body.w = crate::math::clamp_length(w, max);
         if w != Vec3::ZERO {
             self.wake_body(index);
         }
@@ -316,37 +343,44 @@ impl World {
     /// Adds a force (N) at the centre of mass until the end of the next step. Wakes the body.
     pub fn apply_force(&mut self, h: BodyHandle, f: Vec3, wake: bool) -> Result<()> {
         check_vec("force", f)?;
-        self.act_on_dynamic(h, wake, |b| b.force += f)
+        self.act_on_dynamic(h, wake, |b| b.add_force_torque(f.as_dvec3(), glam::DVec3::ZERO))
     }
 
     /// Adds a force (N) at a world point: a force plus the torque of its lever arm.
     pub fn apply_force_at_point(&mut self, h: BodyHandle, f: Vec3, point: Vec3, wake: bool) -> Result<()> {
         check_vec("force", f)?;
         check_vec("point", point)?;
-        self.act_on_dynamic(h, wake, |b| {
-            b.force += f;
-            b.torque += (point - b.center).cross(f);
-        })
+        self.act_on_dynamic(h, wake, |b| b.add_force_at(f.as_dvec3(), point))
     }
 
     pub fn apply_torque(&mut self, h: BodyHandle, t: Vec3, wake: bool) -> Result<()> {
         check_vec("torque", t)?;
-        self.act_on_dynamic(h, wake, |b| b.torque += t)
+        self.act_on_dynamic(h, wake, |b| b.add_force_torque(glam::DVec3::ZERO, t.as_dvec3()))
     }
 
-    /// Applies an impulse (N·s) at a world point: changes velocity at once.
+    /// Applies an impulse (N·s) at a world point: changes velocity at once, capped at the
+    /// speed limits.
     pub fn apply_impulse_at_point(&mut self, h: BodyHandle, j: Vec3, point: Vec3, wake: bool) -> Result<()> {
         check_vec("impulse", j)?;
         check_vec("point", point)?;
+        let limits = self.speed_limits();
         self.act_on_dynamic(h, wake, |b| {
-            b.v += b.inv_mass * j;
-            b.w += b.inv_inertia_world * (point - b.center).cross(j);
+            let arm = point.as_dvec3() - b.center.as_dvec3();
+            b.apply_impulses(j.as_dvec3(), arm.cross(j.as_dvec3()), limits)
         })
     }
 
+    /// Applies an angular impulse (N·m·s). The new angular velocity is capped at
+    /// `max_angular_speed`.
     pub fn apply_angular_impulse(&mut self, h: BodyHandle, j: Vec3, wake: bool) -> Result<()> {
         check_vec("angular impulse", j)?;
-        self.act_on_dynamic(h, wake, |b| b.w += b.inv_inertia_world * j)
+        let limits = self.speed_limits();
+        self.act_on_dynamic(h, wake, |b| b.apply_impulses(glam::DVec3::ZERO, j.as_dvec3(), limits))
+    }
+
+    /// The world's speed limits: (`max_linear_speed` m/s, `max_angular_speed` rad/s).
+    pub fn speed_limits(&self) -> (f32, f32) {
+        (self.settings.max_linear_speed, self.settings.max_angular_speed)
     }
 
     pub fn set_damping(&mut self, h: BodyHandle, linear: f32, angular: f32) -> Result<()> {

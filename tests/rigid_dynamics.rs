@@ -265,17 +265,19 @@ fn major_and_minor_axis_spins_are_stable() {
 }
 
 #[test]
-fn rk4_is_more_accurate_for_free_spin_energy() {
+fn free_spin_keeps_its_energy_with_either_integrator() {
+    // The default path turns anisotropic bodies by a symplectic splitting of the free
+    // rotation (measured drift 3e-6 over 5 s); RK4 (f64) drifts 3e-4.
     let (_, _, euler) = spin(0, Integrator::SemiImplicitEuler, 5.0);
     let (_, _, rk4) = spin(0, Integrator::Rk4, 5.0);
     let drift = |e: &[f32]| (e[e.len() - 1] - e[0]).abs() / e[0];
-    assert!(
-        drift(&rk4) <= drift(&euler) + 1e-6,
-        "rk4 {} euler {}",
-        drift(&rk4),
-        drift(&euler)
+    println!(
+        "free spin energy drift: euler {:e}, rk4 {:e}",
+        drift(&euler),
+        drift(&rk4)
     );
-    assert!(drift(&rk4) < 1e-3);
+    assert!(drift(&euler) < 2e-5, "euler {}", drift(&euler));
+    assert!(drift(&rk4) < 1e-3, "rk4 {}", drift(&rk4));
 }
 
 #[test]

@@ -1045,12 +1045,14 @@ namespace Hearth
         public float ContactPushMaxVelocity;
         /// <summary>Approach speed below which contacts do not bounce (m/s). Default 1.</summary>
         public float RestitutionThreshold;
-        /// <summary>Largest speed a body may reach (m/s). Default 400.</summary>
+        /// <summary>Largest speed a body's centre of mass may reach (m/s), &gt; 0. Default 400. Every velocity a body gets is capped at it, keeping its direction.</summary>
         public float MaxLinearSpeed;
         /// <summary>Soft velocity sweeps per sub-step (each sub-step also runs one rigid relax sweep), 1..=64. Default 1: more sub-steps converge better than more sweeps.</summary>
         public uint VelocityIterations;
         /// <summary>Set by <c>hearth_world_def_default()</c>; do not change.</summary>
         public uint InternalValue;
+        /// <summary>Largest angular speed a body may reach (rad/s), &gt; 0. Default 100π ≈ 314.16. Capped like <c>MaxLinearSpeed</c>.</summary>
+        public float MaxAngularSpeed;
     }
 
     /// <summary>How to record a world (hearth_world_record_start_file / _callback).</summary>

@@ -286,8 +286,13 @@ pub unsafe extern "C" fn hearth_body_set_transform(
     })
 }
 
-/// Kinematic bodies: move to `target` by the end of the next step (velocities are set to
-/// get there, so touching bodies are carried along).
+/// Kinematic bodies: move to `target` by velocity, so touching and jointed bodies are
+/// carried along. The next step sets the velocities that reach the target by its end; the
+/// body then sits exactly on the target and stops (velocities zero) unless given a new
+/// target. A target farther than the world's speed limits allow in one step
+/// (`max_linear_speed`, `max_angular_speed`) is approached at the limits and kept until
+/// reached. `hearth_body_set_transform` drops a pending target; a pending target overrides
+/// the velocities set with `hearth_body_set_linear_velocity` / `_angular_velocity`.
 ///
 /// Errors: as `hearth_body_set_transform`, and `HEARTH_ERROR_INVALID_ARGUMENT` for a body that
 /// is not kinematic.
@@ -321,7 +326,8 @@ unsafe fn set_vec(
 }
 
 /// Sets the velocity of the centre of mass (m/s); a non-zero value wakes the body.
-/// Ignored for static bodies.
+/// Ignored for static bodies. A speed above the world's `max_linear_speed` is capped to it
+/// (direction kept).
 ///
 /// Errors: `HEARTH_ERROR_NULL_POINTER`, `HEARTH_ERROR_INVALID_ID`,
 /// `HEARTH_ERROR_INVALID_ARGUMENT` (NaN or infinite), `HEARTH_ERROR_WORLD_LOCKED`.
@@ -338,7 +344,8 @@ pub unsafe extern "C" fn hearth_body_set_linear_velocity(
 }
 
 /// Sets the angular velocity (rad/s, world frame); a non-zero value wakes the body.
-/// Ignored for static bodies.
+/// Ignored for static bodies. Above the world's `max_angular_speed` it is capped to it
+/// (axis kept).
 ///
 /// Errors: `HEARTH_ERROR_NULL_POINTER`, `HEARTH_ERROR_INVALID_ID`,
 /// `HEARTH_ERROR_INVALID_ARGUMENT` (NaN or infinite), `HEARTH_ERROR_WORLD_LOCKED`.
@@ -391,8 +398,8 @@ pub unsafe extern "C" fn hearth_body_apply_torque(
     guard(|| Ok(world_mut_in_phase(world, PHASE_FORCES)?.apply_torque(body.into(), value.into(), true)?))
 }
 
-/// Applies an impulse (N·s) at the centre of mass: changes the velocity at once. Wakes
-/// the body.
+/// Applies an impulse (N·s) at the centre of mass: changes the velocity at once, capped at
+/// the world's speed limits. Wakes the body.
 ///
 /// Errors: `HEARTH_ERROR_NULL_POINTER`, `HEARTH_ERROR_INVALID_ID`,
 /// `HEARTH_ERROR_INVALID_ARGUMENT` (NaN or infinite), `HEARTH_ERROR_WORLD_LOCKED`.
@@ -411,7 +418,8 @@ pub unsafe extern "C" fn hearth_body_apply_linear_impulse(
     })
 }
 
-/// Applies an angular impulse (N·m·s, world frame). Wakes the body.
+/// Applies an angular impulse (N·m·s, world frame); the angular velocity is capped at
+/// `max_angular_speed`. Wakes the body.
 ///
 /// Errors: `HEARTH_ERROR_NULL_POINTER`, `HEARTH_ERROR_INVALID_ID`,
 /// `HEARTH_ERROR_INVALID_ARGUMENT` (NaN or infinite), `HEARTH_ERROR_WORLD_LOCKED`.
@@ -448,7 +456,8 @@ pub unsafe extern "C" fn hearth_body_apply_force_at_point(
     })
 }
 
-/// Applies an impulse (N·s) at a world point (m). Wakes the body.
+/// Applies an impulse (N·s) at a world point (m); the velocities are capped at the world's
+/// speed limits. Wakes the body.
 ///
 /// Errors: as `hearth_body_apply_force`.
 ///

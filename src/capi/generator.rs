@@ -158,6 +158,8 @@ pub unsafe extern "C" fn hearth_generator_create_gravity(
 // --------------------------------------------------------------------------------- drag
 
 /// Drag `-v̂ (k1 |v| + k2 |v|²)` on every attached body (at its centre of mass) and particle.
+/// Any finite coefficients are stable: within a step, drag may stop a motion but never turn
+/// it back (the force is capped there).
 #[repr(C)]
 #[derive(Clone, Copy, Debug)]
 pub struct HearthDragGeneratorDef {
@@ -203,6 +205,13 @@ pub unsafe extern "C" fn hearth_generator_create_drag(
 /// A spring from each attached body or particle to `other`. With `other` a world point it is
 /// an anchored spring; with `other` a dynamic body or a particle that end feels the equal
 /// and opposite force (a spring between two objects: attach one, name the other).
+///
+/// Between bodies and world points the spring acts at every sub-step, from the poses then,
+/// so an attachment off a body's centre turns the body without pumping energy into it.
+/// Any finite stiffness and damping are stable: `m` being the ends' combined effective mass
+/// at the attachment points (which includes the bodies' turning), a spring stiffer than
+/// `m / h²` (`h` the sub-step; `m / dt²` with a particle end) acts as if it were that stiff,
+/// and damping above `m / h` (`m / dt`) as that.
 #[repr(C)]
 #[derive(Clone, Copy, Debug)]
 pub struct HearthSpringGeneratorDef {
@@ -279,8 +288,10 @@ pub unsafe extern "C" fn hearth_generator_create_bungee(
 
 /// A stiff damped spring (rest length 0) from each attached object to `anchor`, whose force
 /// makes the step reproduce the exact damped harmonic motion: the discrete motion has the
-/// continuous system's frequency and decay for any stiffness, where an explicit spring
-/// would explode. The anchor end is followed but feels no reaction.
+/// continuous system's frequency and decay for any finite stiffness and damping, where an
+/// explicit spring would explode. For a point off a body's centre the motion is that of the
+/// point's effective mass (which includes the body's turning) in its most mobile direction.
+/// The anchor end is followed but feels no reaction.
 #[repr(C)]
 #[derive(Clone, Copy, Debug)]
 pub struct HearthStiffSpringGeneratorDef {

@@ -55,7 +55,9 @@ pub const HEARTH_JOINT_DISTANCE: u32 = 3;
 /// Slider (prismatic) joint.
 pub const HEARTH_JOINT_SLIDER: u32 = 4;
 
-/// The fields every joint def starts with.
+/// The fields every joint def starts with. The frames may be any poses: frames that do not
+/// meet where the bodies are (anchors apart, axes turned) are pulled together in the first
+/// steps; that pull does work, after it the joint adds no energy.
 #[repr(C)]
 #[derive(Clone, Copy, Debug)]
 pub struct HearthJointBase {
@@ -135,7 +137,9 @@ pub struct HearthBallJointDef {
     pub enable_swing_limit: u8,
     /// Cone half-angle (rad, 0..=π). Default π/4.
     pub swing_limit: f32,
-    /// 1 to keep B's twist about Z within `lower_twist..=upper_twist`. Default 0.
+    /// 1 to keep B's twist about Z within `lower_twist..=upper_twist`. Default 0. Twist is
+    /// not defined at a half-turn swing, so a twist limit also keeps the swing within 0.9π
+    /// (162°).
     pub enable_twist_limit: u8,
     /// Twist limits (rad, -π..=π, lower <= upper). Defaults -π/4 and π/4.
     pub lower_twist: f32,
@@ -709,7 +713,8 @@ pub unsafe extern "C" fn hearth_joint_get_spring(
 
 /// Reads the force (N) and torque (N·m) the joint applied to body B during the last step,
 /// in world space (the torque leaves out the moment of the force about B's anchor). Zero
-/// before the first step and for a broken joint after it broke.
+/// before the first step, and zero from the moment the joint breaks (a broken joint applies
+/// nothing).
 ///
 /// Errors: `HEARTH_ERROR_NULL_POINTER`, `HEARTH_ERROR_INVALID_ID`.
 ///

@@ -64,13 +64,19 @@ pub struct HearthWorldDef {
     pub contact_push_max_velocity: f32,
     /// Approach speed below which contacts do not bounce (m/s). Default 1.
     pub restitution_threshold: f32,
-    /// Largest speed a body may reach (m/s). Default 400.
+    /// Largest speed a body's centre of mass may reach (m/s), > 0. Default 400. Every
+    /// velocity a body gets (set by the host, from forces, impulses, contacts, joints,
+    /// particles, soft bodies, kinematic targets) is capped at it, keeping its direction.
     pub max_linear_speed: f32,
     /// Soft velocity sweeps per sub-step (each sub-step also runs one rigid relax sweep),
     /// 1..=64. Default 1: more sub-steps converge better than more sweeps.
     pub velocity_iterations: u32,
     /// Set by `hearth_world_def_default()`; do not change.
     pub internal_value: u32,
+    /// Largest angular speed a body may reach (rad/s), > 0. Default 100π ≈ 314.16 (50 turns
+    /// a second). Capped like `max_linear_speed`. (After `internal_value`: fields are only
+    /// ever appended, so existing offsets stay.)
+    pub max_angular_speed: f32,
 }
 
 /// The world handle: opaque to C. Owns everything in the world. One thread at a time.
@@ -166,6 +172,7 @@ pub(crate) fn settings_from_def(def: &HearthWorldDef) -> Result<WorldSettings, F
         contact_push_max_velocity: def.contact_push_max_velocity,
         restitution_threshold: def.restitution_threshold,
         max_linear_speed: def.max_linear_speed,
+        max_angular_speed: def.max_angular_speed,
         velocity_iterations: def.velocity_iterations,
         ..WorldSettings::default()
     };
@@ -191,6 +198,7 @@ pub extern "C" fn hearth_world_def_default() -> HearthWorldDef {
         max_linear_speed: s.max_linear_speed,
         velocity_iterations: s.velocity_iterations,
         internal_value: DEF_COOKIE,
+        max_angular_speed: s.max_angular_speed,
     }
 }
 

@@ -2,7 +2,7 @@
 
 use crate::collision::shape::MassProperties;
 use crate::error::{check_non_negative, check_quat, check_vec, Result};
-use crate::math::{Mat3, Transform, Vec3};
+use crate::math::{clamp_length_f64, Mat3, Transform, Vec3};
 use crate::pool::Handle;
 
 pub type BodyHandle = Handle;
@@ -232,6 +232,40 @@ impl Body {
         self.xf = xf;
         self.center = xf.apply(self.local_center);
         self.update_world_inertia();
+    }
+
+    /// Adds a force (N) at world point `point` to the accumulators: the force and its
+    /// moment about the centre of mass. Both saturate at `±f32::MAX` per component, so
+    /// any number of finite forces (f64, so products of large parameters do not overflow
+    /// first) accumulate to finite values (the step then scales a
+    /// drive that would pass the speed limits within a sub-step, `solver::bounded_drive`).
+    pub fn add_force_at(&mut self, force: glam::DVec3, point: Vec3) {
+        let arm = point.as_dvec3() - self.center.as_dvec3();
+        self.add_force_torque(force, arm.cross(force));
+    }
+
+    /// Adds a force (N) at the centre of mass and a torque (N·m), saturating like
+    /// `add_force_at`.
+    pub fn add_force_torque(&mut self, force: glam::DVec3, torque: glam::DVec3) {
+        let max = glam::DVec3::splat(f32::MAX as f64);
+        self.force = (self.force.as_dvec3() + force).clamp(-max, max).as_vec3();
+        self.torque = (self.torque.as_dvec3() + torque).clamp(-max, max).as_vec3();
+    }
+
+    /// Changes the velocities by an impulse `j` (N·s) at the centre of mass and an angular
+    /// impulse `l` (N·m·s), capped at the speed limits (m/s, rad/s).
+    pub fn apply_impulses(&mut self, j: glam::DVec3, l: glam::DVec3, limits: (f32, f32)) {
+        let v = self.v.as_dvec3() + j * self.inv_mass as f64;
+        let w = self.w.as_dvec3() + self.inv_inertia_world.as_dmat3() * l;
+        self.v = clamp_length_f64(v, limits.0);
+        self.w = clamp_length_f64(w, limits.1);
+    }
+
+    /// Sets the velocities, capped at the speed limits (m/s, rad/s): the write-back of the
+    /// stages that move bodies outside the solver (particles, soft bodies).
+    pub fn set_velocities_capped(&mut self, v: Vec3, w: Vec3, limits: (f32, f32)) {
+        self.v = crate::math::clamp_length(v, limits.0);
+        self.w = crate::math::clamp_length(w, limits.1);
     }
 
     /// Velocity of a world point attached to the body.

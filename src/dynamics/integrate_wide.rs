@@ -14,26 +14,34 @@ use crate::simd::{Lanes, F4, V};
 use crate::simd::F8;
 
 /// Applies each listed dynamic body's acceleration and damping to its velocities, and caps
-/// its speed at `max_speed`.
-pub fn velocities(eight: bool, vel: &mut [Velocity], drives: &[Drive], bodies: &[u32], max_speed: f32) {
+/// its speeds at `limits` (m/s, rad/s).
+pub fn velocities(eight: bool, vel: &mut [Velocity], drives: &[Drive], bodies: &[u32], limits: (f32, f32)) {
     #[cfg(target_arch = "x86_64")]
     if eight {
         // SAFETY: `eight` is true only where AVX2 was detected (`Batches::lanes`).
-        return unsafe { avx2::velocities(vel, drives, bodies, max_speed) };
+        return unsafe { avx2::velocities(vel, drives, bodies, limits) };
     }
     let _ = eight;
-    velocities_all::<F4>(vel, drives, bodies, max_speed)
+    velocities_all::<F4>(vel, drives, bodies, limits)
 }
 
-/// Moves each listed body by its velocities over `h`.
-pub fn positions(eight: bool, vel: &[Velocity], states: &mut [BodyState], bodies: &[u32], h: f32) {
+/// Moves each listed body by its velocities over `h`, first capping them at `limits` (the
+/// solve may have pushed past them).
+pub fn positions(
+    eight: bool,
+    vel: &mut [Velocity],
+    states: &mut [BodyState],
+    bodies: &[u32],
+    h: f32,
+    limits: (f32, f32),
+) {
     #[cfg(target_arch = "x86_64")]
     if eight {
         // SAFETY: as in `velocities`.
-        return unsafe { avx2::positions(vel, states, bodies, h) };
+        return unsafe { avx2::positions(vel, states, bodies, h, limits) };
     }
     let _ = eight;
-    positions_all::<F4>(vel, states, bodies, h)
+    positions_all::<F4>(vel, states, bodies, h, limits)
 }
 
 #[cfg(target_arch = "x86_64")]
@@ -41,13 +49,19 @@ mod avx2 {
     use super::*;
 
     #[target_feature(enable = "avx2")]
-    pub unsafe fn velocities(vel: &mut [Velocity], drives: &[Drive], bodies: &[u32], max_speed: f32) {
-        velocities_all::<F8>(vel, drives, bodies, max_speed)
+    pub unsafe fn velocities(vel: &mut [Velocity], drives: &[Drive], bodies: &[u32], limits: (f32, f32)) {
+        velocities_all::<F8>(vel, drives, bodies, limits)
     }
 
     #[target_feature(enable = "avx2")]
-    pub unsafe fn positions(vel: &[Velocity], states: &mut [BodyState], bodies: &[u32], h: f32) {
-        positions_all::<F8>(vel, states, bodies, h)
+    pub unsafe fn positions(
+        vel: &mut [Velocity],
+        states: &mut [BodyState],
+        bodies: &[u32],
+        h: f32,
+        limits: (f32, f32),
+    ) {
+        positions_all::<F8>(vel, states, bodies, h, limits)
     }
 }
 
@@ -59,10 +73,18 @@ fn lanes<L: Lanes>(chunk: &[u32]) -> L::Indices {
     idx
 }
 
+/// The factor that caps a lane's speed: 1 when `speed2 <= max²`, else `max / speed`.
 #[inline(always)]
-fn velocities_all<L: Lanes>(vel: &mut [Velocity], drives: &[Drive], bodies: &[u32], max_speed: f32) {
-    let max2 = L::splat(max_speed * max_speed);
-    let (one, max_speed) = (L::one(), L::splat(max_speed));
+fn cap<L: Lanes>(speed2: L, max: L, max2: L) -> L {
+    let one = L::one();
+    let over = speed2.gt(max2);
+    L::select(over, max / L::select(over, speed2, one).sqrt(), one)
+}
+
+#[inline(always)]
+fn velocities_all<L: Lanes>(vel: &mut [Velocity], drives: &[Drive], bodies: &[u32], limits: (f32, f32)) {
+    let (max_v, max_v2) = (L::splat(limits.0), L::splat(limits.0 * limits.0));
+    let (max_w, max_w2) = (L::splat(limits.1), L::splat(limits.1 * limits.1));
     for chunk in bodies.chunks(L::N) {
         let idx = lanes::<L>(chunk);
         let ix = idx.as_ref();
@@ -74,21 +96,31 @@ fn velocities_all<L: Lanes>(vel: &mut [Velocity], drives: &[Drive], bodies: &[u3
             y: (v.y + dy) * lin_keep,
             z: (v.z + dz) * lin_keep,
         };
-        let speed2 = v.length_squared();
-        let over = speed2.gt(max2);
-        let cap = L::select(over, max_speed / L::select(over, speed2, one).sqrt(), one);
-        scatter(vel, &idx, v.scale(cap), w.scale(ang_keep));
+        let w = w.scale(ang_keep);
+        let (cv, cw) = (
+            cap(v.length_squared(), max_v, max_v2),
+            cap(w.length_squared(), max_w, max_w2),
+        );
+        scatter(vel, &idx, v.scale(cv), w.scale(cw));
     }
 }
 
 #[inline(always)]
-fn positions_all<L: Lanes>(vel: &[Velocity], states: &mut [BodyState], bodies: &[u32], h: f32) {
+fn positions_all<L: Lanes>(vel: &mut [Velocity], states: &mut [BodyState], bodies: &[u32], h: f32, limits: (f32, f32)) {
     let (zero, one) = (L::zero(), L::one());
     let (h, half_h, two) = (L::splat(h), L::splat(0.5 * h), L::splat(2.0));
+    let (max_v, max_v2) = (L::splat(limits.0), L::splat(limits.0 * limits.0));
+    let (max_w, max_w2) = (L::splat(limits.1), L::splat(limits.1 * limits.1));
     for chunk in bodies.chunks(L::N) {
         let idx = lanes::<L>(chunk);
         let ix = idx.as_ref();
         let (v, w) = gather(vel, &idx);
+        let (cv, cw) = (
+            cap(v.length_squared(), max_v, max_v2),
+            cap(w.length_squared(), max_w, max_w2),
+        );
+        let (v, w) = (v.scale(cv), w.scale(cw));
+        scatter(vel, &idx, v, w);
         let [px, py, pz, _] = L::gather(|i| &states[ix[i] as usize].rows[0]);
         let [qx, qy, qz, qw] = L::gather(|i| &states[ix[i] as usize].rows[1]);
         let dp = [px + h * v.x, py + h * v.y, pz + h * v.z, zero];

@@ -8,11 +8,14 @@
 //! between its stages (the C layer, see `capi/world.rs`).
 //!
 //! * `forces.rs` — the forces stage (start of the step).
+//! * `springs.rs` — springs whose ends are bodies or world points, applied every sub-step
+//!   by the solver.
 //! * `links.rs` — rods and cables between bodies, as generated contacts (after the narrow
 //!   phase). Links with a particle end are solved in the particle stage (`particles/`).
 
 pub mod forces;
 pub mod links;
+pub mod springs;
 
 use crate::error::{check_non_negative, check_positive, check_vec, invalid, Error, Result};
 use crate::hash::IntMap;

@@ -358,7 +358,10 @@ impl World {
             self.particles.wake(i, self.settings.sleep_threshold);
         }
         if self.particles.is_awake(i) {
-            self.particles.force[i] += f;
+            // Saturating, so any number of finite forces accumulate to a finite one.
+            let max = glam::DVec3::splat(f32::MAX as f64);
+            let sum = self.particles.force[i].as_dvec3() + f.as_dvec3();
+            self.particles.force[i] = sum.clamp(-max, max).as_vec3();
         }
         Ok(())
     }

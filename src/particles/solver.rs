@@ -547,6 +547,14 @@ impl World {
                 if wi > 0.0 {
                     let a = gravity * p.gravity_scale[i] + p.accel[i] + p.force[i] * wi;
                     let mut v = (p.vel[i] + h * a) * (1.0 / (1.0 + h * p.damping[i]));
+                    if !v.is_finite() {
+                        // Finite inputs whose products overflowed f32: again in f64.
+                        let a = gravity.as_dvec3() * p.gravity_scale[i] as f64
+                            + p.accel[i].as_dvec3()
+                            + p.force[i].as_dvec3() * wi as f64;
+                        let v64 = (p.vel[i].as_dvec3() + h as f64 * a) / (1.0 + h as f64 * p.damping[i] as f64);
+                        v = crate::math::clamp_length_f64(v64, max_speed);
+                    }
                     let s2 = v.length_squared();
                     if s2 > max_speed * max_speed {
                         v *= max_speed / s2.sqrt();
@@ -690,9 +698,9 @@ impl World {
                 // sleeps once they do.
                 s.wake.push(c.slot);
             }
+            let limits = (self.settings.max_linear_speed, self.settings.max_angular_speed);
             let b = self.bodies.at_mut(c.slot);
-            b.v = c.v;
-            b.w = c.w;
+            b.set_velocities_capped(c.v, c.w, limits);
             b.set_center_rotation(c.center, c.q.normalize());
             b.update_world_inertia();
         }

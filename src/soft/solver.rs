@@ -319,14 +319,14 @@ impl World {
         // step (it moved away, or its soft body was destroyed) falls by itself.
         sc.carried.clear();
         for c in sc.coupled.iter_mut() {
+            let limits = (settings.max_linear_speed, settings.max_angular_speed);
             if c.passes == 0 {
-                c.v += c.gravity * dt;
+                c.v = crate::math::clamp_length(c.v + c.gravity * dt, limits.0);
                 c.center += c.v * dt;
                 c.q = integrate_rotation(c.q, c.w, dt);
             }
             let b = bodies.at_mut(c.slot);
-            b.v = c.v;
-            b.w = c.w;
+            b.set_velocities_capped(c.v, c.w, limits);
             b.set_center_rotation(c.center, c.q.normalize());
             b.update_world_inertia();
             if c.passes > 0 {

@@ -2,7 +2,8 @@
  * Joints from C, using only include/hearth.h: every joint export and its errors (NULL,
  * garbage and zeroed defs, bad flags, NaN, out-of-range limits, stale and foreign ids, the
  * wrong joint type), the defaults, the get/set pairs, applied force, breaking and the broken
- * report, body destruction destroying joints, and joints doing physics (a pendulum, a motor).
+ * report (a broken joint reports zero force), body destruction destroying joints, the world's
+ * angular speed limit, and joints doing physics (a pendulum, a motor).
  * Compiled as C11 and C++17, shared and static, under valgrind.
  */
 #include "hearth.h"
@@ -352,7 +353,55 @@ static void test_breaking_and_report(void) {
     ENSURE_OK(hearth_world_step(w, 1.0f / 60.0f));
     ENSURE_OK(hearth_world_get_broken_joints(w, list, 4, &count));
     ENSURE(count == 0);
+    /* A broken joint applies nothing and reports zero, for good. */
+    int nonzero = 0;
+    for (int i = 0; i < 120; i++) {
+        ENSURE_OK(hearth_joint_get_force(w, j, &force, &torque));
+        nonzero += force.x != 0.0f || force.y != 0.0f || force.z != 0.0f || torque.x != 0.0f ||
+                   torque.y != 0.0f || torque.z != 0.0f;
+        ENSURE_OK(hearth_world_step(w, 1.0f / 60.0f));
+    }
+    ENSURE(nonzero == 0);
     ENSURE_OK(hearth_joint_destroy(w, j));
+    hearth_world_destroy(w);
+}
+
+/* The angular speed limit of the world def (appended after internal_value): its default,
+ * its validation, and that it holds for a body a hinge motor and a huge torque spin. */
+static void test_angular_speed_limit(void) {
+    HearthWorldDef def = hearth_world_def_default();
+    ENSURE_NEAR(def.max_angular_speed, 314.159265, 1e-3);
+    HearthWorld *w = NULL;
+    const float bad[] = {0.0f, -1.0f, NAN, INFINITY};
+    for (int i = 0; i < 4; i++) {
+        HearthWorldDef d = def;
+        d.max_angular_speed = bad[i];
+        ENSURE_RESULT(hearth_world_create(&d, &w), HEARTH_ERROR_INVALID_ARGUMENT);
+        char msg[256];
+        hearth_last_error_message(msg, sizeof msg);
+        ENSURE(strstr(msg, "max_angular_speed") != NULL);
+        ENSURE(w == NULL);
+    }
+    def.max_angular_speed = 20.0f;
+    def.enable_sleep = 0;
+    def.gravity = vec3(0, 0, 0);
+    ENSURE_OK(hearth_world_create(&def, &w));
+    HearthBodyId b = make_ball(w, 0, 0, 0);
+    /* Set above the limit: capped, axis kept. */
+    ENSURE_OK(hearth_body_set_angular_velocity(w, b, vec3(0, 0, 1.0e30f)));
+    HearthVec3 av;
+    ENSURE_OK(hearth_body_get_angular_velocity(w, b, &av));
+    ENSURE_NEAR(av.z, 20.0, 1e-3);
+    ENSURE(av.x == 0.0f && av.y == 0.0f);
+    /* Torques up to FLT_MAX: finite and within the limit. */
+    for (int i = 0; i < 60; i++) {
+        ENSURE_OK(hearth_body_apply_torque(w, b, vec3(3.0e38f, -3.0e38f, 3.0e38f)));
+        ENSURE_OK(hearth_world_step(w, 1.0f / 60.0f));
+    }
+    ENSURE_OK(hearth_body_get_angular_velocity(w, b, &av));
+    float spin = sqrtf(av.x * av.x + av.y * av.y + av.z * av.z);
+    ENSURE(isfinite(spin) && spin <= 20.0f * 1.0001f);
+    ENSURE_NEAR(spin, 20.0, 1e-3);
     hearth_world_destroy(w);
 }
 
@@ -432,6 +481,7 @@ int main(void) {
     test_create_errors();
     test_every_type_and_accessors();
     test_breaking_and_report();
+    test_angular_speed_limit();
     test_too_small_buffer();
     test_physics();
     test_locked_from_callback_is_not_needed();

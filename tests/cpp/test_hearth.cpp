@@ -213,6 +213,19 @@ static void test_errors_as_exceptions() {
     hearth::WorldDef wd = hearth::world_def();
     wd.substeps = 0;
     CHECK_THROWS(hearth::World bad_world(wd), hearth::Code::InvalidArgument);
+    // The angular speed limit (appended to the def): default 100 pi, validated, applied.
+    wd = hearth::world_def();
+    CHECK_NEAR(wd.max_angular_speed, 314.159265, 1e-3);
+    wd.max_angular_speed = -1.0f;
+    CHECK_THROWS(hearth::World bad_world(wd), hearth::Code::InvalidArgument);
+    wd.max_angular_speed = 5.0f;
+    {
+        hearth::World limited(wd);
+        hearth::Body spun = limited.create_body(hearth::BodyType::Dynamic);
+        spun.add(hearth::sphere(0.5f));
+        spun.set_angular_velocity(hearth::vec3(0, 1.0e6f, 0));
+        CHECK_NEAR(spun.angular_velocity().y, 5.0, 1e-4);
+    }
     // Buffers too small (checked by the wrapper before the C call).
     std::vector<hearth::BodyId> ids{b.id(), b.id()};
     std::vector<hearth::Transform> one(1);

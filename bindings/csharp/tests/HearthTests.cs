@@ -243,6 +243,7 @@ internal static class HearthTests
         Equal((bool)w.EnableSleep, true, "world sleep");
         Equal(w.Integrator, Integrator.SemiImplicitEuler, "world integrator");
         Ensure(w.InternalValue != 0, "world def cookie set");
+        Near(w.MaxAngularSpeed, 314.159265f, 1e-3f, "world max angular speed (100 pi)");
         BodyDef b = BodyDef.Default();
         Equal(b.Type, BodyType.Static, "body type");
         Equal(b.Transform, Transform.Identity, "body transform");
@@ -509,6 +510,19 @@ internal static class HearthTests
         WorldDef bad = WorldDef.Default();
         bad.Gravity = new Vec3(float.NaN, 0f, 0f);
         Fails(Result.InvalidArgument, () => new World(bad), "NaN gravity");
+        bad = WorldDef.Default();
+        bad.MaxAngularSpeed = 0f;
+        Fails(Result.InvalidArgument, () => new World(bad), "zero max angular speed");
+
+        // The angular speed limit holds for a set velocity (capped, axis kept).
+        WorldDef limited = WorldDef.Default();
+        limited.MaxAngularSpeed = 5f;
+        using (var limitedWorld = new World(limited))
+        {
+            Body spun = DynamicBox(limitedWorld, new Vec3(0f, 3f, 0f), 0.5f);
+            spun.AngularVelocity = new Vec3(0f, 1.0e6f, 0f);
+            Near(spun.AngularVelocity, new Vec3(0f, 5f, 0f), 1e-4f, "angular velocity capped at the limit");
+        }
     }
 
     // ---- callbacks ----------------------------------------------------------------------------

@@ -533,6 +533,7 @@ class HearthWorldDef(_Struct):
         ("max_linear_speed", c_float),
         ("velocity_iterations", c_uint32),
         ("internal_value", c_uint32),
+        ("max_angular_speed", c_float),
     ]
 
 

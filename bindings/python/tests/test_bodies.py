@@ -115,6 +115,23 @@ def test_kinematic_target_transform(world):
     k.set_target_transform((0.0, 1.0, 0.0))
     world.step(DT)
     assert k.position.y == pytest.approx(1.0, abs=1e-4)
+    # reached: it stops there
+    assert k.linear_velocity == (0.0, 0.0, 0.0)
+    world.step(DT)
+    assert k.position.y == pytest.approx(1.0, abs=1e-4)
+
+
+def test_max_angular_speed_is_a_world_setting():
+    assert hearth.lib.hearth_world_def_default().max_angular_speed == pytest.approx(math.pi * 100.0)
+    with hearth.World(max_angular_speed=10.0, gravity=(0.0, 0.0, 0.0)) as w:
+        body = w.create_body("dynamic")
+        body.add_sphere(radius=0.5)
+        body.angular_velocity = (0.0, 1.0e6, 0.0)  # capped at the limit
+        assert body.angular_velocity == pytest.approx((0.0, 10.0, 0.0))
+    for bad in (0.0, -1.0, float("nan")):
+        with pytest.raises(hearth.InvalidArgument) as e:
+            hearth.World(max_angular_speed=bad)
+        assert "max_angular_speed" in e.value.message
 
 
 # ----------------------------------------------------------------------------------- errors

@@ -1,6 +1,6 @@
 //! Hinge (revolute): the anchors coincide (three point rows) and the frames' Z axes stay
-//! aligned (two angular rows across the axis); B turns about Z. Rows about the axis, in solve
-//! order: spring toward angle 0 (soft), motor (target speed, torque-clamped), lower and upper
+//! aligned (two angular rows across the axis); B turns about Z. Rows of the twist angle
+//! (`Frames::twist`), in solve order: spring toward angle 0 (soft), motor (target speed, torque-clamped), lower and upper
 //! angle limits (one-sided, speculative). They are coupled with the five equality rows
 //! (`rows.rs`): a limit or motor sees the inertia about the hinge, not about the centre of
 //! mass, so an arm held at its limit by a large torque does not overshoot.
@@ -9,21 +9,12 @@ use super::rows::{Eq, Row, Spd};
 use super::solver::{soft_impulse, Bodies, Ctx, Frames, Wrench};
 use super::{HingeParams, Impulses};
 use crate::dynamics::solver::Softness;
-use crate::math::Vec3;
-
-/// The hinge axis: halfway between the frames' Z axes.
-fn axis(f: &Frames) -> Vec3 {
-    let (za, zb) = f.axes();
-    let a = (za + zb).normalize_or_zero();
-    if a == Vec3::ZERO {
-        za
-    } else {
-        a
-    }
-}
 
 pub fn wrench(imp: &Impulses, f: &Frames) -> Wrench {
-    let t = imp.angular + (imp.axial + imp.motor + imp.lower - imp.upper) * axis(f);
+    let mut t = f.from_cross(imp.angular);
+    if let Some((_, row)) = f.twist() {
+        t += (imp.axial + imp.motor + imp.lower - imp.upper) * row;
+    }
     Wrench {
         p: imp.linear,
         ta: f.ra.cross(imp.linear) + t,
@@ -51,8 +42,13 @@ pub fn solve(
     if !has_axial_rows(p) {
         return;
     }
-    let row = eq.couple(k, b, Row::angular(axis(f)));
-    let angle = f.twist_angle();
+    let Some((angle, twist)) = f.twist() else {
+        // The axes are (nearly) opposite, far from the hinge's pose: the alignment rows
+        // turn them back first.
+        (imp.axial, imp.motor, imp.lower, imp.upper) = (0.0, 0.0, 0.0, 0.0);
+        return;
+    };
+    let row = eq.couple(k, b, Row::angular(twist));
     if p.enable_spring && p.spring_hertz > 0.0 {
         let d = soft_impulse(spring, row.mass, b.cdot(&row.row), angle, &mut imp.axial);
         row.apply(eq, b, imp, d);

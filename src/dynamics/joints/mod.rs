@@ -48,6 +48,7 @@ pub struct BallParams {
     pub enable_swing_limit: bool,
     /// Half-angle of the cone (rad, 0..=π) the B frame's Z axis may swing in around A's.
     pub swing_limit: f32,
+    /// Also keeps the swing within 0.9π (162°): twist is not defined at a half-turn swing.
     pub enable_twist_limit: bool,
     /// Twist about the Z axis (rad, -π..=π, lower <= upper).
     pub lower_twist: f32,
@@ -297,9 +298,11 @@ impl JointKind {
 /// Accumulated impulses of a joint's rows (warm started across sub-steps and steps).
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct Impulses {
-    /// Point (ball, hinge, fixed) or the two perpendicular rows of the slider (x, y).
+    /// Point lock (ball, hinge, fixed): a world vector. Slider: x and y are the two rows
+    /// across the axis, along A's frame X and Y (so they turn with A).
     pub linear: Vec3,
-    /// Angular lock: all three (fixed, slider) or the two perpendicular rows (hinge, x, y).
+    /// Angular lock (fixed, slider): a world vector. Hinge: x and y are the two alignment
+    /// rows, along A's frame X and Y.
     pub angular: Vec3,
     /// The distance row (rigid or spring) or the hinge spring.
     pub axial: f32,

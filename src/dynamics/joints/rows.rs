@@ -113,14 +113,43 @@ impl Bodies {
     }
 }
 
-/// Where a row's accumulated impulse is kept in [`Impulses`]: the component along the row's
-/// (unit) B-side direction of the linear or angular vector, or the axial scalar.
+/// Where a row's accumulated impulse is kept in [`Impulses`]: one component of the linear or
+/// angular vector, or the axial scalar. Each row owns one scalar, so an impulse stays on its
+/// row when the row's direction turns: a row along a body axis (the slider's cross-axis
+/// rows, the hinge's alignment rows) keeps its impulse as a coordinate in that body frame.
+/// Booked as a world vector, the part of an old impulse that had turned out of the rows'
+/// span was never solved again and the warm start applied it every sub-step for good — a
+/// slider set up 45° off its rest pose was driven along its free axis to 1,300 m/s.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum Slot {
+    /// Component `k` of `Impulses::linear`.
+    Linear(u8),
+    /// Component `k` of `Impulses::angular`.
+    Angular(u8),
     #[default]
-    Linear,
-    Angular,
     Axial,
+}
+
+impl Slot {
+    /// The accumulated impulse of a row booked here.
+    #[inline]
+    pub fn get(self, imp: &Impulses) -> f32 {
+        match self {
+            Slot::Linear(k) => imp.linear[k as usize],
+            Slot::Angular(k) => imp.angular[k as usize],
+            Slot::Axial => imp.axial,
+        }
+    }
+
+    /// Adds `x` to the accumulated impulse of a row booked here.
+    #[inline]
+    pub fn add(self, imp: &mut Impulses, x: f32) {
+        match self {
+            Slot::Linear(k) => imp.linear[k as usize] += x,
+            Slot::Angular(k) => imp.angular[k as usize] += x,
+            Slot::Axial => imp.axial += x,
+        }
+    }
 }
 
 /// A joint's equality rows now.
@@ -142,18 +171,20 @@ impl Eq {
         self.n += 1;
     }
 
-    /// The point lock: three rows along the world axes (impulse: `Impulses::linear`).
+    /// The point lock: three rows along the world axes (impulse: `Impulses::linear`, a
+    /// world vector).
     fn point(&mut self, f: &Frames) {
         for (k, e) in [Vec3::X, Vec3::Y, Vec3::Z].into_iter().enumerate() {
-            self.push(Row::linear(e, f.ra, f.rb), f.d[k], Slot::Linear);
+            self.push(Row::linear(e, f.ra, f.rb), f.d[k], Slot::Linear(k as u8));
         }
     }
 
-    /// The angular lock: three rows along the world axes (impulse: `Impulses::angular`).
+    /// The angular lock: three rows along the world axes (impulse: `Impulses::angular`, a
+    /// world vector).
     fn angular_lock(&mut self, f: &Frames) {
         let err = f.rotation_error();
         for (k, e) in [Vec3::X, Vec3::Y, Vec3::Z].into_iter().enumerate() {
-            self.push(Row::angular(e), err[k], Slot::Angular);
+            self.push(Row::angular(e), err[k], Slot::Angular(k as u8));
         }
     }
 
@@ -167,8 +198,8 @@ impl Eq {
                 // The Z axes stay aligned: rows along A's X and Y with the error `za × zb`.
                 let (za, zb) = f.axes();
                 let err = za.cross(zb);
-                for e in [f.qa * Vec3::X, f.qa * Vec3::Y] {
-                    eq.push(Row::angular(e), err.dot(e), Slot::Angular);
+                for (k, e) in f.cross_axes().into_iter().enumerate() {
+                    eq.push(Row::angular(e), err.dot(e), Slot::Angular(k as u8));
                 }
             }
             JointKind::Fixed => {
@@ -176,11 +207,12 @@ impl Eq {
                 eq.angular_lock(f);
             }
             JointKind::Slider(_) => {
-                // B's anchor stays on A's Z axis: A's arm reaches to B's anchor, exact while
-                // the anchors are apart along the axis.
-                let arm_a = f.ra + f.d;
-                for e in [f.qa * Vec3::X, f.qa * Vec3::Y] {
-                    eq.push(Row::linear(e, arm_a, f.rb), e.dot(f.d), Slot::Linear);
+                // B's anchor stays on A's Z axis (`SliderRows`).
+                let sr = f.slider();
+                for k in 0..2 {
+                    let e = sr.axes[k];
+                    let row = Row::linear(e, sr.lever_a, sr.lever_b);
+                    eq.push(row, e.dot(sr.offset), Slot::Linear(k as u8));
                 }
                 eq.angular_lock(f);
             }
@@ -198,11 +230,7 @@ impl Eq {
     pub fn acc(&self, imp: &Impulses) -> [f32; MAX_ROWS] {
         let mut a = [0.0; MAX_ROWS];
         for i in 0..self.n {
-            a[i] = match self.slots[i] {
-                Slot::Linear => imp.linear.dot(self.rows[i].lb),
-                Slot::Angular => imp.angular.dot(self.rows[i].ab),
-                Slot::Axial => imp.axial,
-            };
+            a[i] = self.slots[i].get(imp);
         }
         a
     }
@@ -211,12 +239,7 @@ impl Eq {
     #[inline]
     pub fn add(&self, imp: &mut Impulses, d: &[f32; MAX_ROWS], s: f32) {
         for i in 0..self.n {
-            let x = s * d[i];
-            match self.slots[i] {
-                Slot::Linear => imp.linear += x * self.rows[i].lb,
-                Slot::Angular => imp.angular += x * self.rows[i].ab,
-                Slot::Axial => imp.axial += x,
-            }
+            self.slots[i].add(imp, s * d[i]);
         }
     }
 

@@ -2,22 +2,22 @@
 //! the line through A's anchor along A's Z axis (two linear rows across the axis); all five
 //! are equality rows (`rows.rs`). Along the axis, in solve order: motor (target speed,
 //! force-clamped), lower and upper translation limits (one-sided, speculative), coupled with
-//! the equality rows so they see the bodies' masses with the rotation locked. A's arm for rows
-//! along and across the axis reaches to B's anchor (`ra + d`), so the rows are exact while
-//! the anchors are apart.
+//! the equality rows so they see the bodies' masses with the rotation locked. The rows along
+//! and across the axis act at the centre of one body and measure their errors as if its
+//! rotation were already right (`SliderRows`): exact at any misalignment and well
+//! conditioned however far apart the anchors are.
 
 use super::rows::{Eq, Row, Spd};
 use super::solver::{Bodies, Ctx, Frames, Wrench};
 use super::{Impulses, SliderParams};
-use crate::math::Vec3;
 
 pub fn wrench(imp: &Impulses, f: &Frames) -> Wrench {
-    let a = f.qa * Vec3::Z;
-    let p = imp.linear + (imp.motor + imp.lower - imp.upper) * a;
+    let sr = f.slider();
+    let p = imp.linear.x * sr.axes[0] + imp.linear.y * sr.axes[1] + (imp.motor + imp.lower - imp.upper) * sr.axes[2];
     Wrench {
         p,
-        ta: (f.ra + f.d).cross(p) + imp.angular,
-        tb: f.rb.cross(p) + imp.angular,
+        ta: sr.lever_a.cross(p) + imp.angular,
+        tb: sr.lever_b.cross(p) + imp.angular,
     }
 }
 
@@ -31,9 +31,9 @@ pub fn solve(p: &SliderParams, imp: &mut Impulses, f: &Frames, b: &mut Bodies, c
     if !has_axial_rows(p) {
         return;
     }
-    let a = f.qa * Vec3::Z;
-    let row = eq.couple(k, b, Row::linear(a, f.ra + f.d, f.rb));
-    let translation = a.dot(f.d);
+    let sr = f.slider();
+    let row = eq.couple(k, b, Row::linear(sr.axes[2], sr.lever_a, sr.lever_b));
+    let translation = sr.axes[2].dot(sr.offset);
     if p.enable_motor {
         let old = imp.motor;
         let max = p.max_motor_force * ctx.h;

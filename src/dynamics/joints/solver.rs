@@ -35,6 +35,12 @@ use crate::world::World;
 pub const JOINT_STIFFNESS: f32 = 0.25;
 /// Damping ratio of joint rows in the biased sweep.
 pub const JOINT_DAMPING_RATIO: f32 = 5.0;
+/// Largest swing (rad) between the frames' Z axes at which twist is measured: 162°. Past
+/// it, twist limits, the hinge's spring and limits rest (see `Frames::twist`).
+pub const MAX_TWIST_SWING: f32 = 0.9 * std::f32::consts::PI;
+/// `1 + cos(MAX_TWIST_SWING)`.
+const TWIST_MIN_COS_SUM: f32 = 0.048_943_35;
+
 /// Fastest speed (m/s, rad/s) at which position error is corrected.
 pub const MAX_BIAS_SPEED: f32 = 5.0;
 /// Sweeps over the joints in each of the biased and relax passes of a sub-step.
@@ -60,6 +66,9 @@ pub struct JointConstraint {
     pub spring: Softness,
     /// The equality rows are solved by the direct tree solve (`tree.rs`), not here.
     pub tree: bool,
+    /// Where the slider's linear rows act, from A's centre of mass (0) to B's (1) (see
+    /// [`SliderRows`]).
+    pub slider_point: f32,
 }
 
 /// This step's joint constraints and the spanning forest of their direct solve.
@@ -78,6 +87,8 @@ pub struct Frames {
     pub d: Vec3,
     pub qa: Quat,
     pub qb: Quat,
+    /// See `JointConstraint::slider_point`.
+    pub slider_point: f32,
 }
 
 impl Frames {
@@ -90,6 +101,45 @@ impl Frames {
             d: c.delta_center + sb.dp() - sa.dp() + rb - ra,
             qa: sa.dq() * c.frame_a.q,
             qb: sb.dq() * c.frame_b.q,
+            slider_point: c.slider_point,
+        }
+    }
+
+    /// The slider's linear rows (across and along its axis): directions, position errors
+    /// and where they act. See [`SliderRows`].
+    pub fn slider(&self) -> SliderRows {
+        let centers = self.d + self.ra - self.rb;
+        let w = self.slider_point;
+        if w == 0.0 {
+            // At A's centre; A's frame turned onto B's about A's centre.
+            let turn = self.qb * self.qa.conjugate();
+            SliderRows {
+                axes: [self.qb * Vec3::X, self.qb * Vec3::Y, self.qb * Vec3::Z],
+                offset: centers + self.rb - turn * self.ra,
+                lever_a: Vec3::ZERO,
+                lever_b: -centers,
+            }
+        } else if w == 1.0 {
+            // At B's centre; B's frame turned onto A's about B's centre.
+            let turn = self.qa * self.qb.conjugate();
+            SliderRows {
+                axes: [self.qa * Vec3::X, self.qa * Vec3::Y, self.qa * Vec3::Z],
+                offset: centers + turn * self.rb - self.ra,
+                lever_a: centers,
+                lever_b: Vec3::ZERO,
+            }
+        } else {
+            // Between the centres; the turn of the lever arms to first order: the offset at
+            // B's anchor, less what the rotation rows will take off it about that point.
+            let lever_a = w * centers;
+            let rot = self.rotation_error();
+            let shift = self.ra + self.d - lever_a;
+            SliderRows {
+                axes: [self.qa * Vec3::X, self.qa * Vec3::Y, self.qa * Vec3::Z],
+                offset: self.d + shift.cross(rot),
+                lever_a,
+                lever_b: lever_a - centers,
+            }
         }
     }
 
@@ -99,11 +149,34 @@ impl Frames {
         (self.qa * Vec3::Z, self.qb * Vec3::Z)
     }
 
-    /// The angle (rad, -π..=π) B's frame is turned about Z relative to A's: the twist of the
-    /// swing–twist decomposition of the relative rotation.
-    pub fn twist_angle(&self) -> f32 {
+    /// A's frame X and Y axes: the directions of the hinge's alignment rows and the
+    /// slider's cross-axis rows (their impulses are kept as coordinates along these).
+    #[inline]
+    pub fn cross_axes(&self) -> [Vec3; 2] {
+        [self.qa * Vec3::X, self.qa * Vec3::Y]
+    }
+
+    /// A vector with coordinates `c.x`, `c.y` along A's frame X and Y axes.
+    #[inline]
+    pub fn from_cross(&self, c: Vec3) -> Vec3 {
+        let [x, y] = self.cross_axes();
+        c.x * x + c.y * y
+    }
+
+    /// The twist of B's frame about Z relative to A's (the twist of the swing–twist
+    /// decomposition of the relative rotation): the angle (rad, -π..=π) and the angular
+    /// row of its rate, `(za + zb) / (1 + za·zb)`, so that `d(angle)/dt = row · (wb − wa)`
+    /// exactly at any swing. `None` where the twist is not defined well: B's Z axis turned
+    /// more than [`MAX_TWIST_SWING`] from A's (at half a turn the decomposition is singular
+    /// and the angle jumps; a limit there kicked the body into a spin).
+    pub fn twist(&self) -> Option<(f32, Vec3)> {
+        let (za, zb) = self.axes();
+        let c = 1.0 + za.dot(zb);
+        if c < TWIST_MIN_COS_SUM {
+            return None;
+        }
         let q = self.qa.conjugate() * self.qb;
-        wrap_angle(2.0 * q.z.atan2(q.w))
+        Some((wrap_angle(2.0 * q.z.atan2(q.w)), (za + zb) / c))
     }
 
     /// The rotation from A's frame to B's as a rotation vector (small-angle form).
@@ -125,6 +198,36 @@ fn wrap_angle(a: f32) -> f32 {
     } else {
         a
     }
+}
+
+/// The slider's linear rows. The constraint is "B's anchor stays on A's axis, B keeps A's
+/// rotation"; with the rotation locked by the three angular rows, the linear rows may act
+/// at any point without changing what they allow (adding multiples of the angular rows and
+/// their errors to them cancels out). They act at a point between the centres of mass
+/// (`JointConstraint::slider_point`) chosen to keep the solve well conditioned however far
+/// apart the anchors are: the child's centre in the forest, else a point that decouples
+/// them from the angular rows (in proportion to the bodies' inverse inertias; the centre of
+/// a body joined to the ground). At B's anchor, a body 500 m along a rail had the rail's
+/// force at a 500 m lever cancelled by the angular rows' torque in f32, and the solve blew
+/// up.
+///
+/// Against the ground (one body's centre), the position errors are measured as if that
+/// body were already turned onto the other's frame about its centre — the error the
+/// rotation rows leave to them — so they do not depend on its rotation at all, exactly at
+/// any misalignment, and the rows (along the other body's axes) are their exact Jacobians.
+/// Measured in the turning frame instead, a slider set up half a turn off its rest pose was
+/// pushed across an axis that then turned under it, and ended up sliding at 19 m/s.
+/// Between two dynamic bodies the same holds to first order in the rotation error.
+#[derive(Clone, Copy, Debug)]
+pub struct SliderRows {
+    /// The frame's X and Y axes (the rows across the axis) and its Z axis (the slider axis).
+    pub axes: [Vec3; 3],
+    /// B's anchor relative to A's, after the pivot's turn: errors `axes[k] · offset` across
+    /// the axis, translation `axes[2] · offset` along it.
+    pub offset: Vec3,
+    /// Lever arms of the rows on A and on B (one of them zero).
+    pub lever_a: Vec3,
+    pub lever_b: Vec3,
 }
 
 /// The two bodies' velocities and inverse masses while one joint is solved.
@@ -322,6 +425,22 @@ pub fn prepare(world: &mut World, h: f32) {
         };
         let mut imp = joint.impulses;
         clear_disabled(&joint.def.kind, &mut imp);
+        // The slider's linear rows act between the centres, in proportion to the bodies'
+        // inverse inertias (a rotation-invariant measure: the trace; ground bodies have
+        // none): at the centre of a body joined to the ground. The forest moves them to the
+        // child's centre for its joints (`Forest::build`).
+        let trace = |s: &BodyState| {
+            let m = s.inv_i();
+            m.x_axis.x + m.y_axis.y + m.z_axis.z
+        };
+        let (ta, tb) = (trace(&states[ia as usize]), trace(&states[ib as usize]));
+        let slider_point = if tb <= 0.0 {
+            0.0
+        } else if ta <= 0.0 {
+            1.0
+        } else {
+            tb / (ta + tb)
+        };
         set.list.push(JointConstraint {
             joint: handle.index,
             ia,
@@ -333,6 +452,7 @@ pub fn prepare(world: &mut World, h: f32) {
             imp,
             spring,
             tree: false,
+            slider_point,
         });
     }
     set.forest.build(&mut set.list, states);
@@ -343,7 +463,7 @@ pub fn prepare(world: &mut World, h: f32) {
 fn clear_disabled(kind: &JointKind, imp: &mut Impulses) {
     match kind {
         JointKind::Ball(p) => {
-            if !p.enable_swing_limit {
+            if super::ball::cone_angle(p).is_none() {
                 imp.cone = 0.0;
             }
             if !p.enable_twist_limit {
@@ -419,13 +539,14 @@ pub(crate) fn load(c: &JointConstraint, vel: &[Velocity], states: &[BodyState]) 
     )
 }
 
-/// Writes the velocities back; index 0 (static, the world) is never written.
+/// Writes the velocities back to the dynamic bodies: index 0 (static, sleeping, the world)
+/// and kinematic bodies (no inverse mass) keep theirs — a joint never changes them.
 #[inline]
 pub(crate) fn write(c: &JointConstraint, b: &Bodies, vel: &mut [Velocity]) {
-    if c.ia != 0 {
+    if c.ia != 0 && b.ma != 0.0 {
         vel[c.ia as usize] = Velocity::new(b.va, b.wa);
     }
-    if c.ib != 0 {
+    if c.ib != 0 && b.mb != 0.0 {
         vel[c.ib as usize] = Velocity::new(b.vb, b.wb);
     }
 }
@@ -505,8 +626,12 @@ pub fn store(world: &mut World, h: f32) {
         joint.force = w.p * inv_h;
         joint.torque = (w.tb - f.rb.cross(w.p)) * inv_h;
         if joint.force.length() > joint.def.break_force || joint.torque.length() > joint.def.break_torque {
+            // A broken joint applies nothing, and says so from now on (it leaves the
+            // constraint list, so nothing would overwrite what it applied last).
             joint.broken = true;
             joint.impulses = Impulses::default();
+            joint.force = Vec3::ZERO;
+            joint.torque = Vec3::ZERO;
             let handle = joints.pool.handle_at(c.joint).expect("live joint");
             joints.broken.push(handle);
         }

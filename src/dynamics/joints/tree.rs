@@ -41,7 +41,7 @@ use super::solver::{load, write, Ctx, Frames, JointConstraint};
 use crate::dynamics::solver::{BodyState, Velocity};
 use crate::math::Vec3;
 
-type V6 = [f32; 6];
+type V6 = [f64; 6];
 
 const NONE: u32 = u32::MAX;
 const ZERO6: V6 = [0.0; 6];
@@ -88,8 +88,8 @@ pub struct Forest {
     /// Per row: where its accumulated impulse is kept.
     slot: Vec<Slot>,
     /// Per row, per solve: right-hand side, then `z`, then `λ`.
-    rhs: Vec<f32>,
-    z: Vec<f32>,
+    rhs: Vec<f64>,
+    z: Vec<f64>,
     /// Per node, per solve.
     g: Vec<V6>,
     u: Vec<V6>,
@@ -205,15 +205,27 @@ impl Forest {
                 self.drain(constraints);
             }
         }
+        // A tree slider's linear rows act at the child's centre: its Jacobian on the child
+        // then has no lever arm, so `S` stays well conditioned however far the child slid
+        // (the lever goes to the parent side, into `D_parent` in f64). With the lever on
+        // the child, a body 120 m along its rail made `S` singular in f32 and the chain
+        // blew up. See `SliderRows`.
+        for node in &self.nodes {
+            if node.joint != NONE {
+                let c = &mut constraints[node.joint as usize];
+                c.slider_point = if node.child_is_a { 0.0 } else { 1.0 };
+            }
+        }
         let rows = self.nodes.last().map_or(0, |n| (n.off + n.k) as usize);
         self.dinv.resize(self.nodes.len(), [0.0; 21]);
         for v in [&mut self.jc, &mut self.jp, &mut self.y, &mut self.sinv] {
             v.resize(rows, ZERO6);
         }
-        for v in [&mut self.err, &mut self.rhs, &mut self.z] {
+        self.err.resize(rows, 0.0);
+        for v in [&mut self.rhs, &mut self.z] {
             v.resize(rows, 0.0);
         }
-        self.slot.resize(rows, Slot::Linear);
+        self.slot.resize(rows, Slot::Axial);
         for v in [&mut self.g, &mut self.u, &mut self.x] {
             v.resize(self.nodes.len(), ZERO6);
         }
@@ -284,8 +296,9 @@ impl Forest {
                 let row = &eq.rows[r];
                 let (a, b) = ([row.la, row.aa], [row.lb, row.ab]);
                 let (mine, other) = if node.child_is_a { (a, b) } else { (b, a) };
-                self.jc[off + r] = [mine[0].x, mine[0].y, mine[0].z, mine[1].x, mine[1].y, mine[1].z];
-                self.jp[off + r] = [other[0].x, other[0].y, other[0].z, other[1].x, other[1].y, other[1].z];
+                self.jc[off + r] = [mine[0].x, mine[0].y, mine[0].z, mine[1].x, mine[1].y, mine[1].z].map(f64::from);
+                self.jp[off + r] =
+                    [other[0].x, other[0].y, other[0].z, other[1].x, other[1].y, other[1].z].map(f64::from);
                 self.err[off + r] = eq.err[r];
                 self.slot[off + r] = eq.slots[r];
             }
@@ -303,27 +316,25 @@ impl Forest {
     /// One joint of the factorisation, `K` rows: `Y = D⁻¹ J_cᵀ`, `S⁻¹ = (J_c Y)⁻¹`, and
     /// `D_parent += J_pᵀ S⁻¹ J_p` (f64 while factoring).
     fn factor_joint<const K: usize>(&mut self, l: &[f64; 21], rows: std::ops::Range<usize>, parent: Option<usize>) {
-        let jc: [[f64; 6]; K] = std::array::from_fn(|r| self.jc[rows.start + r].map(f64::from));
+        let jc: [[f64; 6]; K] = std::array::from_fn(|r| self.jc[rows.start + r]);
         let y: [[f64; 6]; K] = std::array::from_fn(|r| chol_solve6(l, &jc[r]));
         let mut s = [[0.0f64; K]; K];
         for a in 0..K {
             for b in 0..=a {
-                let v = dot6d(&jc[a], &y[b]);
+                let v = dot6(&jc[a], &y[b]);
                 s[a][b] = v;
                 s[b][a] = v;
             }
         }
         let s = spd_inverse::<K>(&s).unwrap_or([[0.0; K]; K]);
         for r in 0..K {
-            self.y[rows.start + r] = y[r].map(|v| v as f32);
+            self.y[rows.start + r] = y[r];
             let mut row = ZERO6;
-            for e in 0..K {
-                row[e] = s[r][e] as f32;
-            }
+            row[..K].copy_from_slice(&s[r]);
             self.sinv[rows.start + r] = row;
         }
         if let Some(p) = parent {
-            let jp: [[f64; 6]; K] = std::array::from_fn(|r| self.jp[rows.start + r].map(f64::from));
+            let jp: [[f64; 6]; K] = std::array::from_fn(|r| self.jp[rows.start + r]);
             // W = S⁻¹ J_p; D_parent += J_pᵀ W.
             let mut w = [[0.0f64; 6]; K];
             for a in 0..K {
@@ -371,7 +382,7 @@ impl Forest {
             let (vc, vp) = (six(&vel[node.body as usize]), six(&vel[node.other as usize]));
             for r in node.off as usize..(node.off + node.k) as usize {
                 let cdot = dot6(&self.jc[r], &vc) + dot6(&self.jp[r], &vp);
-                self.rhs[r] = -(cdot + ctx.rigid_bias(self.err[r]));
+                self.rhs[r] = -(cdot + ctx.rigid_bias(self.err[r]) as f64);
             }
         }
         for g in self.g.iter_mut() {
@@ -379,7 +390,7 @@ impl Forest {
         }
         // Backwards: children before parents.
         for i in (0..m).rev() {
-            let u = chol_solve6(&self.dinv[i], &self.g[i].map(f64::from)).map(|v| v as f32);
+            let u = chol_solve6(&self.dinv[i], &self.g[i]);
             self.u[i] = u;
             match self.nodes[i].k {
                 0 => {}
@@ -407,8 +418,8 @@ impl Forest {
                 // The velocity changes are the solution itself.
                 let x = &self.x[i];
                 let u = &mut vel[node.body as usize];
-                u.v += Vec3::new(x[0], x[1], x[2]);
-                u.w += Vec3::new(x[3], x[4], x[5]);
+                u.v += Vec3::new(x[0] as f32, x[1] as f32, x[2] as f32);
+                u.w += Vec3::new(x[3] as f32, x[4] as f32, x[5] as f32);
             }
             if k == 0 {
                 continue;
@@ -416,22 +427,15 @@ impl Forest {
             let c = &mut constraints[node.joint as usize];
             if rigid {
                 for r in off..off + k {
-                    let (lb, ab) = self.b_side(&node, r);
-                    book(&mut c.imp, self.slot[r], lb, ab, self.z[r]);
+                    self.slot[r].add(&mut c.imp, self.z[r] as f32);
                 }
             } else {
                 // Soft: scale the rigid solution and leak part of the accumulated impulse,
                 // applied joint by joint through the rows.
                 let (mut b, _) = load(c, vel, states);
                 for r in off..off + k {
-                    let (lb, ab) = self.b_side(&node, r);
-                    let acc = match self.slot[r] {
-                        Slot::Linear => c.imp.linear.dot(lb),
-                        Slot::Angular => c.imp.angular.dot(ab),
-                        Slot::Axial => c.imp.axial,
-                    };
-                    let d = ctx.respond(self.z[r], acc);
-                    book(&mut c.imp, self.slot[r], lb, ab, d);
+                    let d = ctx.respond(self.z[r] as f32, self.slot[r].get(&c.imp));
+                    self.slot[r].add(&mut c.imp, d);
                     b.apply_row(&self.row(&node, r), d);
                 }
                 write(c, &b, vel);
@@ -445,8 +449,8 @@ impl Forest {
         let node = self.nodes[i];
         let off = node.off as usize;
         let u = self.u[i];
-        let t: [f32; K] = std::array::from_fn(|r| self.rhs[off + r] - dot6(&self.jc[off + r], &u));
-        let mut z = [0.0f32; K];
+        let t: [f64; K] = std::array::from_fn(|r| self.rhs[off + r] - dot6(&self.jc[off + r], &u));
+        let mut z = [0.0f64; K];
         for r in 0..K {
             let row = &self.sinv[off + r];
             for e in 0..K {
@@ -472,7 +476,7 @@ impl Forest {
         let mut x = self.u[i];
         if node.parent != NONE {
             let xp = self.x[node.parent as usize];
-            let t: [f32; K] = std::array::from_fn(|r| dot6(&self.jp[off + r], &xp));
+            let t: [f64; K] = std::array::from_fn(|r| dot6(&self.jp[off + r], &xp));
             for r in 0..K {
                 let row = &self.sinv[off + r];
                 let mut d = 0.0;
@@ -488,13 +492,6 @@ impl Forest {
         x
     }
 
-    /// B's side of row `r` of a node's parent joint: (linear, angular).
-    #[inline]
-    fn b_side(&self, node: &Node, r: usize) -> (Vec3, Vec3) {
-        let j = if node.child_is_a { &self.jp[r] } else { &self.jc[r] };
-        (Vec3::new(j[0], j[1], j[2]), Vec3::new(j[3], j[4], j[5]))
-    }
-
     /// Row `r` of a node's parent joint.
     fn row(&self, node: &Node, r: usize) -> Row {
         let (a, b) = if node.child_is_a {
@@ -502,28 +499,19 @@ impl Forest {
         } else {
             (&self.jp[r], &self.jc[r])
         };
+        let v = |x: &V6, k: usize| Vec3::new(x[k] as f32, x[k + 1] as f32, x[k + 2] as f32);
         Row {
-            la: Vec3::new(a[0], a[1], a[2]),
-            aa: Vec3::new(a[3], a[4], a[5]),
-            lb: Vec3::new(b[0], b[1], b[2]),
-            ab: Vec3::new(b[3], b[4], b[5]),
+            la: v(a, 0),
+            aa: v(a, 3),
+            lb: v(b, 0),
+            ab: v(b, 3),
         }
-    }
-}
-
-/// Books impulse `x` of a row on the joint's accumulated impulses (see `Eq::add`).
-#[inline]
-fn book(imp: &mut super::Impulses, slot: Slot, lb: Vec3, ab: Vec3, x: f32) {
-    match slot {
-        Slot::Linear => imp.linear += x * lb,
-        Slot::Angular => imp.angular += x * ab,
-        Slot::Axial => imp.axial += x,
     }
 }
 
 #[inline]
 fn six(u: &Velocity) -> V6 {
-    [u.v.x, u.v.y, u.v.z, u.w.x, u.w.y, u.w.z]
+    [u.v.x, u.v.y, u.v.z, u.w.x, u.w.y, u.w.z].map(f64::from)
 }
 
 /// Whether the joint has equality rows (all but a distance joint with its spring on).
@@ -543,12 +531,12 @@ pub fn equality_row_count(c: &JointConstraint) -> usize {
 }
 
 #[inline]
-fn dot6(a: &V6, b: &V6) -> f32 {
+fn dot6(a: &V6, b: &V6) -> f64 {
     a[0] * b[0] + a[1] * b[1] + a[2] * b[2] + a[3] * b[3] + a[4] * b[4] + a[5] * b[5]
 }
 
 #[inline]
-fn axpy6(y: &mut V6, a: f32, x: &V6) {
+fn axpy6(y: &mut V6, a: f64, x: &V6) {
     for k in 0..6 {
         y[k] += a * x[k];
     }
@@ -656,11 +644,6 @@ fn spd_inverse<const N: usize>(a: &[[f64; N]; N]) -> Option<[[f64; N]; N]> {
         }
     }
     Some(out)
-}
-
-#[inline]
-fn dot6d(a: &[f64; 6], b: &[f64; 6]) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2] + a[3] * b[3] + a[4] * b[4] + a[5] * b[5]
 }
 
 #[cfg(test)]
