@@ -171,6 +171,11 @@ enum HearthResult
      * further steps with this code.
      */
     HEARTH_ERROR_PANIC = 6,
+    /**
+     * A fixed capacity is used up: `hearth_world_create` with 4,095 worlds alive at once
+     * (the most whose ids can be told apart). Destroy one and try again.
+     */
+    HEARTH_ERROR_LIMIT_REACHED = 7,
 };
 #ifndef __cplusplus
 typedef int32_t HearthResult;

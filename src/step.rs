@@ -9,7 +9,9 @@ use crate::world::World;
 pub const SPECULATIVE_DISTANCE: f32 = 0.02;
 
 impl World {
-    /// Advances the world by `dt` seconds (`dt >= 0`; 0 does nothing).
+    /// Advances the world by `dt` seconds: 0 does nothing, otherwise `dt` must lie within
+    /// [`MIN_TIME_STEP`](crate::error::MIN_TIME_STEP), [`MAX_TIME_STEP`](crate::error::MAX_TIME_STEP)]
+    /// (1e-5 to 1 s; README "Supported ranges").
     ///
     /// The stages run in three calls, `begin_step`, `collide_step` and `finish_step`. A
     /// driver that runs host callbacks (the C layer, `capi/world.rs`) calls them itself and
@@ -26,9 +28,7 @@ impl World {
     /// Validates `dt` and runs stages 1–2. Returns false when there is nothing to do
     /// (`dt == 0`); the other stages must then not run.
     pub fn begin_step(&mut self, dt: f32) -> crate::error::Result<bool> {
-        if !dt.is_finite() || dt < 0.0 {
-            return Err(crate::error::invalid(format!("dt must be finite and >= 0, got {dt}")));
-        }
+        crate::error::check_time_step("dt", dt)?;
         if dt == 0.0 {
             return Ok(false);
         }

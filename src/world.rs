@@ -8,9 +8,12 @@ use crate::dynamics::body::{Body, BodyDef, BodyHandle, BodyType, ShapeHandle, NO
 use crate::dynamics::contact_wide::Batches;
 pub use crate::dynamics::contact_wide::LaneWidth;
 use crate::dynamics::solver::SolverScratch;
-use crate::error::{check_non_negative, check_positive, check_vec, invalid, Error, Result};
+use crate::error::{
+    check_acceleration, check_angular_velocity, check_damping, check_force, check_impulse, check_non_negative,
+    check_position, check_velocity, invalid, Error, Result, MAX_ANGULAR_SPEED,
+};
 use crate::math::{Transform, Vec3};
-use crate::pool::{next_world_tag, Handle, Pool};
+use crate::pool::{Handle, Pool, WorldTag};
 
 /// How unconstrained bodies are integrated.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -74,8 +77,10 @@ impl Default for WorldSettings {
 }
 
 impl WorldSettings {
+    /// Range-checks every setting (README "Supported ranges").
     pub fn validate(&self) -> Result<()> {
-        check_vec("gravity", self.gravity)?;
+        use crate::error::{check_acceleration, check_range, MAX_LENGTH, MAX_SPEED};
+        check_acceleration("gravity", self.gravity)?;
         if self.substeps == 0 || self.substeps > 64 {
             return Err(invalid(format!("substeps must be in 1..=64, got {}", self.substeps)));
         }
@@ -85,15 +90,40 @@ impl WorldSettings {
                 self.velocity_iterations
             )));
         }
-        check_non_negative("sleep_threshold", self.sleep_threshold)?;
+        check_range("sleep_threshold", self.sleep_threshold, 0.0, MAX_SPEED, " m/s")?;
         check_non_negative("time_to_sleep", self.time_to_sleep)?;
-        check_positive("contact_hertz", self.contact_hertz)?;
-        check_non_negative("contact_damping_ratio", self.contact_damping_ratio)?;
-        check_positive("contact_push_max_velocity", self.contact_push_max_velocity)?;
-        check_non_negative("restitution_threshold", self.restitution_threshold)?;
-        check_non_negative("linear_slop", self.linear_slop)?;
-        check_positive("max_linear_speed", self.max_linear_speed)?;
+        // Softness (dynamics/solver.rs) divides by 2·ratio + h·ω: a positive stiffness keeps
+        // it away from 0, a bounded ratio keeps it finite.
+        check_range("contact_hertz", self.contact_hertz, 1.0e-3, 1.0e6, " Hz")?;
+        check_range("contact_damping_ratio", self.contact_damping_ratio, 0.0, 1.0e3, "")?;
+        check_range(
+            "contact_push_max_velocity",
+            self.contact_push_max_velocity,
+            1.0e-6,
+            MAX_SPEED,
+            " m/s",
+        )?;
+        check_range(
+            "restitution_threshold",
+            self.restitution_threshold,
+            0.0,
+            MAX_SPEED,
+            " m/s",
+        )?;
+        check_range("linear_slop", self.linear_slop, 0.0, MAX_LENGTH, " m")?;
+        check_range("max_linear_speed", self.max_linear_speed, 1.0e-3, MAX_SPEED, " m/s")?;
         Ok(())
+    }
+}
+
+/// `v` scaled down to length `max` if longer (the solver's speed cap). Its inputs are finite
+/// and bounded (an impulse times an inverse mass stays below 1e34), so the length is too.
+pub(crate) fn cap_speed(v: Vec3, max: f32) -> Vec3 {
+    let l = v.length();
+    if l > max {
+        v * (max / l)
+    } else {
+        v
     }
 }
 
@@ -137,12 +167,21 @@ pub struct World {
     pub joints: crate::dynamics::joints::Joints,
     /// Soft bodies (issue 6, `soft/`).
     pub soft_bodies: crate::soft::SoftBodies,
+    /// The tag in every id of this world, leased from the process-wide registry (`pool.rs`)
+    /// and returned when the world is dropped.
+    tag: WorldTag,
 }
 
 impl World {
     pub fn new(settings: WorldSettings) -> Result<World> {
         settings.validate()?;
-        let tag = next_world_tag();
+        let lease = WorldTag::acquire().ok_or_else(|| {
+            Error::LimitReached(format!(
+                "{} worlds are alive at once, the most whose ids can be told apart; destroy one first",
+                crate::pool::MAX_LIVE_WORLDS
+            ))
+        })?;
+        let tag = lease.stamp();
         Ok(World {
             settings,
             bodies: Pool::new(tag),
@@ -165,13 +204,14 @@ impl World {
             particles: crate::particles::Particles::new(tag),
             joints: crate::dynamics::joints::Joints::new(tag),
             soft_bodies: crate::soft::SoftBodies::new(tag),
+            tag: lease,
         })
     }
 
     // ---------------------------------------------------------------- bodies
 
     pub fn create_body(&mut self, def: &BodyDef) -> Result<BodyHandle> {
-        let def = def.validated()?;
+        let def = def.validated(self.settings.max_linear_speed)?;
         let h = self.bodies.insert(Body::new(&def));
         if def.body_type != BodyType::Static {
             if def.awake {
@@ -233,8 +273,8 @@ impl World {
 
     pub fn set_transform(&mut self, h: BodyHandle, xf: Transform) -> Result<()> {
         let index = self.body_index(h)?;
-        check_vec("position", xf.p)?;
-        let q = crate::error::check_quat("rotation", xf.q)?;
+        check_position("transform.position", xf.p)?;
+        let q = crate::error::check_quat("transform.rotation", xf.q)?;
         let xf = Transform::new(xf.p, q);
         let body = self.bodies.at_mut(index);
         body.set_transform(xf);
@@ -253,8 +293,8 @@ impl World {
         if self.bodies.at(index).body_type != BodyType::Kinematic {
             return Err(invalid("a target transform needs a kinematic body"));
         }
-        check_vec("target position", target.p)?;
-        let q = crate::error::check_quat("target rotation", target.q)?;
+        check_position("target.position", target.p)?;
+        let q = crate::error::check_quat("target.rotation", target.q)?;
         self.bodies.at_mut(index).kinematic_target = Some(Transform::new(target.p, q));
         self.wake_body(index);
         Ok(())
@@ -270,7 +310,7 @@ impl World {
 
     pub fn set_linear_velocity(&mut self, h: BodyHandle, v: Vec3) -> Result<()> {
         let index = self.body_index(h)?;
-        check_vec("linear velocity", v)?;
+        check_velocity("linear velocity", v, self.settings.max_linear_speed)?;
         let body = self.bodies.at_mut(index);
         if body.is_static() {
             return Ok(());
@@ -284,7 +324,7 @@ impl World {
 
     pub fn set_angular_velocity(&mut self, h: BodyHandle, w: Vec3) -> Result<()> {
         let index = self.body_index(h)?;
-        check_vec("angular velocity", w)?;
+        check_angular_velocity("angular velocity", w)?;
         let body = self.bodies.at_mut(index);
         if body.is_static() {
             return Ok(());
@@ -315,14 +355,14 @@ impl World {
 
     /// Adds a force (N) at the centre of mass until the end of the next step. Wakes the body.
     pub fn apply_force(&mut self, h: BodyHandle, f: Vec3, wake: bool) -> Result<()> {
-        check_vec("force", f)?;
+        check_force("force", f)?;
         self.act_on_dynamic(h, wake, |b| b.force += f)
     }
 
     /// Adds a force (N) at a world point: a force plus the torque of its lever arm.
     pub fn apply_force_at_point(&mut self, h: BodyHandle, f: Vec3, point: Vec3, wake: bool) -> Result<()> {
-        check_vec("force", f)?;
-        check_vec("point", point)?;
+        check_force("force", f)?;
+        check_position("point", point)?;
         self.act_on_dynamic(h, wake, |b| {
             b.force += f;
             b.torque += (point - b.center).cross(f);
@@ -330,29 +370,39 @@ impl World {
     }
 
     pub fn apply_torque(&mut self, h: BodyHandle, t: Vec3, wake: bool) -> Result<()> {
-        check_vec("torque", t)?;
+        check_force("torque", t)?;
         self.act_on_dynamic(h, wake, |b| b.torque += t)
     }
 
-    /// Applies an impulse (N·s) at a world point: changes velocity at once.
+    /// Applies an impulse (N·s) at a world point: changes velocity at once. The new
+    /// velocities are capped like the solver's: at `max_linear_speed` and
+    /// [`MAX_ANGULAR_SPEED`](crate::error::MAX_ANGULAR_SPEED).
     pub fn apply_impulse_at_point(&mut self, h: BodyHandle, j: Vec3, point: Vec3, wake: bool) -> Result<()> {
-        check_vec("impulse", j)?;
-        check_vec("point", point)?;
+        check_impulse("impulse", j)?;
+        check_position("point", point)?;
+        let max = self.settings.max_linear_speed;
         self.act_on_dynamic(h, wake, |b| {
-            b.v += b.inv_mass * j;
-            b.w += b.inv_inertia_world * (point - b.center).cross(j);
+            b.v = cap_speed(b.v + b.inv_mass * j, max);
+            b.w = cap_speed(
+                b.w + b.inv_inertia_world * (point - b.center).cross(j),
+                MAX_ANGULAR_SPEED,
+            );
         })
     }
 
+    /// Applies an angular impulse (N·m·s): changes the angular velocity at once, capped as
+    /// in [`World::apply_impulse_at_point`].
     pub fn apply_angular_impulse(&mut self, h: BodyHandle, j: Vec3, wake: bool) -> Result<()> {
-        check_vec("angular impulse", j)?;
-        self.act_on_dynamic(h, wake, |b| b.w += b.inv_inertia_world * j)
+        check_impulse("angular impulse", j)?;
+        self.act_on_dynamic(h, wake, |b| {
+            b.w = cap_speed(b.w + b.inv_inertia_world * j, MAX_ANGULAR_SPEED)
+        })
     }
 
     pub fn set_damping(&mut self, h: BodyHandle, linear: f32, angular: f32) -> Result<()> {
         let i = self.body_index(h)?;
-        check_non_negative("linear damping", linear)?;
-        check_non_negative("angular damping", angular)?;
+        check_damping("linear damping", linear)?;
+        check_damping("angular damping", angular)?;
         let b = self.bodies.at_mut(i);
         b.linear_damping = linear;
         b.angular_damping = angular;
@@ -360,7 +410,7 @@ impl World {
     }
 
     pub fn set_gravity(&mut self, g: Vec3) -> Result<()> {
-        check_vec("gravity", g)?;
+        check_acceleration("gravity", g)?;
         self.settings.gravity = g;
         let all: Vec<u32> = self
             .bodies
@@ -701,6 +751,11 @@ impl World {
 
     pub fn contact_count(&self) -> usize {
         self.contacts.len()
+    }
+
+    /// The tag carried by every id of this world (1..=4095; no two live worlds share one).
+    pub fn tag(&self) -> u32 {
+        self.tag.tag()
     }
 
     pub fn tree_height(&self) -> u32 {

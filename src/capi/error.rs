@@ -28,6 +28,9 @@ pub enum HearthResult {
     /// An internal bug was caught at the boundary. A world that panicked mid-step refuses
     /// further steps with this code.
     HEARTH_ERROR_PANIC = 6,
+    /// A fixed capacity is used up: `hearth_world_create` with 4,095 worlds alive at once
+    /// (the most whose ids can be told apart). Destroy one and try again.
+    HEARTH_ERROR_LIMIT_REACHED = 7,
 }
 
 pub use HearthResult::*;
@@ -58,6 +61,7 @@ impl From<crate::error::Error> for Failure {
         let code = match e {
             crate::error::Error::InvalidId(_) => HEARTH_ERROR_INVALID_ID,
             crate::error::Error::InvalidArgument(_) => HEARTH_ERROR_INVALID_ARGUMENT,
+            crate::error::Error::LimitReached(_) => HEARTH_ERROR_LIMIT_REACHED,
         };
         Failure::new(code, e.to_string())
     }

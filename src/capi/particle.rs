@@ -411,7 +411,7 @@ pub unsafe extern "C" fn hearth_particle_emit_burst(
             seed: d.seed,
             particle: particle_def(&d.particle)?,
         };
-        burst.validate()?;
+        burst.validate(w.settings.max_linear_speed)?;
         if !out_ids.is_null() {
             validate::capacity(capacity, burst.count as usize, "out_ids")?;
         }

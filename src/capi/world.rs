@@ -260,9 +260,7 @@ pub unsafe extern "C" fn hearth_world_step(world: *mut HearthWorld, dt: f32) -> 
                 "the world is locked: it is stepping (called from a callback)",
             ));
         }
-        if !dt.is_finite() || dt < 0.0 {
-            return Err(Failure::invalid(format!("dt must be finite and >= 0, got {dt}")));
-        }
+        crate::error::check_time_step("dt", dt)?;
         handle.locked.set(true);
         handle.phase.set(PHASE_CORE);
         let r = catch_unwind(AssertUnwindSafe(|| drive_step(world, dt)));
