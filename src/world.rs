@@ -390,6 +390,14 @@ impl World {
         })
     }
 
+    /// Applies an impulse (N·s) at the centre of mass: changes the linear velocity at once,
+    /// capped at `max_linear_speed`.
+    pub fn apply_linear_impulse(&mut self, h: BodyHandle, j: Vec3, wake: bool) -> Result<()> {
+        check_impulse("impulse", j)?;
+        let max = self.settings.max_linear_speed;
+        self.act_on_dynamic(h, wake, |b| b.v = cap_speed(b.v + b.inv_mass * j, max))
+    }
+
     /// Applies an angular impulse (N·m·s): changes the angular velocity at once, capped as
     /// in [`World::apply_impulse_at_point`].
     pub fn apply_angular_impulse(&mut self, h: BodyHandle, j: Vec3, wake: bool) -> Result<()> {

@@ -369,40 +369,60 @@ fn integrate_general_velocities(
         if sim.rk4 {
             continue;
         }
-        let mut v = u.v + d.dv();
-        let mut w = u.w;
-        if sim.torque != Vec3::ZERO {
-            w += h * (s.inv_i() * sim.torque);
-        }
-        if sim.gyroscopic {
-            w = gyroscopic_step(w, s.dq() * sim.q0, &sim.inertia, &sim.inv_inertia, h);
-        }
-        v *= d.lin_keep();
-        let speed2 = v.length_squared();
-        if speed2 > max_speed * max_speed {
-            v *= max_speed / speed2.sqrt();
-        }
-        u.v = v;
-        u.w = w * d.ang_keep();
+        euler_velocity(u, d, s, sim, h, max_speed);
     }
 }
 
-/// Moves the bodies with torque, gyroscopic motion or RK4 by their velocities.
+/// The semi-implicit Euler velocity update of a body on the scalar path: acceleration,
+/// torque, the gyroscopic term, damping, the speed cap.
+fn euler_velocity(u: &mut Velocity, d: &Drive, s: &BodyState, sim: &BodySim, h: f32, max_speed: f32) {
+    let mut v = u.v + d.dv();
+    let mut w = u.w;
+    if sim.torque != Vec3::ZERO {
+        w += h * (s.inv_i() * sim.torque);
+    }
+    if sim.gyroscopic {
+        w = gyroscopic_step(w, s.dq() * sim.q0, &sim.inertia, &sim.inv_inertia, h);
+    }
+    v *= d.lin_keep();
+    let speed2 = v.length_squared();
+    if speed2 > max_speed * max_speed {
+        v *= max_speed / speed2.sqrt();
+    }
+    u.v = v;
+    u.w = w * d.ang_keep();
+}
+
+/// Moves the bodies with torque, gyroscopic motion or RK4 by their velocities. An RK4 step
+/// that would end faster than `max_speed` is replaced by the semi-implicit Euler step (with
+/// its speed cap), so the limit holds on both paths.
+#[allow(clippy::too_many_arguments)]
 fn integrate_general_positions(
     vel: &mut [Velocity],
     states: &mut [BodyState],
     sims: &[BodySim],
+    drives: &[Drive],
     bodies: &[u32],
     h: f32,
+    max_speed: f32,
 ) {
     for &k in bodies {
         let (u, s, sim) = (&mut vel[k as usize], &mut states[k as usize], &sims[k as usize]);
-        let dq = if sim.rk4 {
-            rk4_step(u, s, sim, h)
-        } else {
+        let mut dq = None;
+        if sim.rk4 {
+            let (u0, s0) = (*u, *s);
+            let q = rk4_step(u, s, sim, h);
+            if u.v.length_squared() <= max_speed * max_speed && u.w.is_finite() && q.is_finite() {
+                dq = Some(q);
+            } else {
+                (*u, *s) = (u0, s0);
+                euler_velocity(u, &drives[k as usize], s, sim, h, max_speed);
+            }
+        }
+        let dq = dq.unwrap_or_else(|| {
             s.set_dp(s.dp() + h * u.v);
             integrate_rotation(s.dq(), u.w, h)
-        };
+        });
         s.set_rotation(dq);
         if sim.gyroscopic {
             // Anisotropic inertia turns with the body: keep the world inverse current.
@@ -445,7 +465,10 @@ impl Paths {
 
 /// Classical RK4 over the free rigid-body equations for one sub-step: position, orientation,
 /// linear velocity and world angular momentum, with continuous damping. Computed in f64 so
-/// rounding does not show as energy drift over long spins.
+/// rounding does not show as energy drift over long spins. Damping stiffer than one per
+/// sub-step (c·h > 1), where explicit RK4 loses accuracy (and past c·h ≈ 2.8 blows up), is
+/// taken out of the RK4 stages and applied exactly instead, as e^(−c·h/2) before and after
+/// them (Strang splitting).
 fn rk4_step(u: &mut Velocity, s: &mut BodyState, sim: &BodySim, h: f32) -> Quat {
     use glam::{DMat3, DQuat, DVec3, DVec4};
     #[derive(Clone, Copy)]
@@ -458,7 +481,16 @@ fn rk4_step(u: &mut Velocity, s: &mut BodyState, sim: &BodySim, h: f32) -> Quat 
     let h = h as f64;
     let (inertia, inv_inertia) = (sim.inertia.as_dmat3(), sim.inv_inertia.as_dmat3());
     let (accel, torque) = (sim.lin_accel.as_dvec3(), sim.torque.as_dvec3());
-    let (lin_d, ang_d) = (sim.lin_damping as f64, sim.ang_damping as f64);
+    let (mut lin_d, mut ang_d) = (sim.lin_damping as f64, sim.ang_damping as f64);
+    let (mut lin_half, mut ang_half) = (1.0, 1.0);
+    if lin_d * h > 1.0 {
+        lin_half = (-0.5 * lin_d * h).exp();
+        lin_d = 0.0;
+    }
+    if ang_d * h > 1.0 {
+        ang_half = (-0.5 * ang_d * h).exp();
+        ang_d = 0.0;
+    }
     let omega = |q: DVec4, l: DVec3| -> DVec3 {
         let r = DMat3::from_quat(DQuat::from_vec4(q).normalize());
         r * (inv_inertia * (r.transpose() * l))
@@ -484,8 +516,8 @@ fn rk4_step(u: &mut Velocity, s: &mut BodyState, sim: &BodySim, h: f32) -> Quat 
     let y0 = Y {
         p: s.dp().as_dvec3(),
         q: DVec4::from(q_start),
-        v: u.v.as_dvec3(),
-        l: r * (inertia * (r.transpose() * u.w.as_dvec3())),
+        v: u.v.as_dvec3() * lin_half,
+        l: r * (inertia * (r.transpose() * u.w.as_dvec3())) * ang_half,
     };
     let k1 = deriv(&y0);
     let k2 = deriv(&add(&y0, &k1, 0.5 * h));
@@ -494,8 +526,8 @@ fn rk4_step(u: &mut Velocity, s: &mut BodyState, sim: &BodySim, h: f32) -> Quat 
     let y = Y {
         p: y0.p + (k1.p + 2.0 * k2.p + 2.0 * k3.p + k4.p) * (h / 6.0),
         q: y0.q + (k1.q + 2.0 * k2.q + 2.0 * k3.q + k4.q) * (h / 6.0),
-        v: y0.v + (k1.v + 2.0 * k2.v + 2.0 * k3.v + k4.v) * (h / 6.0),
-        l: y0.l + (k1.l + 2.0 * k2.l + 2.0 * k3.l + k4.l) * (h / 6.0),
+        v: (y0.v + (k1.v + 2.0 * k2.v + 2.0 * k3.v + k4.v) * (h / 6.0)) * lin_half,
+        l: (y0.l + (k1.l + 2.0 * k2.l + 2.0 * k3.l + k4.l) * (h / 6.0)) * ang_half,
     };
     let q = DQuat::from_vec4(y.q).normalize();
     s.set_dp(y.p.as_vec3());
@@ -569,7 +601,7 @@ pub fn solve(world: &mut World, dt: f32) {
             contact_wide::solve(vel, batches, inv_h, (sub + k) % 2 == 0, Some(&soft));
         }
         integrate_wide::positions(eight, vel, states, &paths.moving, h);
-        integrate_general_positions(vel, states, sims, &paths.general, h);
+        integrate_general_positions(vel, states, sims, drives, &paths.general, h, max_speed);
         crate::dynamics::joints::solver::solve(joints, vel, states, h, false);
         contact_wide::solve(vel, batches, inv_h, sub % 2 == 1, None);
     }
