@@ -497,6 +497,9 @@ impl World {
 
     pub fn detach_particle(&mut self, g: GeneratorHandle, p: Handle) -> Result<()> {
         self.check_attachable(g)?;
+        // A destroyed or expired particle stays in the list until the next step prunes it:
+        // its stale id is refused all the same.
+        self.particle_index(p)?;
         if !self.generator_mut(g)?.particles.remove(p) {
             return Err(Error::InvalidId("particle (not attached to this generator)"));
         }
