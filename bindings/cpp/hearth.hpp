@@ -206,6 +206,8 @@ enum class Code : int32_t {
     WorldLocked = HEARTH_ERROR_WORLD_LOCKED,
     BufferTooSmall = HEARTH_ERROR_BUFFER_TOO_SMALL,
     Panic = HEARTH_ERROR_PANIC,
+    /** 4,095 worlds are alive at once (hearth_world_create). */
+    LimitReached = HEARTH_ERROR_LIMIT_REACHED,
     /** A generator lambda threw something other than hearth::Error (nothrow API only; the
      * throwing API rethrows the original exception). */
     CallbackException = 1000,

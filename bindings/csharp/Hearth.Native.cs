@@ -34,6 +34,8 @@ namespace Hearth
         BufferTooSmall = 5,
         /// <summary>HEARTH_ERROR_PANIC: an internal bug caught at the boundary; the world refuses further steps.</summary>
         Panic = 6,
+        /// <summary>HEARTH_ERROR_LIMIT_REACHED: a fixed capacity is used up (4,095 worlds alive at once).</summary>
+        LimitReached = 7,
     }
 
     /// <summary>HEARTH_BODY_*: body type codes (BodyDef.Type, Body.Type).</summary>

@@ -227,6 +227,7 @@ static void test_errors_as_exceptions() {
     w.destroy_generator(g);
     CHECK_THROWS(w.destroy_generator(g), hearth::Code::InvalidId); // stale now
     CHECK(hearth::code_name(hearth::Code::Panic) == std::string("HEARTH_ERROR_PANIC"));
+    CHECK(hearth::code_name(hearth::Code::LimitReached) == std::string("HEARTH_ERROR_LIMIT_REACHED"));
 }
 
 static void test_move_semantics() {

@@ -225,6 +225,7 @@ internal static class HearthTests
         Equal(Native.ResultName(Result.Ok), "HEARTH_OK", "name of Ok");
         Equal(Native.ResultName(Result.InvalidId), "HEARTH_ERROR_INVALID_ID", "name of InvalidId");
         Equal(Native.ResultName(Result.BufferTooSmall), "HEARTH_ERROR_BUFFER_TOO_SMALL", "name of BufferTooSmall");
+        Equal(Native.ResultName(Result.LimitReached), "HEARTH_ERROR_LIMIT_REACHED", "name of LimitReached");
         Equal(Native.ResultName((Result)12345), "HEARTH_ERROR_UNKNOWN", "name of an unknown code");
         foreach (Result r in Enum.GetValues(typeof(Result)))
         {

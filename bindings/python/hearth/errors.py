@@ -47,6 +47,10 @@ class Panic(HearthError):
     """HEARTH_ERROR_PANIC: an internal bug caught at the boundary; the world refuses further steps."""
 
 
+class LimitReached(HearthError):
+    """HEARTH_ERROR_LIMIT_REACHED: a fixed capacity is used up (4,095 worlds alive at once)."""
+
+
 ERRORS = {
     _ffi.HEARTH_ERROR_NULL_POINTER: NullPointer,
     _ffi.HEARTH_ERROR_INVALID_ID: InvalidId,
@@ -54,6 +58,7 @@ ERRORS = {
     _ffi.HEARTH_ERROR_WORLD_LOCKED: WorldLocked,
     _ffi.HEARTH_ERROR_BUFFER_TOO_SMALL: BufferTooSmall,
     _ffi.HEARTH_ERROR_PANIC: Panic,
+    _ffi.HEARTH_ERROR_LIMIT_REACHED: LimitReached,
 }
 
 

@@ -210,6 +210,8 @@ def test_result_names_and_unknown_codes():
     assert hearth.result_name(0) == "HEARTH_OK"
     assert hearth.result_name(3) == "HEARTH_ERROR_INVALID_ARGUMENT"
     assert hearth.result_name(999) == "HEARTH_ERROR_UNKNOWN"
+    assert hearth.result_name(7) == "HEARTH_ERROR_LIMIT_REACHED"
+    assert issubclass(hearth.LimitReached, hearth.HearthError)
     err = hearth.errors.error_for(999)
     assert type(err) is hearth.HearthError and err.code == 999
 
