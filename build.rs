@@ -16,6 +16,23 @@ const PREAMBLE: &str = "/*
  *
  * Threads: a world is used by one thread at a time. Separate worlds are independent and
  * may step on different threads at once. Error messages are per thread.
+ *
+ * Supported ranges (the README section of that name says why). Inside them every stage stays
+ * finite; a value outside is refused with HEARTH_ERROR_INVALID_ARGUMENT and a message that
+ * names the parameter, and nothing changes:
+ *   time step dt:                                0, or 0.001 to 0.1 s
+ *   size (radius, half extent):                  0.001 to 10000 m (a capsule segment up to 10000 m)
+ *   position, local offset, point, plane offset: ±100000 m per coordinate
+ *   world max_linear_speed:                      up to 10000 m/s (velocities set: up to it)
+ *   angular velocity set by the host:            up to the world's max_angular_speed
+ *   acceleration (gravity, a particle's own):    up to 10000 m/s²
+ *   gravity scale:                               ±100
+ *   force or torque per call:                    up to 1e12 N (N·m)
+ *   impulse or angular impulse per call:         up to 1e10 N·s (N·m·s)
+ *   shape density:                               0, or 0.001 to 100000 kg/m³
+ *   particle inverse mass:                       up to 1e9 1/kg
+ *   damping (bodies, particles):                 up to 1000 1/s
+ *   restitution:                                 0 to 1
  */";
 
 fn main() {

@@ -9,6 +9,23 @@
  *
  * Threads: a world is used by one thread at a time. Separate worlds are independent and
  * may step on different threads at once. Error messages are per thread.
+ *
+ * Supported ranges (the README section of that name says why). Inside them every stage stays
+ * finite; a value outside is refused with HEARTH_ERROR_INVALID_ARGUMENT and a message that
+ * names the parameter, and nothing changes:
+ *   time step dt:                                0, or 0.001 to 0.1 s
+ *   size (radius, half extent):                  0.001 to 10000 m (a capsule segment up to 10000 m)
+ *   position, local offset, point, plane offset: ±100000 m per coordinate
+ *   world max_linear_speed:                      up to 10000 m/s (velocities set: up to it)
+ *   angular velocity set by the host:            up to the world's max_angular_speed
+ *   acceleration (gravity, a particle's own):    up to 10000 m/s²
+ *   gravity scale:                               ±100
+ *   force or torque per call:                    up to 1e12 N (N·m)
+ *   impulse or angular impulse per call:         up to 1e10 N·s (N·m·s)
+ *   shape density:                               0, or 0.001 to 100000 kg/m³
+ *   particle inverse mass:                       up to 1e9 1/kg
+ *   damping (bodies, particles):                 up to 1000 1/s
+ *   restitution:                                 0 to 1
  */
 
 #ifndef HEARTH_H
@@ -176,6 +193,11 @@ enum HearthResult
      * and why.
      */
     HEARTH_ERROR_IO = 7,
+    /**
+     * A fixed capacity is used up: `hearth_world_create` with 4,095 worlds alive at once
+     * (the most whose ids can be told apart). Destroy one and try again.
+     */
+    HEARTH_ERROR_LIMIT_REACHED = 8,
 };
 #ifndef __cplusplus
 typedef int32_t HearthResult;
@@ -255,23 +277,26 @@ typedef struct HearthBodyDef {
      */
     uint32_t type;
     /**
-     * Pose of the body origin (m); the rotation is normalised, must not be zero.
+     * Pose of the body origin (m, each coordinate within ±1e5); the rotation is normalised,
+     * must not be zero.
      */
     struct HearthTransform transform;
     /**
-     * Initial velocity of the centre of mass (m/s).
+     * Initial velocity of the centre of mass (m/s, no faster than the world's
+     * `max_linear_speed`).
      */
     struct HearthVec3 linear_velocity;
     /**
-     * Initial angular velocity (rad/s, world frame).
+     * Initial angular velocity (rad/s, world frame, length up to the world's
+     * `max_angular_speed`).
      */
     struct HearthVec3 angular_velocity;
     /**
-     * Linear damping (1/s, >= 0). Default 0.
+     * Linear damping (1/s, 0..=1000). Default 0.
      */
     float linear_damping;
     /**
-     * Angular damping (1/s, >= 0). Default 0.
+     * Angular damping (1/s, 0..=1000). Default 0.
      */
     float angular_damping;
     /**
@@ -283,7 +308,7 @@ typedef struct HearthBodyDef {
      */
     uint64_t user_data;
     /**
-     * Multiplier of world gravity for this body. Default 1.
+     * Multiplier of world gravity for this body (-100..=100). Default 1.
      */
     float gravity_scale;
     /**
@@ -651,31 +676,31 @@ typedef struct HearthBuoyancyGeneratorDef {
  */
 typedef struct HearthExplosionGeneratorDef {
     /**
-     * Where it goes off (m).
+     * Where it goes off (m, each coordinate within ±1e5).
      */
     struct HearthVec3 center;
     /**
-     * Reach of the blast (m, >= 0). Default 5.
+     * Reach of the blast (m, 0..=1e4). Default 5.
      */
     float blast_radius;
     /**
-     * Impulse at the centre (N·s, >= 0). Default 50.
+     * Impulse at the centre (N·s, 0..=1e10). Default 50.
      */
     float blast_impulse;
     /**
-     * Speed of the shock wave (m/s, >= 0). Default 20.
+     * Speed of the shock wave (m/s, 0..=1e4). Default 20.
      */
     float shock_speed;
     /**
-     * Thickness of the shell (m, >= 0). Default 1.
+     * Thickness of the shell (m, 0..=1e4). Default 1.
      */
     float shock_thickness;
     /**
-     * Peak force of the shock wave (N, >= 0). Default 100.
+     * Peak force of the shock wave (N, 0..=1e12). Default 100.
      */
     float shock_force;
     /**
-     * The wave stops at this radius (m, >= 0). Default 20.
+     * The wave stops at this radius (m, 0..=1e4). Default 20.
      */
     float max_radius;
     /**
@@ -983,36 +1008,37 @@ typedef struct HearthSliderJointDef {
  */
 typedef struct HearthParticleDef {
     /**
-     * Position (m).
+     * Position (m, each coordinate within ±1e5).
      */
     struct HearthVec3 position;
     /**
-     * Velocity (m/s).
+     * Velocity (m/s, no faster than the world's `max_linear_speed`).
      */
     struct HearthVec3 velocity;
     /**
-     * Constant acceleration of this particle (m/s²), on top of world gravity. Default 0.
+     * Constant acceleration of this particle (m/s², length up to 1e4), on top of world
+     * gravity. Default 0.
      */
     struct HearthVec3 acceleration;
     /**
-     * Inverse mass (1/kg, >= 0); 0 is an infinite mass (a pinned particle, moved only by
+     * Inverse mass (1/kg, 0..=1e9); 0 is an infinite mass (a pinned particle, moved only by
      * its velocity). Default 1 (1 kg).
      */
     float inverse_mass;
     /**
-     * Radius of the small sphere it collides as (m, >= 0). Default 0.05.
+     * Radius of the small sphere it collides as (m: 0, a point, or 0.001..=1e4). Default 0.05.
      */
     float radius;
     /**
-     * Linear damping (1/s, >= 0): `v /= 1 + h·damping` per sub-step. Default 0.
+     * Linear damping (1/s, 0..=1000): `v /= 1 + h·damping` per sub-step. Default 0.
      */
     float damping;
     /**
-     * Multiplier of world gravity. Default 1.
+     * Multiplier of world gravity (-100..=100). Default 1.
      */
     float gravity_scale;
     /**
-     * Bounciness against shapes (>= 0; the pair uses the larger of the particle's and the
+     * Bounciness against shapes (0..=1; the pair uses the larger of the particle's and the
      * shape's). Default 0.
      */
     float restitution;
@@ -1050,7 +1076,7 @@ typedef struct HearthParticleDef {
  */
 typedef struct HearthBurstDef {
     /**
-     * Where every particle starts (m).
+     * Where every particle starts (m, each coordinate within ±1e5).
      */
     struct HearthVec3 position;
     /**
@@ -1071,7 +1097,8 @@ typedef struct HearthBurstDef {
      */
     float speed_min;
     /**
-     * Fastest speed (m/s, >= speed_min). Default 10.
+     * Fastest speed (m/s, >= speed_min; plus the length of `particle.velocity`, at most the
+     * world's `max_linear_speed`). Default 10.
      */
     float speed_max;
     /**
@@ -1157,7 +1184,7 @@ typedef struct HearthRecordDef {
  */
 typedef struct HearthShapeDef {
     /**
-     * kg/m³ (>= 0). Default 1000 (water).
+     * kg/m³: 0 (a massless shape) or 0.001..=1e5. Default 1000 (water).
      */
     float density;
     /**
@@ -1170,7 +1197,7 @@ typedef struct HearthShapeDef {
      */
     float dynamic_friction;
     /**
-     * Bounciness: 0 none, 1 elastic (>= 0). Default 0.
+     * Bounciness: 0 none, 1 elastic (0..=1). Default 0.
      */
     float restitution;
     /**
@@ -1184,7 +1211,8 @@ typedef struct HearthShapeDef {
 } HearthShapeDef;
 
 /**
- * Sphere: centre in the body frame and radius (m, > 0).
+ * Sphere: centre in the body frame (m, each coordinate within ±1e5) and radius (m,
+ * 0.001..=1e4).
  */
 typedef struct HearthSphere {
     /**
@@ -1212,7 +1240,8 @@ typedef struct HearthShapeId {
 } HearthShapeId;
 
 /**
- * Box: centre and rotation in the body frame, half extents (m, each > 0).
+ * Box: centre (m, within ±1e5) and rotation in the body frame, half extents (m, each
+ * 0.001..=1e4).
  */
 typedef struct HearthBox {
     /**
@@ -1230,7 +1259,8 @@ typedef struct HearthBox {
 } HearthBox;
 
 /**
- * Capsule: segment end points `a`, `b` in the body frame and radius (m, > 0).
+ * Capsule: segment end points `a`, `b` in the body frame (m, within ±1e5, at most 1e4 apart)
+ * and radius (m, 0.001..=1e4).
  */
 typedef struct HearthCapsule {
     /**
@@ -1250,7 +1280,8 @@ typedef struct HearthCapsule {
 /**
  * Plane (static bodies only), in the body frame: points `p` with
  * `dot(normal, p) <= offset` are inside. The normal need not be unit length (it is
- * normalised together with the offset) but must not be zero.
+ * normalised together with the offset) but must not be zero; the normalised offset lies
+ * within ±1e5 m.
  */
 typedef struct HearthPlane {
     /**
@@ -1445,7 +1476,7 @@ typedef struct HearthSoftBodySettings {
  */
 typedef struct HearthWorldDef {
     /**
-     * Gravity (m/s²). Default (0, -9.81, 0).
+     * Gravity (m/s², length up to 1e4). Default (0, -9.81, 0).
      */
     struct HearthVec3 gravity;
     /**
@@ -1461,33 +1492,35 @@ typedef struct HearthWorldDef {
      */
     uint8_t enable_sleep;
     /**
-     * Speed (m/s and rad/s) below which a body counts as still. Default 0.05.
+     * Speed (m/s and rad/s, 0..=1e4) below which a body counts as still. Default 0.05.
      */
     float sleep_threshold;
     /**
-     * Seconds an island must stay still before it sleeps. Default 0.5.
+     * Seconds an island must stay still before it sleeps (finite, >= 0). Default 0.5.
      */
     float time_to_sleep;
     /**
-     * Contact stiffness (Hz), capped at a quarter of the sub-step rate. Default 120.
+     * Contact stiffness (Hz, 1e-3..=1e6), capped at a quarter of the sub-step rate. Default
+     * 120.
      */
     float contact_hertz;
     /**
-     * Contact damping ratio. Default 10.
+     * Contact damping ratio (0..=1000). Default 10.
      */
     float contact_damping_ratio;
     /**
-     * Fastest speed at which overlapping bodies are pushed apart (m/s). Default 3.
+     * Fastest speed at which overlapping bodies are pushed apart (m/s, 1e-6..=1e4). Default 3.
      */
     float contact_push_max_velocity;
     /**
-     * Approach speed below which contacts do not bounce (m/s). Default 1.
+     * Approach speed below which contacts do not bounce (m/s, 0..=1e4). Default 1.
      */
     float restitution_threshold;
     /**
-     * Largest speed a body's centre of mass may reach (m/s), > 0. Default 400. Every
-     * velocity a body gets (set by the host, from forces, impulses, contacts, joints,
-     * particles, soft bodies, kinematic targets) is capped at it, keeping its direction.
+     * Largest speed a body or particle may reach (m/s, 1e-3..=1e4). Default 400. The solver
+     * caps every velocity it produces (forces, impulses, contacts, joints, particles, soft
+     * bodies, kinematic targets) at it, keeping the direction; velocities a host sets must not
+     * exceed it.
      */
     float max_linear_speed;
     /**
@@ -1500,9 +1533,10 @@ typedef struct HearthWorldDef {
      */
     uint32_t internal_value;
     /**
-     * Largest angular speed a body may reach (rad/s), > 0. Default 100π ≈ 314.16 (50 turns
-     * a second). Capped like `max_linear_speed`. (After `internal_value`: fields are only
-     * ever appended, so existing offsets stay.)
+     * Largest angular speed a body may reach (rad/s, 1e-3..=1e4). Default 100π ≈ 314.16 (50
+     * turns a second). Capped like `max_linear_speed`; angular velocities a host sets must
+     * not exceed it. (After `internal_value`: fields are only ever appended, so existing
+     * offsets stay.)
      */
     float max_angular_speed;
 } HearthWorldDef;
@@ -1570,8 +1604,8 @@ struct HearthBodyDef hearth_body_def_default(void);
  * moves as 1 kg with unit inertia).
  *
  * Errors: `HEARTH_ERROR_NULL_POINTER`, `HEARTH_ERROR_INVALID_ARGUMENT` (def not from
- * `hearth_body_def_default()`, unknown type, bad flag, NaN/infinite numbers, zero
- * rotation, negative damping), `HEARTH_ERROR_WORLD_LOCKED`.
+ * `hearth_body_def_default()`, unknown type, bad flag, a number outside its range, zero
+ * rotation), `HEARTH_ERROR_WORLD_LOCKED`.
  *
  * # Safety
  * Pointers must be NULL or valid.
@@ -1689,10 +1723,12 @@ HearthResult hearth_body_get_type(const struct HearthWorld *world,
                                   uint32_t *out);
 
 /**
- * Teleports the body origin (m). Wakes it. Contacts are refreshed on the next step.
+ * Teleports the body origin (m, each coordinate within ±1e5). Wakes it. Contacts are
+ * refreshed on the next step.
  *
  * Errors: `HEARTH_ERROR_NULL_POINTER`, `HEARTH_ERROR_INVALID_ID`,
- * `HEARTH_ERROR_INVALID_ARGUMENT` (NaN/infinite, zero rotation), `HEARTH_ERROR_WORLD_LOCKED`.
+ * `HEARTH_ERROR_INVALID_ARGUMENT` (out of range, NaN/infinite, zero rotation),
+ * `HEARTH_ERROR_WORLD_LOCKED`.
  *
  * # Safety
  * Pointers must be NULL or valid.
@@ -1704,8 +1740,9 @@ HearthResult hearth_body_set_transform(struct HearthWorld *world,
 /**
  * Kinematic bodies: move to `target` by velocity, so touching and jointed bodies are
  * carried along. The next step sets the velocities that reach the target by its end; the
- * body then sits exactly on the target and stops (velocities zero) unless given a new
- * target. A target farther than the world's speed limits allow in one step
+ * body then sits exactly on the target, its velocities still read as those it moved with
+ * during that step (what a renderer or a rider wants to know), and it stops at the start of
+ * the following step (velocities zero) unless given a new target or velocity. A target farther than the world's speed limits allow in one step
  * (`max_linear_speed`, `max_angular_speed`) is approached at the limits and kept until
  * reached. `hearth_body_set_transform` drops a pending target; a pending target overrides
  * the velocities set with `hearth_body_set_linear_velocity` / `_angular_velocity`.
@@ -1721,12 +1758,11 @@ HearthResult hearth_body_set_target_transform(struct HearthWorld *world,
                                               const struct HearthTransform *target);
 
 /**
- * Sets the velocity of the centre of mass (m/s); a non-zero value wakes the body.
- * Ignored for static bodies. A speed above the world's `max_linear_speed` is capped to it
- * (direction kept).
+ * Sets the velocity of the centre of mass (m/s, no faster than the world's
+ * `max_linear_speed`); a non-zero value wakes the body. Ignored for static bodies.
  *
  * Errors: `HEARTH_ERROR_NULL_POINTER`, `HEARTH_ERROR_INVALID_ID`,
- * `HEARTH_ERROR_INVALID_ARGUMENT` (NaN or infinite), `HEARTH_ERROR_WORLD_LOCKED`.
+ * `HEARTH_ERROR_INVALID_ARGUMENT` (too fast, NaN or infinite), `HEARTH_ERROR_WORLD_LOCKED`.
  *
  * # Safety
  * `world` must be NULL or a live world.
@@ -1736,12 +1772,11 @@ HearthResult hearth_body_set_linear_velocity(struct HearthWorld *world,
                                              struct HearthVec3 value);
 
 /**
- * Sets the angular velocity (rad/s, world frame); a non-zero value wakes the body.
- * Ignored for static bodies. Above the world's `max_angular_speed` it is capped to it
- * (axis kept).
+ * Sets the angular velocity (rad/s, world frame, no faster than the world's
+ * `max_angular_speed`); a non-zero value wakes the body. Ignored for static bodies.
  *
  * Errors: `HEARTH_ERROR_NULL_POINTER`, `HEARTH_ERROR_INVALID_ID`,
- * `HEARTH_ERROR_INVALID_ARGUMENT` (NaN or infinite), `HEARTH_ERROR_WORLD_LOCKED`.
+ * `HEARTH_ERROR_INVALID_ARGUMENT` (too fast, NaN or infinite), `HEARTH_ERROR_WORLD_LOCKED`.
  *
  * # Safety
  * `world` must be NULL or a live world.
@@ -1751,13 +1786,13 @@ HearthResult hearth_body_set_angular_velocity(struct HearthWorld *world,
                                               struct HearthVec3 value);
 
 /**
- * Adds a force (N) at the centre of mass for the next step (from a force generator
- * callback: for the current step). Wakes the body. No effect on static and kinematic
- * bodies. Allowed inside user force generator callbacks.
+ * Adds a force (N, length up to 1e12) at the centre of mass for the next step (from a force
+ * generator callback: for the current step). Wakes the body. No effect on static and
+ * kinematic bodies. Allowed inside user force generator callbacks.
  *
  * Errors: `HEARTH_ERROR_NULL_POINTER`, `HEARTH_ERROR_INVALID_ID`,
- * `HEARTH_ERROR_INVALID_ARGUMENT` (NaN or infinite), `HEARTH_ERROR_WORLD_LOCKED` (from a
- * callback other than a force generator's).
+ * `HEARTH_ERROR_INVALID_ARGUMENT` (out of range, NaN or infinite; checked before the id),
+ * `HEARTH_ERROR_WORLD_LOCKED` (from a callback other than a force generator's).
  *
  * # Safety
  * `world` must be NULL or a live world.
@@ -1767,12 +1802,13 @@ HearthResult hearth_body_apply_force(struct HearthWorld *world,
                                      struct HearthVec3 value);
 
 /**
- * Adds a torque (N·m, world frame) for the next step (from a force generator callback: for
- * the current step). Wakes the body. Allowed inside user force generator callbacks.
+ * Adds a torque (N·m, world frame, length up to 1e12) for the next step (from a force
+ * generator callback: for the current step). Wakes the body. Allowed inside user force
+ * generator callbacks.
  *
  * Errors: `HEARTH_ERROR_NULL_POINTER`, `HEARTH_ERROR_INVALID_ID`,
- * `HEARTH_ERROR_INVALID_ARGUMENT` (NaN or infinite), `HEARTH_ERROR_WORLD_LOCKED` (from a
- * callback other than a force generator's).
+ * `HEARTH_ERROR_INVALID_ARGUMENT` (out of range, NaN or infinite; checked before the id),
+ * `HEARTH_ERROR_WORLD_LOCKED` (from a callback other than a force generator's).
  *
  * # Safety
  * `world` must be NULL or a live world.
@@ -1782,11 +1818,12 @@ HearthResult hearth_body_apply_torque(struct HearthWorld *world,
                                       struct HearthVec3 value);
 
 /**
- * Applies an impulse (N·s) at the centre of mass: changes the velocity at once, capped at
- * the world's speed limits. Wakes the body.
+ * Applies an impulse (N·s, length up to 1e10) at the centre of mass: changes the velocity at
+ * once, capped at the world's speed limits. Wakes the body.
  *
  * Errors: `HEARTH_ERROR_NULL_POINTER`, `HEARTH_ERROR_INVALID_ID`,
- * `HEARTH_ERROR_INVALID_ARGUMENT` (NaN or infinite), `HEARTH_ERROR_WORLD_LOCKED`.
+ * `HEARTH_ERROR_INVALID_ARGUMENT` (out of range, NaN or infinite),
+ * `HEARTH_ERROR_WORLD_LOCKED`.
  *
  * # Safety
  * `world` must be NULL or a live world.
@@ -1796,11 +1833,12 @@ HearthResult hearth_body_apply_linear_impulse(struct HearthWorld *world,
                                               struct HearthVec3 value);
 
 /**
- * Applies an angular impulse (N·m·s, world frame); the angular velocity is capped at
- * `max_angular_speed`. Wakes the body.
+ * Applies an angular impulse (N·m·s, world frame, length up to 1e10): changes the angular
+ * velocity at once, capped at the world's `max_angular_speed`. Wakes the body.
  *
  * Errors: `HEARTH_ERROR_NULL_POINTER`, `HEARTH_ERROR_INVALID_ID`,
- * `HEARTH_ERROR_INVALID_ARGUMENT` (NaN or infinite), `HEARTH_ERROR_WORLD_LOCKED`.
+ * `HEARTH_ERROR_INVALID_ARGUMENT` (out of range, NaN or infinite; checked before the id),
+ * `HEARTH_ERROR_WORLD_LOCKED`.
  *
  * # Safety
  * `world` must be NULL or a live world.
@@ -1810,9 +1848,9 @@ HearthResult hearth_body_apply_angular_impulse(struct HearthWorld *world,
                                                struct HearthVec3 value);
 
 /**
- * Adds a force (N) at a world point (m) for the next step: a force plus the torque of its
- * lever arm about the centre of mass. Wakes the body. Allowed inside user force generator
- * callbacks.
+ * Adds a force (N, length up to 1e12) at a world point (m, each coordinate within ±1e5) for
+ * the next step: a force plus the torque of its lever arm about the centre of mass. Wakes
+ * the body. Allowed inside user force generator callbacks.
  *
  * Errors: as `hearth_body_apply_force`.
  *
@@ -1825,8 +1863,8 @@ HearthResult hearth_body_apply_force_at_point(struct HearthWorld *world,
                                               struct HearthVec3 point);
 
 /**
- * Applies an impulse (N·s) at a world point (m); the velocities are capped at the world's
- * speed limits. Wakes the body.
+ * Applies an impulse (N·s, length up to 1e10) at a world point (m, each coordinate within
+ * ±1e5): the new velocities are capped at the world's speed limits. Wakes the body.
  *
  * Errors: as `hearth_body_apply_force`.
  *
@@ -1852,7 +1890,7 @@ HearthResult hearth_body_set_awake(struct HearthWorld *world,
                                    uint8_t awake);
 
 /**
- * Sets linear and angular damping (1/s, >= 0).
+ * Sets linear and angular damping (1/s, 0..=1000).
  *
  * Errors: `HEARTH_ERROR_NULL_POINTER`, `HEARTH_ERROR_INVALID_ID`,
  * `HEARTH_ERROR_INVALID_ARGUMENT`, `HEARTH_ERROR_WORLD_LOCKED`.
@@ -2046,7 +2084,7 @@ struct HearthExplosionGeneratorDef hearth_explosion_generator_def_default(void);
  * Creates an explosion. It is spent once its wave passes `max_radius`; destroy it then.
  *
  * Errors: `HEARTH_ERROR_NULL_POINTER`, `HEARTH_ERROR_INVALID_ARGUMENT` (def not from its
- * default, negative or NaN numbers, flag not 0/1), `HEARTH_ERROR_WORLD_LOCKED`.
+ * default, a number outside its range or NaN, flag not 0/1), `HEARTH_ERROR_WORLD_LOCKED`.
  *
  * # Safety
  * Pointers must be NULL or valid.
@@ -2500,9 +2538,8 @@ struct HearthParticleDef hearth_particle_def_default(void);
  * Creates a particle.
  *
  * Errors: `HEARTH_ERROR_NULL_POINTER`, `HEARTH_ERROR_INVALID_ARGUMENT` (def not from
- * `hearth_particle_def_default()`, NaN/infinite numbers, negative inverse mass, radius,
- * damping, restitution or friction, lifetime <= 0, flag not 0/1),
- * `HEARTH_ERROR_WORLD_LOCKED`.
+ * `hearth_particle_def_default()`, a number outside its range, NaN/infinite numbers,
+ * negative friction, lifetime <= 0, flag not 0/1), `HEARTH_ERROR_WORLD_LOCKED`.
  *
  * # Safety
  * Pointers must be NULL or valid.
@@ -2571,10 +2608,10 @@ HearthResult hearth_particle_get_user_data(const struct HearthWorld *world,
                                            uint64_t *out);
 
 /**
- * Teleports a particle (m) and wakes it.
+ * Teleports a particle (m, each coordinate within ±1e5) and wakes it.
  *
  * Errors: `HEARTH_ERROR_NULL_POINTER`, `HEARTH_ERROR_INVALID_ID`,
- * `HEARTH_ERROR_INVALID_ARGUMENT` (NaN or infinite), `HEARTH_ERROR_WORLD_LOCKED`.
+ * `HEARTH_ERROR_INVALID_ARGUMENT` (out of range, NaN or infinite), `HEARTH_ERROR_WORLD_LOCKED`.
  *
  * # Safety
  * `world` must be NULL or a live world.
@@ -2584,10 +2621,11 @@ HearthResult hearth_particle_set_position(struct HearthWorld *world,
                                           struct HearthVec3 position);
 
 /**
- * Sets a particle's velocity (m/s); a non-zero value wakes it.
+ * Sets a particle's velocity (m/s, no faster than the world's `max_linear_speed`); a
+ * non-zero value wakes it.
  *
  * Errors: `HEARTH_ERROR_NULL_POINTER`, `HEARTH_ERROR_INVALID_ID`,
- * `HEARTH_ERROR_INVALID_ARGUMENT` (NaN or infinite), `HEARTH_ERROR_WORLD_LOCKED`.
+ * `HEARTH_ERROR_INVALID_ARGUMENT` (too fast, NaN or infinite), `HEARTH_ERROR_WORLD_LOCKED`.
  *
  * # Safety
  * `world` must be NULL or a live world.
@@ -2597,11 +2635,12 @@ HearthResult hearth_particle_set_velocity(struct HearthWorld *world,
                                           struct HearthVec3 velocity);
 
 /**
- * Adds a force (N) to a particle for the next step (or, from a force generator callback,
- * for the current step) and wakes it. Allowed inside user force generator callbacks.
+ * Adds a force (N, length up to 1e12) to a particle for the next step (or, from a force
+ * generator callback, for the current step) and wakes it. Allowed inside user force
+ * generator callbacks.
  *
  * Errors: `HEARTH_ERROR_NULL_POINTER`, `HEARTH_ERROR_INVALID_ID`,
- * `HEARTH_ERROR_INVALID_ARGUMENT` (NaN or infinite), `HEARTH_ERROR_WORLD_LOCKED` (from a
+ * `HEARTH_ERROR_INVALID_ARGUMENT` (out of range, NaN or infinite), `HEARTH_ERROR_WORLD_LOCKED` (from a
  * callback other than a force generator's).
  *
  * # Safety
@@ -2612,10 +2651,11 @@ HearthResult hearth_particle_apply_force(struct HearthWorld *world,
                                          struct HearthVec3 force);
 
 /**
- * Applies an impulse (N·s) to a particle: changes its velocity at once. Wakes it.
+ * Applies an impulse (N·s, length up to 1e10) to a particle: changes its velocity at once,
+ * capped at the world's `max_linear_speed`. Wakes it.
  *
  * Errors: `HEARTH_ERROR_NULL_POINTER`, `HEARTH_ERROR_INVALID_ID`,
- * `HEARTH_ERROR_INVALID_ARGUMENT` (NaN or infinite), `HEARTH_ERROR_WORLD_LOCKED`.
+ * `HEARTH_ERROR_INVALID_ARGUMENT` (out of range, NaN or infinite), `HEARTH_ERROR_WORLD_LOCKED`.
  *
  * # Safety
  * `world` must be NULL or a live world.
@@ -2773,9 +2813,10 @@ HearthResult hearth_world_record_start_file(struct HearthWorld *world,
  * the first call), the next step (which then does not run) or the stop returns
  * `HEARTH_ERROR_IO`.
  *
- * Errors: `HEARTH_ERROR_NULL_POINTER` (world or def NULL), `HEARTH_ERROR_INVALID_ARGUMENT`
- * (def not from `hearth_record_def_default()`, a flag not 0/1, `def.write` NULL, the world
- * already recording), `HEARTH_ERROR_IO` (the first write failed),
+ * Errors: `HEARTH_ERROR_NULL_POINTER` (world, def or `def.write` NULL),
+ * `HEARTH_ERROR_INVALID_ARGUMENT` (def not from `hearth_record_def_default()`, a flag not
+ * 0/1, the world already recording; the arguments are checked first), `HEARTH_ERROR_IO`
+ * (the first write failed),
  * `HEARTH_ERROR_WORLD_LOCKED` (called from a callback).
  *
  * # Safety
@@ -2808,8 +2849,9 @@ struct HearthShapeDef hearth_shape_def_default(void);
  * Adds a sphere to a body; the body's mass, centre of mass and inertia are recomputed.
  *
  * Errors: `HEARTH_ERROR_NULL_POINTER`, `HEARTH_ERROR_INVALID_ID` (body),
- * `HEARTH_ERROR_INVALID_ARGUMENT` (def not from `hearth_shape_def_default()`, radius <= 0,
- * NaN/infinite numbers, negative density/friction/restitution), `HEARTH_ERROR_WORLD_LOCKED`.
+ * `HEARTH_ERROR_INVALID_ARGUMENT` (def not from `hearth_shape_def_default()`, a size or
+ * placement outside its range, NaN/infinite numbers, density, friction or restitution out
+ * of range), `HEARTH_ERROR_WORLD_LOCKED`. The def is checked before the body id.
  *
  * # Safety
  * Pointers must be NULL or valid.
@@ -2821,8 +2863,8 @@ HearthResult hearth_shape_create_sphere(struct HearthWorld *world,
                                         struct HearthShapeId *out_shape);
 
 /**
- * Adds a box to a body. Errors as `hearth_shape_create_sphere`, plus half extents <= 0 and
- * a zero rotation.
+ * Adds a box to a body. Errors as `hearth_shape_create_sphere`, plus half extents outside
+ * 0.001..=1e4 and a zero rotation.
  *
  * # Safety
  * Pointers must be NULL or valid.
@@ -2834,7 +2876,8 @@ HearthResult hearth_shape_create_box(struct HearthWorld *world,
                                      struct HearthShapeId *out_shape);
 
 /**
- * Adds a capsule to a body. Errors as `hearth_shape_create_sphere`.
+ * Adds a capsule to a body. Errors as `hearth_shape_create_sphere`, plus a segment longer
+ * than 1e4 m.
  *
  * # Safety
  * Pointers must be NULL or valid.
@@ -2847,8 +2890,8 @@ HearthResult hearth_shape_create_capsule(struct HearthWorld *world,
 
 /**
  * Adds a plane (a static half-space) to a static body. Errors as
- * `hearth_shape_create_sphere`, plus a zero normal and `HEARTH_ERROR_INVALID_ARGUMENT` for a
- * body that is not static.
+ * `hearth_shape_create_sphere`, plus a zero normal, an offset over the normal's length
+ * outside ±1e5 m, and `HEARTH_ERROR_INVALID_ARGUMENT` for a body that is not static.
  *
  * # Safety
  * Pointers must be NULL or valid.
@@ -3335,11 +3378,14 @@ HearthResult hearth_soft_body_set_compliance(struct HearthWorld *world,
 struct HearthWorldDef hearth_world_def_default(void);
 
 /**
- * Creates a world. On success `*out_world` owns it until `hearth_world_destroy`.
+ * Creates a world. On success `*out_world` owns it until `hearth_world_destroy`. Every world
+ * gets a tag no other live world has, carried in the ids it hands out, so ids of one world
+ * are never accepted by another while both live.
  *
  * Errors: `HEARTH_ERROR_NULL_POINTER` (def or out_world NULL),
  * `HEARTH_ERROR_INVALID_ARGUMENT` (def not from `hearth_world_def_default()`, or a field out
- * of range). `*out_world` is written only on success.
+ * of range), `HEARTH_ERROR_LIMIT_REACHED` (4,095 worlds are alive). `*out_world` is written
+ * only on success.
  *
  * # Safety
  * `def` must be NULL or point to a `HearthWorldDef`; `out_world` must be NULL or writable.
@@ -3356,11 +3402,12 @@ HearthResult hearth_world_create(const struct HearthWorldDef *def, struct Hearth
 void hearth_world_destroy(struct HearthWorld *world);
 
 /**
- * Advances the world by `dt` seconds (finite, >= 0; 0 does nothing). User generators run
+ * Advances the world by `dt` seconds: 0 does nothing, otherwise 0.001 <= `dt` <= 0.1 (see
+ * "Supported ranges" at the top of this header). User generators run
  * inside it, on this thread: force generators after the built-in ones at the start of the
  * step, contact generators after the narrow phase (see their callback types).
  *
- * Errors: `HEARTH_ERROR_NULL_POINTER`, `HEARTH_ERROR_INVALID_ARGUMENT` (bad dt),
+ * Errors: `HEARTH_ERROR_NULL_POINTER`, `HEARTH_ERROR_INVALID_ARGUMENT` (dt outside the range),
  * `HEARTH_ERROR_WORLD_LOCKED` (called from a callback), `HEARTH_ERROR_PANIC` (an internal
  * error; the world then refuses further steps), `HEARTH_ERROR_IO` (the world's recording
  * failed to write after the last step: the recording has stopped, this step did not run, and
@@ -3372,7 +3419,10 @@ void hearth_world_destroy(struct HearthWorld *world);
 HearthResult hearth_world_step(struct HearthWorld *world, float dt);
 
 /**
- * Sets gravity (m/s², finite) and wakes every dynamic body.
+ * Sets gravity (m/s², length up to 1e4) and wakes every dynamic body.
+ *
+ * Errors: `HEARTH_ERROR_NULL_POINTER`, `HEARTH_ERROR_INVALID_ARGUMENT` (out of range),
+ * `HEARTH_ERROR_WORLD_LOCKED`.
  *
  * # Safety
  * `world` must be NULL or a live world.

@@ -1,14 +1,44 @@
 //! Generational slot storage: the one id pool behind every object kind in a world.
 //!
-//! A handle is `{index, generation}`. The generation's top bits carry a tag unique to the
-//! owning world, so a handle from another world never matches; the low bits count reuses
-//! of the slot. A slot whose counter would wrap is retired, so an old handle never revives.
+//! A handle is `{index, generation}`. The generation's top 12 bits carry the owning world's
+//! tag and the low 20 bits count reuses of the slot. A slot whose counter would wrap is
+//! retired, so an old handle never revives.
+//!
+//! # World tags
+//!
+//! Tags come from one process-wide registry of live tags ([`WorldTag::acquire`]): a tag is
+//! never held by two live worlds, so an id of one live world never names an object of
+//! another. At most [`MAX_LIVE_WORLDS`] (4,095) worlds can be alive at once; creating one
+//! more fails. A destroyed world's tag returns to the registry and is handed out again
+//! later, which leaves one honest gap: an id kept from a *destroyed* world may match an
+//! object of a later world with the same tag. Two things make that unlikely:
+//!
+//! * tags are handed out in turn (a cursor cycles through 1..=4095, skipping live ones), not
+//!   lowest-first, so a freed tag comes back only after the cursor went round: at least
+//!   4,095 − (live worlds) world creations later;
+//! * every tag has an epoch, counted up each time it is handed out, and a world's slots
+//!   start their reuse counters at `1 + (epoch mod 16) · 32,768`, so the worlds that get a
+//!   tag in 16 consecutive turns count each slot's first 32,768 reuses in disjoint ranges.
+//!
+//! So an id from a destroyed world is rejected by the next 15 worlds that get its tag (at
+//! least 15 · (4,095 − live) world creations) unless a slot was reused 32,768 times or more
+//! in one of them; after that it is accepted only where slot index and reuse count happen
+//! to coincide. Ids of live worlds are never confused.
 
-use std::sync::atomic::{AtomicU32, Ordering};
+use std::sync::Mutex;
 
 const COUNTER_BITS: u32 = 20;
 const COUNTER_MASK: u32 = (1 << COUNTER_BITS) - 1;
-const TAG_MASK: u32 = (1 << (32 - COUNTER_BITS)) - 1;
+const TAG_BITS: u32 = 32 - COUNTER_BITS;
+const TAG_MASK: u32 = (1 << TAG_BITS) - 1;
+
+/// Most worlds alive at once: one per non-zero tag.
+pub const MAX_LIVE_WORLDS: usize = TAG_MASK as usize;
+
+/// Epochs of a tag whose slots count in disjoint ranges, and the width of each range.
+const EPOCHS: u32 = 16;
+const EPOCH_SPACING: u32 = 1 << 15;
+const _: () = assert!((EPOCHS - 1) * EPOCH_SPACING + 1 < COUNTER_MASK);
 
 /// A generational handle. The all-zero handle is null: generation 0 is never issued.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord, Default)]
@@ -28,15 +58,92 @@ impl Handle {
     }
 }
 
-static NEXT_TAG: AtomicU32 = AtomicU32::new(1);
+/// A registry of live world tags (one process-wide instance, `REGISTRY`).
+struct Registry {
+    /// Bit `t` set while tag `t` belongs to a live world (bit 0, the null tag, never).
+    live: [u64; (MAX_LIVE_WORLDS + 1).div_ceil(64)],
+    /// Number of live tags.
+    count: usize,
+    /// The tag tried first by the next acquisition.
+    cursor: u32,
+    /// Times each tag was handed out.
+    epochs: [u32; MAX_LIVE_WORLDS + 1],
+}
 
-/// A fresh, non-zero tag for a new world (wraps after 4,095 worlds).
-pub fn next_world_tag() -> u32 {
-    loop {
-        let t = NEXT_TAG.fetch_add(1, Ordering::Relaxed) & TAG_MASK;
-        if t != 0 {
-            return t;
+impl Registry {
+    const fn new() -> Registry {
+        Registry {
+            live: [0; (MAX_LIVE_WORLDS + 1).div_ceil(64)],
+            count: 0,
+            cursor: 1,
+            epochs: [0; MAX_LIVE_WORLDS + 1],
         }
+    }
+
+    fn is_live(&self, t: u32) -> bool {
+        self.live[t as usize / 64] & (1 << (t % 64)) != 0
+    }
+
+    /// The stamp (tag and epoch) of the next free tag from the cursor on, now live; `None`
+    /// when every tag is live.
+    fn acquire(&mut self) -> Option<u32> {
+        if self.count >= MAX_LIVE_WORLDS {
+            return None;
+        }
+        let mut t = self.cursor;
+        while self.is_live(t) {
+            t = t % TAG_MASK + 1;
+        }
+        self.live[t as usize / 64] |= 1 << (t % 64);
+        self.count += 1;
+        self.cursor = t % TAG_MASK + 1;
+        let epoch = self.epochs[t as usize].wrapping_add(1);
+        self.epochs[t as usize] = epoch;
+        Some(t | (epoch % EPOCHS) << TAG_BITS)
+    }
+
+    fn release(&mut self, t: u32) {
+        debug_assert!(self.is_live(t));
+        self.live[t as usize / 64] &= !(1 << (t % 64));
+        self.count -= 1;
+    }
+}
+
+static REGISTRY: Mutex<Registry> = Mutex::new(Registry::new());
+
+fn registry() -> std::sync::MutexGuard<'static, Registry> {
+    // The registry is consistent between any two statements, so a poisoned lock (a panic
+    // elsewhere while it was held) does not matter.
+    REGISTRY.lock().unwrap_or_else(|e| e.into_inner())
+}
+
+/// A world's lease on its tag: returned to the registry when dropped (with the world).
+#[derive(Debug)]
+pub struct WorldTag {
+    stamp: u32,
+}
+
+impl WorldTag {
+    /// Leases the next free tag after the last one handed out (cycling through 1..=4095).
+    /// `None` when [`MAX_LIVE_WORLDS`] worlds are alive.
+    pub fn acquire() -> Option<WorldTag> {
+        registry().acquire().map(|stamp| WorldTag { stamp })
+    }
+
+    /// The tag (1..=4095) carried in the top bits of every id of the world.
+    pub fn tag(&self) -> u32 {
+        self.stamp & TAG_MASK
+    }
+
+    /// What the world's pools are made from (`Pool::new`): the tag and its epoch.
+    pub fn stamp(&self) -> u32 {
+        self.stamp
+    }
+}
+
+impl Drop for WorldTag {
+    fn drop(&mut self) {
+        registry().release(self.tag());
     }
 }
 
@@ -48,16 +155,22 @@ struct Slot<T> {
 
 pub struct Pool<T> {
     tag: u32,
+    /// Counter of a new slot's first occupant (from the tag's epoch).
+    first_counter: u32,
     slots: Vec<Slot<T>>,
     free: Vec<u32>,
     len: usize,
 }
 
 impl<T> Pool<T> {
-    pub fn new(tag: u32) -> Self {
-        debug_assert!(tag != 0 && tag <= TAG_MASK);
+    /// A pool whose handles carry `stamp`'s tag (`WorldTag::stamp`; a bare tag 1..=4095 in
+    /// unit tests).
+    pub fn new(stamp: u32) -> Self {
+        let tag = stamp & TAG_MASK;
+        debug_assert!(tag != 0);
         Pool {
             tag,
+            first_counter: 1 + (stamp >> TAG_BITS) % EPOCHS * EPOCH_SPACING,
             slots: Vec::new(),
             free: Vec::new(),
             len: 0,
@@ -81,11 +194,12 @@ impl<T> Pool<T> {
             return self.handle(index, counter);
         }
         let index = self.slots.len() as u32;
+        let counter = self.first_counter;
         self.slots.push(Slot {
-            counter: 1,
+            counter,
             value: Some(value),
         });
-        self.handle(index, 1)
+        self.handle(index, counter)
     }
 
     #[inline]
@@ -210,5 +324,111 @@ mod tests {
         let h2 = p.insert(2);
         assert_ne!(h2.index, h.index);
         assert!(!p.contains(h));
+    }
+
+    #[test]
+    fn tags_of_live_worlds_never_repeat_over_many_generations_of_worlds() {
+        // The process-wide registry, shared with tests running in parallel: one world lives
+        // throughout while 10,000 others (more than the 4,095 tags) come and go.
+        let keeper = WorldTag::acquire().expect("a free tag");
+        let mut kept: Pool<&str> = Pool::new(keeper.stamp());
+        let mine = kept.insert("keeper's body");
+        for round in 0..10_000 {
+            let other = WorldTag::acquire().expect("a free tag");
+            assert_ne!(
+                other.tag(),
+                keeper.tag(),
+                "round {round}: the live world's tag was handed out again"
+            );
+            let mut pool: Pool<&str> = Pool::new(other.stamp());
+            let theirs = pool.insert("other body");
+            // Same slot index, different world: never confused either way.
+            assert_eq!(theirs.index, mine.index);
+            assert!(!kept.contains(theirs), "round {round}");
+            assert!(!pool.contains(mine), "round {round}");
+            assert_eq!(kept.get(mine), Some(&"keeper's body"));
+        }
+    }
+
+    // The tests below use a registry of their own, so they neither see nor disturb the
+    // worlds other tests create in parallel.
+
+    #[test]
+    fn tags_are_handed_out_in_turn_not_lowest_first() {
+        let mut r = Box::new(Registry::new());
+        let a = r.acquire().unwrap() & TAG_MASK;
+        let b = r.acquire().unwrap() & TAG_MASK;
+        assert_eq!((a, b), (1, 2));
+        r.release(a);
+        // The freed tag comes back only after the cursor went round every other tag.
+        for expected in 3..=TAG_MASK {
+            assert_eq!(r.acquire().unwrap() & TAG_MASK, expected);
+            r.release(expected);
+        }
+        assert_eq!(r.acquire().unwrap() & TAG_MASK, 1, "round again: tag 1 is free");
+        assert_eq!(r.acquire().unwrap() & TAG_MASK, 3, "tag 2 is live: skipped");
+    }
+
+    #[test]
+    fn no_tag_is_leased_while_every_tag_is_live_and_a_released_one_comes_back() {
+        let mut r = Box::new(Registry::new());
+        let mut tags: Vec<u32> = std::iter::from_fn(|| r.acquire()).map(|s| s & TAG_MASK).collect();
+        assert_eq!(tags.len(), MAX_LIVE_WORLDS);
+        assert!(r.acquire().is_none(), "4,096th live world");
+        tags.sort_unstable();
+        tags.dedup();
+        assert_eq!(tags.len(), MAX_LIVE_WORLDS, "a tag was leased twice");
+        assert!(!tags.contains(&0), "the null tag");
+        r.release(1234);
+        assert_eq!(r.acquire().map(|s| s & TAG_MASK), Some(1234));
+        assert!(r.acquire().is_none());
+    }
+
+    #[test]
+    fn a_destroyed_worlds_ids_are_rejected_by_the_next_15_worlds_that_reuse_its_tag() {
+        let mut r = Box::new(Registry::new());
+        let first = r.acquire().unwrap();
+        let tag = first & TAG_MASK;
+        let mut old: Pool<u32> = Pool::new(first);
+        // Ids of slots reused a few times, as a game leaves them.
+        let mut stale = Vec::new();
+        for k in 0..64 {
+            let h = old.insert(k);
+            if k % 3 == 0 {
+                old.remove(h);
+                stale.push(h);
+                stale.push(old.insert(k));
+            } else {
+                stale.push(h);
+            }
+        }
+        r.release(tag);
+        let mut turns = 0;
+        let mut creations = 0;
+        while turns < EPOCHS - 1 {
+            let stamp = r.acquire().unwrap();
+            creations += 1;
+            r.release(stamp & TAG_MASK);
+            if stamp & TAG_MASK != tag {
+                continue;
+            }
+            turns += 1;
+            let mut new: Pool<u32> = Pool::new(stamp);
+            for k in 0..64 {
+                let h = new.insert(k);
+                if k % 2 == 0 {
+                    new.remove(h);
+                    new.insert(k);
+                }
+            }
+            for h in &stale {
+                assert!(!new.contains(*h), "turn {turns}: the stale id {h:?} matched");
+            }
+        }
+        assert_eq!(
+            creations,
+            (EPOCHS - 1) * TAG_MASK,
+            "each turn is a full round of the tags"
+        );
     }
 }

@@ -9,7 +9,10 @@ use crate::world::World;
 pub const SPECULATIVE_DISTANCE: f32 = 0.02;
 
 impl World {
-    /// Advances the world by `dt` seconds (`dt >= 0`; 0 does nothing).
+    /// Advances the world by `dt` seconds: 0 does nothing, otherwise `dt` must lie within
+    /// [`MIN_TIME_STEP`](crate::error::MIN_TIME_STEP) to
+    /// [`MAX_TIME_STEP`](crate::error::MAX_TIME_STEP) (1 ms to 0.1 s; README "Supported
+    /// ranges").
     ///
     /// The stages run in three calls, `begin_step`, `collide_step` and `finish_step`. A
     /// driver that runs host callbacks (the C layer, `capi/world.rs`) calls them itself and
@@ -26,9 +29,7 @@ impl World {
     /// Validates `dt` and runs stages 1–2. Returns false when there is nothing to do
     /// (`dt == 0`); the other stages must then not run.
     pub fn begin_step(&mut self, dt: f32) -> crate::error::Result<bool> {
-        if !dt.is_finite() || dt < 0.0 {
-            return Err(crate::error::invalid(format!("dt must be finite and >= 0, got {dt}")));
-        }
+        crate::error::check_time_step("dt", dt)?;
         if dt == 0.0 {
             return Ok(false);
         }
@@ -68,6 +69,9 @@ impl World {
         // 7c. Soft bodies: XPBD sub-steps, pressure, contacts with shapes (two-way with
         //     dynamic bodies), pins (soft/solver.rs).
         self.step_soft_bodies(dt);
+        //     The speed limit holds at the end of every step: restitution and the coupled
+        //     particle and soft-body stages change velocities after the sub-steps' caps.
+        self.cap_speeds();
         // 8. Bounds: refit moved proxies, sweeping them along the coming motion.
         self.update_bounds(dt);
         // 9. Sleep.
@@ -186,6 +190,20 @@ impl World {
         self.counters.touching_contacts = touching;
         wake.clear();
         self.scratch_wake = wake;
+    }
+
+    /// Caps the speed of every awake dynamic body and every particle at `max_linear_speed`.
+    fn cap_speeds(&mut self) {
+        let max = self.settings.max_linear_speed;
+        for k in 0..self.awake_bodies.len() {
+            let body = self.bodies.at_mut(self.awake_bodies[k]);
+            if body.is_dynamic() {
+                body.v = crate::world::cap_speed(body.v, max);
+            }
+        }
+        for v in &mut self.particles.vel {
+            *v = crate::world::cap_speed(*v, max);
+        }
     }
 
     fn update_bounds(&mut self, dt: f32) {

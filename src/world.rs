@@ -8,9 +8,12 @@ use crate::dynamics::body::{Body, BodyDef, BodyHandle, BodyType, ShapeHandle, NO
 use crate::dynamics::contact_wide::Batches;
 pub use crate::dynamics::contact_wide::LaneWidth;
 use crate::dynamics::solver::SolverScratch;
-use crate::error::{check_non_negative, check_positive, check_vec, invalid, Error, Result};
+use crate::error::{
+    check_acceleration, check_angular_velocity, check_damping, check_force, check_impulse, check_non_negative,
+    check_position, check_velocity, invalid, Error, Result, MAX_ANGULAR_SPEED,
+};
 use crate::math::{Transform, Vec3};
-use crate::pool::{next_world_tag, Handle, Pool};
+use crate::pool::{Handle, Pool, WorldTag};
 
 /// How unconstrained bodies are integrated.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -84,8 +87,10 @@ impl Default for WorldSettings {
 }
 
 impl WorldSettings {
+    /// Range-checks every setting (README "Supported ranges").
     pub fn validate(&self) -> Result<()> {
-        check_vec("gravity", self.gravity)?;
+        use crate::error::{check_acceleration, check_range, MAX_LENGTH, MAX_SPEED};
+        check_acceleration("gravity", self.gravity)?;
         if self.substeps == 0 || self.substeps > 64 {
             return Err(invalid(format!("substeps must be in 1..=64, got {}", self.substeps)));
         }
@@ -95,16 +100,47 @@ impl WorldSettings {
                 self.velocity_iterations
             )));
         }
-        check_non_negative("sleep_threshold", self.sleep_threshold)?;
+        check_range("sleep_threshold", self.sleep_threshold, 0.0, MAX_SPEED, " m/s")?;
         check_non_negative("time_to_sleep", self.time_to_sleep)?;
-        check_positive("contact_hertz", self.contact_hertz)?;
-        check_non_negative("contact_damping_ratio", self.contact_damping_ratio)?;
-        check_positive("contact_push_max_velocity", self.contact_push_max_velocity)?;
-        check_non_negative("restitution_threshold", self.restitution_threshold)?;
-        check_non_negative("linear_slop", self.linear_slop)?;
-        check_positive("max_linear_speed", self.max_linear_speed)?;
-        check_positive("max_angular_speed", self.max_angular_speed)?;
+        // Softness (dynamics/solver.rs) divides by 2·ratio + h·ω: a positive stiffness keeps
+        // it away from 0, a bounded ratio keeps it finite.
+        check_range("contact_hertz", self.contact_hertz, 1.0e-3, 1.0e6, " Hz")?;
+        check_range("contact_damping_ratio", self.contact_damping_ratio, 0.0, 1.0e3, "")?;
+        check_range(
+            "contact_push_max_velocity",
+            self.contact_push_max_velocity,
+            1.0e-6,
+            MAX_SPEED,
+            " m/s",
+        )?;
+        check_range(
+            "restitution_threshold",
+            self.restitution_threshold,
+            0.0,
+            MAX_SPEED,
+            " m/s",
+        )?;
+        check_range("linear_slop", self.linear_slop, 0.0, MAX_LENGTH, " m")?;
+        check_range("max_linear_speed", self.max_linear_speed, 1.0e-3, MAX_SPEED, " m/s")?;
+        check_range(
+            "max_angular_speed",
+            self.max_angular_speed,
+            1.0e-3,
+            MAX_ANGULAR_SPEED,
+            " rad/s",
+        )?;
         Ok(())
+    }
+}
+
+/// `v` scaled down to length `max` if longer (the solver's speed cap). Its inputs are finite
+/// and bounded (an impulse times an inverse mass stays below 1e34), so the length is too.
+pub(crate) fn cap_speed(v: Vec3, max: f32) -> Vec3 {
+    let l = v.length();
+    if l > max {
+        v * (max / l)
+    } else {
+        v
     }
 }
 
@@ -150,12 +186,21 @@ pub struct World {
     pub joints: crate::dynamics::joints::Joints,
     /// Soft bodies (issue 6, `soft/`).
     pub soft_bodies: crate::soft::SoftBodies,
+    /// The tag in every id of this world, leased from the process-wide registry (`pool.rs`)
+    /// and returned when the world is dropped.
+    tag: WorldTag,
 }
 
 impl World {
     pub fn new(settings: WorldSettings) -> Result<World> {
         settings.validate()?;
-        let tag = next_world_tag();
+        let lease = WorldTag::acquire().ok_or_else(|| {
+            Error::LimitReached(format!(
+                "{} worlds are alive at once, the most whose ids can be told apart; destroy one first",
+                crate::pool::MAX_LIVE_WORLDS
+            ))
+        })?;
+        let tag = lease.stamp();
         Ok(World {
             settings,
             bodies: Pool::new(tag),
@@ -179,16 +224,14 @@ impl World {
             particles: crate::particles::Particles::new(tag),
             joints: crate::dynamics::joints::Joints::new(tag),
             soft_bodies: crate::soft::SoftBodies::new(tag),
+            tag: lease,
         })
     }
 
     // ---------------------------------------------------------------- bodies
 
     pub fn create_body(&mut self, def: &BodyDef) -> Result<BodyHandle> {
-        let mut def = def.validated()?;
-        // Velocities above the world's limits are capped, as everywhere.
-        def.linear_velocity = crate::math::clamp_length(def.linear_velocity, self.settings.max_linear_speed);
-        def.angular_velocity = crate::math::clamp_length(def.angular_velocity, self.settings.max_angular_speed);
+        let def = def.validated(self.settings.max_linear_speed, self.settings.max_angular_speed)?;
         let h = self.bodies.insert(Body::new(&def));
         if def.body_type != BodyType::Static {
             if def.awake {
@@ -250,8 +293,8 @@ impl World {
 
     pub fn set_transform(&mut self, h: BodyHandle, xf: Transform) -> Result<()> {
         let index = self.body_index(h)?;
-        check_vec("position", xf.p)?;
-        let q = crate::error::check_quat("rotation", xf.q)?;
+        check_position("transform.position", xf.p)?;
+        let q = crate::error::check_quat("transform.rotation", xf.q)?;
         let xf = Transform::new(xf.p, q);
         let body = self.bodies.at_mut(index);
         body.set_transform(xf);
@@ -266,7 +309,8 @@ impl World {
 
     /// Kinematic bodies: move to `target` by velocity. The step after this call sets the
     /// velocities that reach the target by the end of that step; the body then sits exactly
-    /// on it and stops (velocities zero) unless given a new target. A target farther than the
+    /// on it, its velocities read as those it moved with during that step, and it stops at
+    /// the start of the next step (velocities zero) unless given a new target or velocity. A target farther than the
     /// speed limits allow in one step is approached at the limits and kept until reached.
     /// `set_transform` drops a pending target; a pending target overrides velocities set
     /// with `set_linear_velocity` / `set_angular_velocity`.
@@ -275,8 +319,8 @@ impl World {
         if self.bodies.at(index).body_type != BodyType::Kinematic {
             return Err(invalid("a target transform needs a kinematic body"));
         }
-        check_vec("target position", target.p)?;
-        let q = crate::error::check_quat("target rotation", target.q)?;
+        check_position("target.position", target.p)?;
+        let q = crate::error::check_quat("target.rotation", target.q)?;
         self.bodies.at_mut(index).kinematic_target = Some(Transform::new(target.p, q));
         self.wake_body(index);
         Ok(())
@@ -290,33 +334,36 @@ impl World {
         Ok(self.body(h)?.w)
     }
 
-    /// Sets the linear velocity (m/s), capped at `max_linear_speed`. Static bodies ignore it.
+    /// Sets the linear velocity (m/s, at most `max_linear_speed`; faster is refused). Static
+    /// bodies ignore it.
     pub fn set_linear_velocity(&mut self, h: BodyHandle, v: Vec3) -> Result<()> {
         let index = self.body_index(h)?;
-        check_vec("linear velocity", v)?;
+        check_velocity("linear velocity", v, self.settings.max_linear_speed)?;
         let max = self.settings.max_linear_speed;
         let body = self.bodies.at_mut(index);
         if body.is_static() {
             return Ok(());
         }
         body.v = crate::math::clamp_length(v, max);
+        body.kinematic_stop = false;
         if v != Vec3::ZERO {
             self.wake_body(index);
         }
         Ok(())
     }
 
-    /// Sets the angular velocity (rad/s), capped at `max_angular_speed`. Static bodies
+    /// Sets the angular velocity (rad/s, at most `max_angular_speed`; faster is refused). Static bodies
     /// ignore it.
     pub fn set_angular_velocity(&mut self, h: BodyHandle, w: Vec3) -> Result<()> {
         let index = self.body_index(h)?;
-        check_vec("angular velocity", w)?;
+        check_angular_velocity("angular velocity", w, self.settings.max_angular_speed)?;
         let max = self.settings.max_angular_speed;
         let body = self.bodies.at_mut(index);
         if body.is_static() {
             return Ok(());
         }
         body.w = crate::math::clamp_length(w, max);
+        body.kinematic_stop = false;
         if w != Vec3::ZERO {
             self.wake_body(index);
         }
@@ -342,27 +389,27 @@ impl World {
 
     /// Adds a force (N) at the centre of mass until the end of the next step. Wakes the body.
     pub fn apply_force(&mut self, h: BodyHandle, f: Vec3, wake: bool) -> Result<()> {
-        check_vec("force", f)?;
+        check_force("force", f)?;
         self.act_on_dynamic(h, wake, |b| b.add_force_torque(f.as_dvec3(), glam::DVec3::ZERO))
     }
 
     /// Adds a force (N) at a world point: a force plus the torque of its lever arm.
     pub fn apply_force_at_point(&mut self, h: BodyHandle, f: Vec3, point: Vec3, wake: bool) -> Result<()> {
-        check_vec("force", f)?;
-        check_vec("point", point)?;
+        check_force("force", f)?;
+        check_position("point", point)?;
         self.act_on_dynamic(h, wake, |b| b.add_force_at(f.as_dvec3(), point))
     }
 
     pub fn apply_torque(&mut self, h: BodyHandle, t: Vec3, wake: bool) -> Result<()> {
-        check_vec("torque", t)?;
+        check_force("torque", t)?;
         self.act_on_dynamic(h, wake, |b| b.add_force_torque(glam::DVec3::ZERO, t.as_dvec3()))
     }
 
     /// Applies an impulse (N·s) at a world point: changes velocity at once, capped at the
     /// speed limits.
     pub fn apply_impulse_at_point(&mut self, h: BodyHandle, j: Vec3, point: Vec3, wake: bool) -> Result<()> {
-        check_vec("impulse", j)?;
-        check_vec("point", point)?;
+        check_impulse("impulse", j)?;
+        check_position("point", point)?;
         let limits = self.speed_limits();
         self.act_on_dynamic(h, wake, |b| {
             let arm = point.as_dvec3() - b.center.as_dvec3();
@@ -370,10 +417,18 @@ impl World {
         })
     }
 
+    /// Applies an impulse (N·s) at the centre of mass: changes the linear velocity at once,
+    /// capped at `max_linear_speed`.
+    pub fn apply_linear_impulse(&mut self, h: BodyHandle, j: Vec3, wake: bool) -> Result<()> {
+        check_impulse("impulse", j)?;
+        let limits = self.speed_limits();
+        self.act_on_dynamic(h, wake, |b| b.apply_impulses(j.as_dvec3(), glam::DVec3::ZERO, limits))
+    }
+
     /// Applies an angular impulse (N·m·s). The new angular velocity is capped at
     /// `max_angular_speed`.
     pub fn apply_angular_impulse(&mut self, h: BodyHandle, j: Vec3, wake: bool) -> Result<()> {
-        check_vec("angular impulse", j)?;
+        check_impulse("angular impulse", j)?;
         let limits = self.speed_limits();
         self.act_on_dynamic(h, wake, |b| b.apply_impulses(glam::DVec3::ZERO, j.as_dvec3(), limits))
     }
@@ -385,8 +440,8 @@ impl World {
 
     pub fn set_damping(&mut self, h: BodyHandle, linear: f32, angular: f32) -> Result<()> {
         let i = self.body_index(h)?;
-        check_non_negative("linear damping", linear)?;
-        check_non_negative("angular damping", angular)?;
+        check_damping("linear damping", linear)?;
+        check_damping("angular damping", angular)?;
         let b = self.bodies.at_mut(i);
         b.linear_damping = linear;
         b.angular_damping = angular;
@@ -394,7 +449,7 @@ impl World {
     }
 
     pub fn set_gravity(&mut self, g: Vec3) -> Result<()> {
-        check_vec("gravity", g)?;
+        check_acceleration("gravity", g)?;
         self.settings.gravity = g;
         let all: Vec<u32> = self
             .bodies
@@ -735,6 +790,11 @@ impl World {
 
     pub fn contact_count(&self) -> usize {
         self.contacts.len()
+    }
+
+    /// The tag carried by every id of this world (1..=4095; no two live worlds share one).
+    pub fn tag(&self) -> u32 {
+        self.tag.tag()
     }
 
     pub fn tree_height(&self) -> u32 {

@@ -54,6 +54,7 @@ const PROGRAMS: &[&str] = &[
     "test_joints.c",
     "test_soft.c",
     "test_record.c",
+    "test_ranges.c",
 ];
 
 #[test]
@@ -77,6 +78,74 @@ fn c_programs_pass_with_the_static_library() {
         let text = run(&mut common::program(&exe));
         assert!(text.contains(" 0 failed"), "{text}");
     }
+}
+
+/// The seeded fuzzer of the whole C API (`tests/c/fuzz_api.c`; its header says what it checks):
+/// C11 and C++17 against the shared library (also under valgrind with `HEARTH_VALGRIND=1`),
+/// and C11 against the static one. Its default run is four seeds of 1,500 calls;
+/// `HEARTH_FUZZ_ITERATIONS` and `HEARTH_FUZZ_SEED` make it longer (README). A failure prints
+/// the seed and the call, and `fuzz_api SEED CALLS` replays it.
+#[test]
+fn c_api_fuzzer_finds_no_broken_promise() {
+    let mut called = String::new();
+    for (cpp, linkage) in [(false, Link::Shared), (true, Link::Shared), (false, Link::Static)] {
+        let exe = build("fuzz_api.c", cpp, linkage);
+        let text = match linkage {
+            Link::Shared => run_program(&exe),
+            Link::Static => run(&mut common::program(&exe)),
+        };
+        assert!(text.contains(" 0 failed"), "{}:\n{text}", exe.display());
+        called = text
+            .lines()
+            .find(|l| l.starts_with("fuzz_api: called"))
+            .unwrap_or_default()
+            .to_string();
+    }
+    // The run reached every function of the header.
+    let called: std::collections::BTreeSet<&str> = called.split(':').nth(2).unwrap_or("").split_whitespace().collect();
+    let missing: Vec<String> = header_functions()
+        .into_iter()
+        .filter(|f| !called.contains(f.as_str()))
+        .collect();
+    assert!(missing.is_empty(), "the fuzzer's default run never called {missing:?}");
+}
+
+/// Every function of the header appears in the fuzzer: a new export must be added to
+/// `tests/c/fuzz_api.c`.
+#[test]
+fn c_api_fuzzer_covers_every_export() {
+    let source = std::fs::read_to_string(root().join("tests/c/fuzz_api.c")).unwrap();
+    let missing: Vec<String> = header_functions()
+        .into_iter()
+        .filter(|f| !source.contains(&format!("{f}(")) && !source.contains(&format!("\"{f}\"")))
+        .collect();
+    assert!(missing.is_empty(), "tests/c/fuzz_api.c never calls {missing:?}");
+}
+
+/// The names of the functions `include/hearth.h` declares (comments left out).
+fn header_functions() -> Vec<String> {
+    let text = std::fs::read_to_string(root().join("include/hearth.h")).unwrap();
+    let mut code = String::new();
+    let mut rest = text.as_str();
+    while let Some(start) = rest.find("/*") {
+        code.push_str(&rest[..start]);
+        rest = rest[start..].find("*/").map_or("", |end| &rest[start + end + 2..]);
+    }
+    code.push_str(rest);
+    let mut names = Vec::new();
+    for (i, _) in code.match_indices("hearth_") {
+        let name: String = code[i..]
+            .chars()
+            .take_while(|c| c.is_ascii_alphanumeric() || *c == '_')
+            .collect();
+        let after = code[i + name.len()..].trim_start();
+        let before = code[..i].chars().next_back().unwrap_or(' ');
+        if after.starts_with('(') && (before == ' ' || before == '*') && !names.contains(&name) {
+            names.push(name);
+        }
+    }
+    assert!(names.len() >= 100, "only {} functions found in the header", names.len());
+    names
 }
 
 #[test]

@@ -209,6 +209,8 @@ enum class Code : int32_t {
     BufferTooSmall = HEARTH_ERROR_BUFFER_TOO_SMALL,
     Panic = HEARTH_ERROR_PANIC,
     Io = HEARTH_ERROR_IO,
+    /** 4,095 worlds are alive at once (hearth_world_create). */
+    LimitReached = HEARTH_ERROR_LIMIT_REACHED,
     /** A generator lambda threw something other than hearth::Error (nothrow API only; the
      * throwing API rethrows the original exception). */
     CallbackException = 1000,

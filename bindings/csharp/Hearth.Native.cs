@@ -36,6 +36,8 @@ namespace Hearth
         Panic = 6,
         /// <summary>HEARTH_ERROR_IO: writing a recording (a file, or the write callback) failed.</summary>
         Io = 7,
+        /// <summary>HEARTH_ERROR_LIMIT_REACHED: a fixed capacity is used up (4,095 worlds alive at once).</summary>
+        LimitReached = 8,
     }
 
     /// <summary>HEARTH_BODY_*: body type codes (BodyDef.Type, Body.Type).</summary>

@@ -20,21 +20,24 @@ pub const HEARTH_BODY_DYNAMIC: u32 = 2;
 pub struct HearthBodyDef {
     /// `HEARTH_BODY_STATIC` (default), `HEARTH_BODY_KINEMATIC` or `HEARTH_BODY_DYNAMIC`.
     pub r#type: u32,
-    /// Pose of the body origin (m); the rotation is normalised, must not be zero.
+    /// Pose of the body origin (m, each coordinate within ±1e5); the rotation is normalised,
+    /// must not be zero.
     pub transform: HearthTransform,
-    /// Initial velocity of the centre of mass (m/s).
+    /// Initial velocity of the centre of mass (m/s, no faster than the world's
+    /// `max_linear_speed`).
     pub linear_velocity: HearthVec3,
-    /// Initial angular velocity (rad/s, world frame).
+    /// Initial angular velocity (rad/s, world frame, length up to the world's
+    /// `max_angular_speed`).
     pub angular_velocity: HearthVec3,
-    /// Linear damping (1/s, >= 0). Default 0.
+    /// Linear damping (1/s, 0..=1000). Default 0.
     pub linear_damping: f32,
-    /// Angular damping (1/s, >= 0). Default 0.
+    /// Angular damping (1/s, 0..=1000). Default 0.
     pub angular_damping: f32,
     /// 1 (default) lets the body sleep when still; 0 keeps it awake.
     pub allow_sleep: u8,
     /// Host data, returned by `hearth_body_get_user_data`.
     pub user_data: u64,
-    /// Multiplier of world gravity for this body. Default 1.
+    /// Multiplier of world gravity for this body (-100..=100). Default 1.
     pub gravity_scale: f32,
     /// 1 (default) creates the body awake; 0 creates it asleep.
     pub is_awake: u8,
@@ -87,8 +90,8 @@ fn body_def(d: &HearthBodyDef) -> Result<BodyDef, Failure> {
 /// moves as 1 kg with unit inertia).
 ///
 /// Errors: `HEARTH_ERROR_NULL_POINTER`, `HEARTH_ERROR_INVALID_ARGUMENT` (def not from
-/// `hearth_body_def_default()`, unknown type, bad flag, NaN/infinite numbers, zero
-/// rotation, negative damping), `HEARTH_ERROR_WORLD_LOCKED`.
+/// `hearth_body_def_default()`, unknown type, bad flag, a number outside its range, zero
+/// rotation), `HEARTH_ERROR_WORLD_LOCKED`.
 ///
 /// # Safety
 /// Pointers must be NULL or valid.
@@ -266,10 +269,12 @@ pub unsafe extern "C" fn hearth_body_get_type(
     get(world, body, out, |w, h| Ok(type_code(w.body(h)?.body_type)))
 }
 
-/// Teleports the body origin (m). Wakes it. Contacts are refreshed on the next step.
+/// Teleports the body origin (m, each coordinate within ±1e5). Wakes it. Contacts are
+/// refreshed on the next step.
 ///
 /// Errors: `HEARTH_ERROR_NULL_POINTER`, `HEARTH_ERROR_INVALID_ID`,
-/// `HEARTH_ERROR_INVALID_ARGUMENT` (NaN/infinite, zero rotation), `HEARTH_ERROR_WORLD_LOCKED`.
+/// `HEARTH_ERROR_INVALID_ARGUMENT` (out of range, NaN/infinite, zero rotation),
+/// `HEARTH_ERROR_WORLD_LOCKED`.
 ///
 /// # Safety
 /// Pointers must be NULL or valid.
@@ -288,8 +293,9 @@ pub unsafe extern "C" fn hearth_body_set_transform(
 
 /// Kinematic bodies: move to `target` by velocity, so touching and jointed bodies are
 /// carried along. The next step sets the velocities that reach the target by its end; the
-/// body then sits exactly on the target and stops (velocities zero) unless given a new
-/// target. A target farther than the world's speed limits allow in one step
+/// body then sits exactly on the target, its velocities still read as those it moved with
+/// during that step (what a renderer or a rider wants to know), and it stops at the start of
+/// the following step (velocities zero) unless given a new target or velocity. A target farther than the world's speed limits allow in one step
 /// (`max_linear_speed`, `max_angular_speed`) is approached at the limits and kept until
 /// reached. `hearth_body_set_transform` drops a pending target; a pending target overrides
 /// the velocities set with `hearth_body_set_linear_velocity` / `_angular_velocity`.
@@ -325,12 +331,11 @@ unsafe fn set_vec(
     guard(|| Ok(write(world_mut(world)?, body.into(), value.into())?))
 }
 
-/// Sets the velocity of the centre of mass (m/s); a non-zero value wakes the body.
-/// Ignored for static bodies. A speed above the world's `max_linear_speed` is capped to it
-/// (direction kept).
+/// Sets the velocity of the centre of mass (m/s, no faster than the world's
+/// `max_linear_speed`); a non-zero value wakes the body. Ignored for static bodies.
 ///
 /// Errors: `HEARTH_ERROR_NULL_POINTER`, `HEARTH_ERROR_INVALID_ID`,
-/// `HEARTH_ERROR_INVALID_ARGUMENT` (NaN or infinite), `HEARTH_ERROR_WORLD_LOCKED`.
+/// `HEARTH_ERROR_INVALID_ARGUMENT` (too fast, NaN or infinite), `HEARTH_ERROR_WORLD_LOCKED`.
 ///
 /// # Safety
 /// `world` must be NULL or a live world.
@@ -343,12 +348,11 @@ pub unsafe extern "C" fn hearth_body_set_linear_velocity(
     set_vec(world, body, value, |w, h, v| w.set_linear_velocity(h, v))
 }
 
-/// Sets the angular velocity (rad/s, world frame); a non-zero value wakes the body.
-/// Ignored for static bodies. Above the world's `max_angular_speed` it is capped to it
-/// (axis kept).
+/// Sets the angular velocity (rad/s, world frame, no faster than the world's
+/// `max_angular_speed`); a non-zero value wakes the body. Ignored for static bodies.
 ///
 /// Errors: `HEARTH_ERROR_NULL_POINTER`, `HEARTH_ERROR_INVALID_ID`,
-/// `HEARTH_ERROR_INVALID_ARGUMENT` (NaN or infinite), `HEARTH_ERROR_WORLD_LOCKED`.
+/// `HEARTH_ERROR_INVALID_ARGUMENT` (too fast, NaN or infinite), `HEARTH_ERROR_WORLD_LOCKED`.
 ///
 /// # Safety
 /// `world` must be NULL or a live world.
@@ -361,13 +365,13 @@ pub unsafe extern "C" fn hearth_body_set_angular_velocity(
     set_vec(world, body, value, |w, h, v| w.set_angular_velocity(h, v))
 }
 
-/// Adds a force (N) at the centre of mass for the next step (from a force generator
-/// callback: for the current step). Wakes the body. No effect on static and kinematic
-/// bodies. Allowed inside user force generator callbacks.
+/// Adds a force (N, length up to 1e12) at the centre of mass for the next step (from a force
+/// generator callback: for the current step). Wakes the body. No effect on static and
+/// kinematic bodies. Allowed inside user force generator callbacks.
 ///
 /// Errors: `HEARTH_ERROR_NULL_POINTER`, `HEARTH_ERROR_INVALID_ID`,
-/// `HEARTH_ERROR_INVALID_ARGUMENT` (NaN or infinite), `HEARTH_ERROR_WORLD_LOCKED` (from a
-/// callback other than a force generator's).
+/// `HEARTH_ERROR_INVALID_ARGUMENT` (out of range, NaN or infinite; checked before the id),
+/// `HEARTH_ERROR_WORLD_LOCKED` (from a callback other than a force generator's).
 ///
 /// # Safety
 /// `world` must be NULL or a live world.
@@ -380,12 +384,13 @@ pub unsafe extern "C" fn hearth_body_apply_force(
     guard(|| Ok(world_mut_in_phase(world, PHASE_FORCES)?.apply_force(body.into(), value.into(), true)?))
 }
 
-/// Adds a torque (N·m, world frame) for the next step (from a force generator callback: for
-/// the current step). Wakes the body. Allowed inside user force generator callbacks.
+/// Adds a torque (N·m, world frame, length up to 1e12) for the next step (from a force
+/// generator callback: for the current step). Wakes the body. Allowed inside user force
+/// generator callbacks.
 ///
 /// Errors: `HEARTH_ERROR_NULL_POINTER`, `HEARTH_ERROR_INVALID_ID`,
-/// `HEARTH_ERROR_INVALID_ARGUMENT` (NaN or infinite), `HEARTH_ERROR_WORLD_LOCKED` (from a
-/// callback other than a force generator's).
+/// `HEARTH_ERROR_INVALID_ARGUMENT` (out of range, NaN or infinite; checked before the id),
+/// `HEARTH_ERROR_WORLD_LOCKED` (from a callback other than a force generator's).
 ///
 /// # Safety
 /// `world` must be NULL or a live world.
@@ -398,11 +403,12 @@ pub unsafe extern "C" fn hearth_body_apply_torque(
     guard(|| Ok(world_mut_in_phase(world, PHASE_FORCES)?.apply_torque(body.into(), value.into(), true)?))
 }
 
-/// Applies an impulse (N·s) at the centre of mass: changes the velocity at once, capped at
-/// the world's speed limits. Wakes the body.
+/// Applies an impulse (N·s, length up to 1e10) at the centre of mass: changes the velocity at
+/// once, capped at the world's speed limits. Wakes the body.
 ///
 /// Errors: `HEARTH_ERROR_NULL_POINTER`, `HEARTH_ERROR_INVALID_ID`,
-/// `HEARTH_ERROR_INVALID_ARGUMENT` (NaN or infinite), `HEARTH_ERROR_WORLD_LOCKED`.
+/// `HEARTH_ERROR_INVALID_ARGUMENT` (out of range, NaN or infinite),
+/// `HEARTH_ERROR_WORLD_LOCKED`.
 ///
 /// # Safety
 /// `world` must be NULL or a live world.
@@ -412,17 +418,15 @@ pub unsafe extern "C" fn hearth_body_apply_linear_impulse(
     body: HearthBodyId,
     value: HearthVec3,
 ) -> HearthResult {
-    set_vec(world, body, value, |w, h, v| {
-        let c = w.body(h)?.center;
-        w.apply_impulse_at_point(h, v, c, true)
-    })
+    set_vec(world, body, value, |w, h, v| w.apply_linear_impulse(h, v, true))
 }
 
-/// Applies an angular impulse (N·m·s, world frame); the angular velocity is capped at
-/// `max_angular_speed`. Wakes the body.
+/// Applies an angular impulse (N·m·s, world frame, length up to 1e10): changes the angular
+/// velocity at once, capped at the world's `max_angular_speed`. Wakes the body.
 ///
 /// Errors: `HEARTH_ERROR_NULL_POINTER`, `HEARTH_ERROR_INVALID_ID`,
-/// `HEARTH_ERROR_INVALID_ARGUMENT` (NaN or infinite), `HEARTH_ERROR_WORLD_LOCKED`.
+/// `HEARTH_ERROR_INVALID_ARGUMENT` (out of range, NaN or infinite; checked before the id),
+/// `HEARTH_ERROR_WORLD_LOCKED`.
 ///
 /// # Safety
 /// `world` must be NULL or a live world.
@@ -435,9 +439,9 @@ pub unsafe extern "C" fn hearth_body_apply_angular_impulse(
     set_vec(world, body, value, |w, h, v| w.apply_angular_impulse(h, v, true))
 }
 
-/// Adds a force (N) at a world point (m) for the next step: a force plus the torque of its
-/// lever arm about the centre of mass. Wakes the body. Allowed inside user force generator
-/// callbacks.
+/// Adds a force (N, length up to 1e12) at a world point (m, each coordinate within ±1e5) for
+/// the next step: a force plus the torque of its lever arm about the centre of mass. Wakes
+/// the body. Allowed inside user force generator callbacks.
 ///
 /// Errors: as `hearth_body_apply_force`.
 ///
@@ -456,8 +460,8 @@ pub unsafe extern "C" fn hearth_body_apply_force_at_point(
     })
 }
 
-/// Applies an impulse (N·s) at a world point (m); the velocities are capped at the world's
-/// speed limits. Wakes the body.
+/// Applies an impulse (N·s, length up to 1e10) at a world point (m, each coordinate within
+/// ±1e5): the new velocities are capped at the world's speed limits. Wakes the body.
 ///
 /// Errors: as `hearth_body_apply_force`.
 ///
@@ -489,7 +493,7 @@ pub unsafe extern "C" fn hearth_body_set_awake(world: *mut HearthWorld, body: He
     })
 }
 
-/// Sets linear and angular damping (1/s, >= 0).
+/// Sets linear and angular damping (1/s, 0..=1000).
 ///
 /// Errors: `HEARTH_ERROR_NULL_POINTER`, `HEARTH_ERROR_INVALID_ID`,
 /// `HEARTH_ERROR_INVALID_ARGUMENT`, `HEARTH_ERROR_WORLD_LOCKED`.

@@ -31,6 +31,9 @@ pub enum HearthResult {
     /// Reading or writing a file (or a host's write callback) failed; the message says what
     /// and why.
     HEARTH_ERROR_IO = 7,
+    /// A fixed capacity is used up: `hearth_world_create` with 4,095 worlds alive at once
+    /// (the most whose ids can be told apart). Destroy one and try again.
+    HEARTH_ERROR_LIMIT_REACHED = 8,
 }
 
 pub use HearthResult::*;
@@ -61,6 +64,7 @@ impl From<crate::error::Error> for Failure {
         let code = match e {
             crate::error::Error::InvalidId(_) => HEARTH_ERROR_INVALID_ID,
             crate::error::Error::InvalidArgument(_) => HEARTH_ERROR_INVALID_ARGUMENT,
+            crate::error::Error::LimitReached(_) => HEARTH_ERROR_LIMIT_REACHED,
         };
         Failure::new(code, e.to_string())
     }

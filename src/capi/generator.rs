@@ -420,19 +420,19 @@ pub unsafe extern "C" fn hearth_generator_create_buoyancy(
 #[repr(C)]
 #[derive(Clone, Copy, Debug)]
 pub struct HearthExplosionGeneratorDef {
-    /// Where it goes off (m).
+    /// Where it goes off (m, each coordinate within ±1e5).
     pub center: HearthVec3,
-    /// Reach of the blast (m, >= 0). Default 5.
+    /// Reach of the blast (m, 0..=1e4). Default 5.
     pub blast_radius: f32,
-    /// Impulse at the centre (N·s, >= 0). Default 50.
+    /// Impulse at the centre (N·s, 0..=1e10). Default 50.
     pub blast_impulse: f32,
-    /// Speed of the shock wave (m/s, >= 0). Default 20.
+    /// Speed of the shock wave (m/s, 0..=1e4). Default 20.
     pub shock_speed: f32,
-    /// Thickness of the shell (m, >= 0). Default 1.
+    /// Thickness of the shell (m, 0..=1e4). Default 1.
     pub shock_thickness: f32,
-    /// Peak force of the shock wave (N, >= 0). Default 100.
+    /// Peak force of the shock wave (N, 0..=1e12). Default 100.
     pub shock_force: f32,
-    /// The wave stops at this radius (m, >= 0). Default 20.
+    /// The wave stops at this radius (m, 0..=1e4). Default 20.
     pub max_radius: f32,
     /// 1 (default): acts on every body and particle in range; 0: only on attached ones.
     pub affect_all: u8,
@@ -460,7 +460,7 @@ pub extern "C" fn hearth_explosion_generator_def_default() -> HearthExplosionGen
 /// Creates an explosion. It is spent once its wave passes `max_radius`; destroy it then.
 ///
 /// Errors: `HEARTH_ERROR_NULL_POINTER`, `HEARTH_ERROR_INVALID_ARGUMENT` (def not from its
-/// default, negative or NaN numbers, flag not 0/1), `HEARTH_ERROR_WORLD_LOCKED`.
+/// default, a number outside its range or NaN, flag not 0/1), `HEARTH_ERROR_WORLD_LOCKED`.
 ///
 /// # Safety
 /// Pointers must be NULL or valid.

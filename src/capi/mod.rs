@@ -53,6 +53,7 @@ pub extern "C" fn hearth_result_name(result: i32) -> *const c_char {
         5 => b"HEARTH_ERROR_BUFFER_TOO_SMALL\0",
         6 => b"HEARTH_ERROR_PANIC\0",
         7 => b"HEARTH_ERROR_IO\0",
+        8 => b"HEARTH_ERROR_LIMIT_REACHED\0",
         _ => b"HEARTH_ERROR_UNKNOWN\0",
     };
     s.as_ptr() as *const c_char

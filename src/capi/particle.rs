@@ -49,22 +49,23 @@ impl HearthParticleId {
 #[repr(C)]
 #[derive(Clone, Copy, Debug)]
 pub struct HearthParticleDef {
-    /// Position (m).
+    /// Position (m, each coordinate within ±1e5).
     pub position: HearthVec3,
-    /// Velocity (m/s).
+    /// Velocity (m/s, no faster than the world's `max_linear_speed`).
     pub velocity: HearthVec3,
-    /// Constant acceleration of this particle (m/s²), on top of world gravity. Default 0.
+    /// Constant acceleration of this particle (m/s², length up to 1e4), on top of world
+    /// gravity. Default 0.
     pub acceleration: HearthVec3,
-    /// Inverse mass (1/kg, >= 0); 0 is an infinite mass (a pinned particle, moved only by
+    /// Inverse mass (1/kg, 0..=1e9); 0 is an infinite mass (a pinned particle, moved only by
     /// its velocity). Default 1 (1 kg).
     pub inverse_mass: f32,
-    /// Radius of the small sphere it collides as (m, >= 0). Default 0.05.
+    /// Radius of the small sphere it collides as (m: 0, a point, or 0.001..=1e4). Default 0.05.
     pub radius: f32,
-    /// Linear damping (1/s, >= 0): `v /= 1 + h·damping` per sub-step. Default 0.
+    /// Linear damping (1/s, 0..=1000): `v /= 1 + h·damping` per sub-step. Default 0.
     pub damping: f32,
-    /// Multiplier of world gravity. Default 1.
+    /// Multiplier of world gravity (-100..=100). Default 1.
     pub gravity_scale: f32,
-    /// Bounciness against shapes (>= 0; the pair uses the larger of the particle's and the
+    /// Bounciness against shapes (0..=1; the pair uses the larger of the particle's and the
     /// shape's). Default 0.
     pub restitution: f32,
     /// Coulomb friction against shapes (>= 0; the pair uses the geometric mean with the
@@ -128,9 +129,8 @@ pub(crate) fn particle_def(d: &HearthParticleDef) -> Result<ParticleDef, Failure
 /// Creates a particle.
 ///
 /// Errors: `HEARTH_ERROR_NULL_POINTER`, `HEARTH_ERROR_INVALID_ARGUMENT` (def not from
-/// `hearth_particle_def_default()`, NaN/infinite numbers, negative inverse mass, radius,
-/// damping, restitution or friction, lifetime <= 0, flag not 0/1),
-/// `HEARTH_ERROR_WORLD_LOCKED`.
+/// `hearth_particle_def_default()`, a number outside its range, NaN/infinite numbers,
+/// negative friction, lifetime <= 0, flag not 0/1), `HEARTH_ERROR_WORLD_LOCKED`.
 ///
 /// # Safety
 /// Pointers must be NULL or valid.
@@ -239,10 +239,10 @@ pub unsafe extern "C" fn hearth_particle_get_user_data(
     get(world, particle, out, |w, h| w.particle_user_data(h))
 }
 
-/// Teleports a particle (m) and wakes it.
+/// Teleports a particle (m, each coordinate within ±1e5) and wakes it.
 ///
 /// Errors: `HEARTH_ERROR_NULL_POINTER`, `HEARTH_ERROR_INVALID_ID`,
-/// `HEARTH_ERROR_INVALID_ARGUMENT` (NaN or infinite), `HEARTH_ERROR_WORLD_LOCKED`.
+/// `HEARTH_ERROR_INVALID_ARGUMENT` (out of range, NaN or infinite), `HEARTH_ERROR_WORLD_LOCKED`.
 ///
 /// # Safety
 /// `world` must be NULL or a live world.
@@ -255,10 +255,11 @@ pub unsafe extern "C" fn hearth_particle_set_position(
     guard(|| Ok(world_mut(world)?.set_particle_position(particle.into(), position.into())?))
 }
 
-/// Sets a particle's velocity (m/s); a non-zero value wakes it.
+/// Sets a particle's velocity (m/s, no faster than the world's `max_linear_speed`); a
+/// non-zero value wakes it.
 ///
 /// Errors: `HEARTH_ERROR_NULL_POINTER`, `HEARTH_ERROR_INVALID_ID`,
-/// `HEARTH_ERROR_INVALID_ARGUMENT` (NaN or infinite), `HEARTH_ERROR_WORLD_LOCKED`.
+/// `HEARTH_ERROR_INVALID_ARGUMENT` (too fast, NaN or infinite), `HEARTH_ERROR_WORLD_LOCKED`.
 ///
 /// # Safety
 /// `world` must be NULL or a live world.
@@ -271,11 +272,12 @@ pub unsafe extern "C" fn hearth_particle_set_velocity(
     guard(|| Ok(world_mut(world)?.set_particle_velocity(particle.into(), velocity.into())?))
 }
 
-/// Adds a force (N) to a particle for the next step (or, from a force generator callback,
-/// for the current step) and wakes it. Allowed inside user force generator callbacks.
+/// Adds a force (N, length up to 1e12) to a particle for the next step (or, from a force
+/// generator callback, for the current step) and wakes it. Allowed inside user force
+/// generator callbacks.
 ///
 /// Errors: `HEARTH_ERROR_NULL_POINTER`, `HEARTH_ERROR_INVALID_ID`,
-/// `HEARTH_ERROR_INVALID_ARGUMENT` (NaN or infinite), `HEARTH_ERROR_WORLD_LOCKED` (from a
+/// `HEARTH_ERROR_INVALID_ARGUMENT` (out of range, NaN or infinite), `HEARTH_ERROR_WORLD_LOCKED` (from a
 /// callback other than a force generator's).
 ///
 /// # Safety
@@ -289,10 +291,11 @@ pub unsafe extern "C" fn hearth_particle_apply_force(
     guard(|| Ok(world_mut_in_phase(world, PHASE_FORCES)?.apply_particle_force(particle.into(), force.into(), true)?))
 }
 
-/// Applies an impulse (N·s) to a particle: changes its velocity at once. Wakes it.
+/// Applies an impulse (N·s, length up to 1e10) to a particle: changes its velocity at once,
+/// capped at the world's `max_linear_speed`. Wakes it.
 ///
 /// Errors: `HEARTH_ERROR_NULL_POINTER`, `HEARTH_ERROR_INVALID_ID`,
-/// `HEARTH_ERROR_INVALID_ARGUMENT` (NaN or infinite), `HEARTH_ERROR_WORLD_LOCKED`.
+/// `HEARTH_ERROR_INVALID_ARGUMENT` (out of range, NaN or infinite), `HEARTH_ERROR_WORLD_LOCKED`.
 ///
 /// # Safety
 /// `world` must be NULL or a live world.
@@ -330,7 +333,7 @@ pub unsafe extern "C" fn hearth_particle_set_awake(
 #[repr(C)]
 #[derive(Clone, Copy, Debug)]
 pub struct HearthBurstDef {
-    /// Where every particle starts (m).
+    /// Where every particle starts (m, each coordinate within ±1e5).
     pub position: HearthVec3,
     /// Axis of the cone (need not be unit length, must not be zero). Default +Y.
     pub direction: HearthVec3,
@@ -341,7 +344,8 @@ pub struct HearthBurstDef {
     pub count: u32,
     /// Slowest speed (m/s, >= 0); speeds are uniform in [min, max]. Default 5.
     pub speed_min: f32,
-    /// Fastest speed (m/s, >= speed_min). Default 10.
+    /// Fastest speed (m/s, >= speed_min; plus the length of `particle.velocity`, at most the
+    /// world's `max_linear_speed`). Default 10.
     pub speed_max: f32,
     /// Shortest lifetime (s, > 0); lifetimes are uniform in [min, max]. Default 1.
     pub lifetime_min: f32,
@@ -411,7 +415,7 @@ pub unsafe extern "C" fn hearth_particle_emit_burst(
             seed: d.seed,
             particle: particle_def(&d.particle)?,
         };
-        burst.validate()?;
+        burst.validate(w.settings.max_linear_speed)?;
         if !out_ids.is_null() {
             validate::capacity(capacity, burst.count as usize, "out_ids")?;
         }

@@ -147,7 +147,7 @@ pub extern "C" fn hearth_record_def_default() -> HearthRecordDef {
     }
 }
 
-/// The world, checked to be idle and not recording.
+/// The world, checked to be idle.
 unsafe fn idle_world<'a>(world: *mut HearthWorld) -> Result<&'a HearthWorld, Failure> {
     let handle = world.as_ref().ok_or_else(|| Failure::null("world"))?;
     if handle.locked.get() {
@@ -156,13 +156,18 @@ unsafe fn idle_world<'a>(world: *mut HearthWorld) -> Result<&'a HearthWorld, Fai
             "the world is locked: it is stepping (called from a callback)",
         ));
     }
+    Ok(handle)
+}
+
+/// Refuses a second recording (checked after the arguments, which are reported first).
+unsafe fn not_recording(handle: &HearthWorld) -> Result<(), Failure> {
     if let Some(r) = &*handle.recording.get() {
         return Err(Failure::invalid(format!(
             "the world is already recording ({}); call hearth_world_record_stop first",
             r.describe()
         )));
     }
-    Ok(handle)
+    Ok(())
 }
 
 /// Starts a recording; the first bytes (header, every body, frame 0) are written at once.
@@ -229,6 +234,7 @@ pub unsafe extern "C" fn hearth_world_record_start_file(
         if path.is_empty() {
             return Err(Failure::invalid("path must not be empty"));
         }
+        not_recording(handle)?;
         let file = std::fs::File::create(path).map_err(|e| {
             Failure::new(
                 HEARTH_ERROR_IO,
@@ -254,9 +260,10 @@ pub unsafe extern "C" fn hearth_world_record_start_file(
 /// the first call), the next step (which then does not run) or the stop returns
 /// `HEARTH_ERROR_IO`.
 ///
-/// Errors: `HEARTH_ERROR_NULL_POINTER` (world or def NULL), `HEARTH_ERROR_INVALID_ARGUMENT`
-/// (def not from `hearth_record_def_default()`, a flag not 0/1, `def.write` NULL, the world
-/// already recording), `HEARTH_ERROR_IO` (the first write failed),
+/// Errors: `HEARTH_ERROR_NULL_POINTER` (world, def or `def.write` NULL),
+/// `HEARTH_ERROR_INVALID_ARGUMENT` (def not from `hearth_record_def_default()`, a flag not
+/// 0/1, the world already recording; the arguments are checked first), `HEARTH_ERROR_IO`
+/// (the first write failed),
 /// `HEARTH_ERROR_WORLD_LOCKED` (called from a callback).
 ///
 /// # Safety
@@ -272,6 +279,7 @@ pub unsafe extern "C" fn hearth_world_record_start_callback(
         let def = validate::input(def, "def")?;
         let options = options(def)?;
         let write = def.write.ok_or_else(|| Failure::null("def.write"))?;
+        not_recording(handle)?;
         start(
             handle,
             options,

@@ -11,14 +11,14 @@ use crate::collision::shape::{Geometry, ShapeDef};
 #[repr(C)]
 #[derive(Clone, Copy, Debug)]
 pub struct HearthShapeDef {
-    /// kg/m³ (>= 0). Default 1000 (water).
+    /// kg/m³: 0 (a massless shape) or 0.001..=1e5. Default 1000 (water).
     pub density: f32,
     /// Coulomb friction coefficient while the surfaces stick (>= 0). Default 0.6.
     pub static_friction: f32,
     /// Coulomb friction coefficient while they slide (>= 0; the pair uses at most the
     /// static value). Default 0.6.
     pub dynamic_friction: f32,
-    /// Bounciness: 0 none, 1 elastic (>= 0). Default 0.
+    /// Bounciness: 0 none, 1 elastic (0..=1). Default 0.
     pub restitution: f32,
     /// Host data.
     pub user_data: u64,
@@ -76,8 +76,9 @@ unsafe fn create<G>(
 /// Adds a sphere to a body; the body's mass, centre of mass and inertia are recomputed.
 ///
 /// Errors: `HEARTH_ERROR_NULL_POINTER`, `HEARTH_ERROR_INVALID_ID` (body),
-/// `HEARTH_ERROR_INVALID_ARGUMENT` (def not from `hearth_shape_def_default()`, radius <= 0,
-/// NaN/infinite numbers, negative density/friction/restitution), `HEARTH_ERROR_WORLD_LOCKED`.
+/// `HEARTH_ERROR_INVALID_ARGUMENT` (def not from `hearth_shape_def_default()`, a size or
+/// placement outside its range, NaN/infinite numbers, density, friction or restitution out
+/// of range), `HEARTH_ERROR_WORLD_LOCKED`. The def is checked before the body id.
 ///
 /// # Safety
 /// Pointers must be NULL or valid.
@@ -95,8 +96,8 @@ pub unsafe extern "C" fn hearth_shape_create_sphere(
     })
 }
 
-/// Adds a box to a body. Errors as `hearth_shape_create_sphere`, plus half extents <= 0 and
-/// a zero rotation.
+/// Adds a box to a body. Errors as `hearth_shape_create_sphere`, plus half extents outside
+/// 0.001..=1e4 and a zero rotation.
 ///
 /// # Safety
 /// Pointers must be NULL or valid.
@@ -115,7 +116,8 @@ pub unsafe extern "C" fn hearth_shape_create_box(
     })
 }
 
-/// Adds a capsule to a body. Errors as `hearth_shape_create_sphere`.
+/// Adds a capsule to a body. Errors as `hearth_shape_create_sphere`, plus a segment longer
+/// than 1e4 m.
 ///
 /// # Safety
 /// Pointers must be NULL or valid.
@@ -135,8 +137,8 @@ pub unsafe extern "C" fn hearth_shape_create_capsule(
 }
 
 /// Adds a plane (a static half-space) to a static body. Errors as
-/// `hearth_shape_create_sphere`, plus a zero normal and `HEARTH_ERROR_INVALID_ARGUMENT` for a
-/// body that is not static.
+/// `hearth_shape_create_sphere`, plus a zero normal, an offset over the normal's length
+/// outside ±1e5 m, and `HEARTH_ERROR_INVALID_ARGUMENT` for a body that is not static.
 ///
 /// # Safety
 /// Pointers must be NULL or valid.

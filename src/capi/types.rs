@@ -115,7 +115,8 @@ macro_rules! id_conversions {
 }
 id_conversions!(HearthBodyId, HearthShapeId);
 
-/// Sphere: centre in the body frame and radius (m, > 0).
+/// Sphere: centre in the body frame (m, each coordinate within ±1e5) and radius (m,
+/// 0.001..=1e4).
 #[repr(C)]
 #[derive(Clone, Copy, Debug)]
 pub struct HearthSphere {
@@ -125,7 +126,8 @@ pub struct HearthSphere {
     pub radius: f32,
 }
 
-/// Box: centre and rotation in the body frame, half extents (m, each > 0).
+/// Box: centre (m, within ±1e5) and rotation in the body frame, half extents (m, each
+/// 0.001..=1e4).
 #[repr(C)]
 #[derive(Clone, Copy, Debug)]
 pub struct HearthBox {
@@ -137,7 +139,8 @@ pub struct HearthBox {
     pub half_extents: HearthVec3,
 }
 
-/// Capsule: segment end points `a`, `b` in the body frame and radius (m, > 0).
+/// Capsule: segment end points `a`, `b` in the body frame (m, within ±1e5, at most 1e4 apart)
+/// and radius (m, 0.001..=1e4).
 #[repr(C)]
 #[derive(Clone, Copy, Debug)]
 pub struct HearthCapsule {
@@ -151,7 +154,8 @@ pub struct HearthCapsule {
 
 /// Plane (static bodies only), in the body frame: points `p` with
 /// `dot(normal, p) <= offset` are inside. The normal need not be unit length (it is
-/// normalised together with the offset) but must not be zero.
+/// normalised together with the offset) but must not be zero; the normalised offset lies
+/// within ±1e5 m.
 #[repr(C)]
 #[derive(Clone, Copy, Debug)]
 pub struct HearthPlane {

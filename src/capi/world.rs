@@ -44,7 +44,7 @@ pub const HEARTH_INTEGRATOR_RK4: u32 = 1;
 #[repr(C)]
 #[derive(Clone, Copy, Debug)]
 pub struct HearthWorldDef {
-    /// Gravity (m/s²). Default (0, -9.81, 0).
+    /// Gravity (m/s², length up to 1e4). Default (0, -9.81, 0).
     pub gravity: HearthVec3,
     /// Solver sub-steps per step, 1..=64. Default 6.
     pub substeps: u32,
@@ -52,30 +52,33 @@ pub struct HearthWorldDef {
     pub integrator: u32,
     /// 1 to let still islands sleep (default), 0 to keep everything awake.
     pub enable_sleep: u8,
-    /// Speed (m/s and rad/s) below which a body counts as still. Default 0.05.
+    /// Speed (m/s and rad/s, 0..=1e4) below which a body counts as still. Default 0.05.
     pub sleep_threshold: f32,
-    /// Seconds an island must stay still before it sleeps. Default 0.5.
+    /// Seconds an island must stay still before it sleeps (finite, >= 0). Default 0.5.
     pub time_to_sleep: f32,
-    /// Contact stiffness (Hz), capped at a quarter of the sub-step rate. Default 120.
+    /// Contact stiffness (Hz, 1e-3..=1e6), capped at a quarter of the sub-step rate. Default
+    /// 120.
     pub contact_hertz: f32,
-    /// Contact damping ratio. Default 10.
+    /// Contact damping ratio (0..=1000). Default 10.
     pub contact_damping_ratio: f32,
-    /// Fastest speed at which overlapping bodies are pushed apart (m/s). Default 3.
+    /// Fastest speed at which overlapping bodies are pushed apart (m/s, 1e-6..=1e4). Default 3.
     pub contact_push_max_velocity: f32,
-    /// Approach speed below which contacts do not bounce (m/s). Default 1.
+    /// Approach speed below which contacts do not bounce (m/s, 0..=1e4). Default 1.
     pub restitution_threshold: f32,
-    /// Largest speed a body's centre of mass may reach (m/s), > 0. Default 400. Every
-    /// velocity a body gets (set by the host, from forces, impulses, contacts, joints,
-    /// particles, soft bodies, kinematic targets) is capped at it, keeping its direction.
+    /// Largest speed a body or particle may reach (m/s, 1e-3..=1e4). Default 400. The solver
+    /// caps every velocity it produces (forces, impulses, contacts, joints, particles, soft
+    /// bodies, kinematic targets) at it, keeping the direction; velocities a host sets must not
+    /// exceed it.
     pub max_linear_speed: f32,
     /// Soft velocity sweeps per sub-step (each sub-step also runs one rigid relax sweep),
     /// 1..=64. Default 1: more sub-steps converge better than more sweeps.
     pub velocity_iterations: u32,
     /// Set by `hearth_world_def_default()`; do not change.
     pub internal_value: u32,
-    /// Largest angular speed a body may reach (rad/s), > 0. Default 100π ≈ 314.16 (50 turns
-    /// a second). Capped like `max_linear_speed`. (After `internal_value`: fields are only
-    /// ever appended, so existing offsets stay.)
+    /// Largest angular speed a body may reach (rad/s, 1e-3..=1e4). Default 100π ≈ 314.16 (50
+    /// turns a second). Capped like `max_linear_speed`; angular velocities a host sets must
+    /// not exceed it. (After `internal_value`: fields are only ever appended, so existing
+    /// offsets stay.)
     pub max_angular_speed: f32,
 }
 
@@ -202,11 +205,14 @@ pub extern "C" fn hearth_world_def_default() -> HearthWorldDef {
     }
 }
 
-/// Creates a world. On success `*out_world` owns it until `hearth_world_destroy`.
+/// Creates a world. On success `*out_world` owns it until `hearth_world_destroy`. Every world
+/// gets a tag no other live world has, carried in the ids it hands out, so ids of one world
+/// are never accepted by another while both live.
 ///
 /// Errors: `HEARTH_ERROR_NULL_POINTER` (def or out_world NULL),
 /// `HEARTH_ERROR_INVALID_ARGUMENT` (def not from `hearth_world_def_default()`, or a field out
-/// of range). `*out_world` is written only on success.
+/// of range), `HEARTH_ERROR_LIMIT_REACHED` (4,095 worlds are alive). `*out_world` is written
+/// only on success.
 ///
 /// # Safety
 /// `def` must be NULL or point to a `HearthWorldDef`; `out_world` must be NULL or writable.
@@ -249,11 +255,12 @@ pub unsafe extern "C" fn hearth_world_destroy(world: *mut HearthWorld) {
     })
 }
 
-/// Advances the world by `dt` seconds (finite, >= 0; 0 does nothing). User generators run
+/// Advances the world by `dt` seconds: 0 does nothing, otherwise 0.001 <= `dt` <= 0.1 (see
+/// "Supported ranges" at the top of this header). User generators run
 /// inside it, on this thread: force generators after the built-in ones at the start of the
 /// step, contact generators after the narrow phase (see their callback types).
 ///
-/// Errors: `HEARTH_ERROR_NULL_POINTER`, `HEARTH_ERROR_INVALID_ARGUMENT` (bad dt),
+/// Errors: `HEARTH_ERROR_NULL_POINTER`, `HEARTH_ERROR_INVALID_ARGUMENT` (dt outside the range),
 /// `HEARTH_ERROR_WORLD_LOCKED` (called from a callback), `HEARTH_ERROR_PANIC` (an internal
 /// error; the world then refuses further steps), `HEARTH_ERROR_IO` (the world's recording
 /// failed to write after the last step: the recording has stopped, this step did not run, and
@@ -277,9 +284,7 @@ pub unsafe extern "C" fn hearth_world_step(world: *mut HearthWorld, dt: f32) -> 
                 "the world is locked: it is stepping (called from a callback)",
             ));
         }
-        if !dt.is_finite() || dt < 0.0 {
-            return Err(Failure::invalid(format!("dt must be finite and >= 0, got {dt}")));
-        }
+        crate::error::check_time_step("dt", dt)?;
         // A recording whose output failed after the last step says so now, and this step
         // does not run.
         super::record::take_failure(handle)?;
@@ -326,7 +331,10 @@ unsafe fn drive_step(world: *mut HearthWorld, dt: f32) -> Result<(), Failure> {
     Ok(())
 }
 
-/// Sets gravity (m/s², finite) and wakes every dynamic body.
+/// Sets gravity (m/s², length up to 1e4) and wakes every dynamic body.
+///
+/// Errors: `HEARTH_ERROR_NULL_POINTER`, `HEARTH_ERROR_INVALID_ARGUMENT` (out of range),
+/// `HEARTH_ERROR_WORLD_LOCKED`.
 ///
 /// # Safety
 /// `world` must be NULL or a live world.

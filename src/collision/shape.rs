@@ -325,24 +325,27 @@ impl Default for ShapeDef {
 }
 
 impl ShapeDef {
+    /// Range-checks the material (README "Supported ranges").
     pub fn validate(&self) -> crate::error::Result<()> {
-        use crate::error::check_non_negative;
-        check_non_negative("density", self.density)?;
+        use crate::error::{check_density, check_non_negative, check_restitution};
+        check_density("density", self.density)?;
         check_non_negative("static_friction", self.static_friction)?;
         check_non_negative("dynamic_friction", self.dynamic_friction)?;
-        check_non_negative("restitution", self.restitution)?;
+        check_restitution("restitution", self.restitution)?;
         Ok(())
     }
 }
 
 impl Geometry {
-    /// Range-checks the geometry and returns it normalised (unit plane normal and box rotation).
+    /// Range-checks the geometry (README "Supported ranges": sizes within [1 mm, 10 km],
+    /// placements within ±100 km) and returns it normalised (unit plane normal and box
+    /// rotation).
     pub fn validated(&self) -> crate::error::Result<Geometry> {
-        use crate::error::{check_finite, check_positive, check_quat, check_vec, invalid};
+        use crate::error::{check_distance, check_length, check_lengths, check_position, check_quat, invalid};
         Ok(match *self {
             Geometry::Sphere { center, radius } => {
-                check_vec("sphere center", center)?;
-                check_positive("sphere radius", radius)?;
+                check_position("sphere center", center)?;
+                check_length("sphere radius", radius)?;
                 *self
             }
             Geometry::Box {
@@ -350,12 +353,9 @@ impl Geometry {
                 rotation,
                 half_extents,
             } => {
-                check_vec("box center", center)?;
+                check_position("box center", center)?;
                 let rotation = check_quat("box rotation", rotation)?;
-                check_vec("box half_extents", half_extents)?;
-                if half_extents.min_element() <= 0.0 {
-                    return Err(invalid(format!("box half_extents must be > 0, got {half_extents}")));
-                }
+                check_lengths("box half_extents", half_extents)?;
                 Geometry::Box {
                     center,
                     rotation,
@@ -363,17 +363,24 @@ impl Geometry {
                 }
             }
             Geometry::Capsule { a, b, radius } => {
-                check_vec("capsule a", a)?;
-                check_vec("capsule b", b)?;
-                check_positive("capsule radius", radius)?;
+                check_position("capsule a", a)?;
+                check_position("capsule b", b)?;
+                check_length("capsule radius", radius)?;
+                check_distance("capsule segment length |b - a|", (b - a).length())?;
                 *self
             }
             Geometry::Plane { normal, offset } => {
-                check_vec("plane normal", normal)?;
-                check_finite("plane offset", offset)?;
                 let l = normal.length();
-                if l < 1.0e-6 {
-                    return Err(invalid("plane normal must be non-zero"));
+                if !normal.is_finite() || !(1.0e-6..=f32::MAX).contains(&l) {
+                    return Err(invalid(format!(
+                        "plane normal must be finite and non-zero (length at least 1e-6), got {normal}"
+                    )));
+                }
+                if !offset.is_finite() || (offset / l).abs() > crate::error::MAX_COORDINATE {
+                    return Err(invalid(format!(
+                        "plane offset must be finite and, divided by the normal's length, within ±{} m, got {offset}",
+                        crate::error::MAX_COORDINATE
+                    )));
                 }
                 Geometry::Plane {
                     normal: normal / l,

@@ -1,7 +1,9 @@
 //! Rigid bodies: type, state, mass properties and the per-body lists (shapes, contacts).
 
 use crate::collision::shape::MassProperties;
-use crate::error::{check_non_negative, check_quat, check_vec, Result};
+use crate::error::{
+    check_angular_velocity, check_damping, check_gravity_scale, check_position, check_quat, check_velocity, Result,
+};
 use crate::math::{clamp_length_f64, Mat3, Transform, Vec3};
 use crate::pool::Handle;
 
@@ -55,16 +57,18 @@ impl Default for BodyDef {
 }
 
 impl BodyDef {
-    /// Range-checks every number and returns the def with its rotation normalised.
-    pub fn validated(&self) -> Result<BodyDef> {
+    /// Range-checks every number (README "Supported ranges"; velocities against the world's
+    /// `max_linear_speed` and `max_angular_speed`) and returns the def with its rotation
+    /// normalised.
+    pub fn validated(&self, max_linear_speed: f32, max_angular_speed: f32) -> Result<BodyDef> {
         let mut d = *self;
-        check_vec("transform.position", d.transform.p)?;
+        check_position("transform.position", d.transform.p)?;
         d.transform.q = check_quat("transform.rotation", d.transform.q)?;
-        check_vec("linear_velocity", d.linear_velocity)?;
-        check_vec("angular_velocity", d.angular_velocity)?;
-        check_non_negative("linear_damping", d.linear_damping)?;
-        check_non_negative("angular_damping", d.angular_damping)?;
-        crate::error::check_finite("gravity_scale", d.gravity_scale)?;
+        check_velocity("linear_velocity", d.linear_velocity, max_linear_speed)?;
+        check_angular_velocity("angular_velocity", d.angular_velocity, max_angular_speed)?;
+        check_damping("linear_damping", d.linear_damping)?;
+        check_damping("angular_damping", d.angular_damping)?;
+        check_gravity_scale("gravity_scale", d.gravity_scale)?;
         Ok(d)
     }
 }
@@ -112,6 +116,31 @@ pub struct Body {
     pub solver_index: u32,
     /// Kinematic target: reach this transform by the end of the next step.
     pub kinematic_target: Option<Transform>,
+    /// A kinematic body reached its target in the last step: its velocities still read as
+    /// those it moved with, and it stops at the start of the next step unless given a new
+    /// target or velocity.
+    pub kinematic_stop: bool,
+}
+
+/// The inverse of an inertia tensor, or zero when it is singular. The supported masses and
+/// sizes give inertias from 1e-18 to 1e26 kg·m², whose determinants (their cubes) underflow
+/// or overflow f32 at the ends: those are inverted at unit scale.
+fn inverse_inertia(i: &Mat3) -> Mat3 {
+    let det = i.determinant();
+    if det > 0.0 && det.is_normal() {
+        return i.inverse();
+    }
+    let scale = i.x_axis.x.abs().max(i.y_axis.y.abs()).max(i.z_axis.z.abs());
+    if !(scale > 0.0 && scale.is_finite()) {
+        return Mat3::ZERO;
+    }
+    let unit = *i * (1.0 / scale);
+    let det = unit.determinant();
+    if det > 0.0 && det.is_finite() {
+        unit.inverse() * (1.0 / scale)
+    } else {
+        Mat3::ZERO
+    }
 }
 
 impl Body {
@@ -153,6 +182,7 @@ impl Body {
             sleep_island: Handle::NULL,
             solver_index: 0,
             kinematic_target: None,
+            kinematic_stop: false,
         };
         b.set_mass_properties(MassProperties::ZERO);
         b
@@ -191,12 +221,7 @@ impl Body {
             self.inv_mass = 1.0 / mp.mass;
             self.local_center = mp.center;
             self.inertia_local = mp.inertia;
-            let det = mp.inertia.determinant();
-            self.inv_inertia_local = if det > 0.0 && det.is_finite() {
-                mp.inertia.inverse()
-            } else {
-                Mat3::ZERO
-            };
+            self.inv_inertia_local = inverse_inertia(&mp.inertia);
         }
         let i = self.inertia_local;
         let d = i.x_axis.x;

@@ -396,6 +396,12 @@ pub fn prepare_bodies(world: &mut World, dt: f32, h: f32) {
         let body: &mut Body = world.bodies.at_mut(bi);
         body.solver_index = scratch.states.len() as u32;
         let dynamic = body.is_dynamic();
+        if body.kinematic_stop && body.kinematic_target.is_none() {
+            // It reached its target in the last step and was given nothing new: it stays.
+            body.v = Vec3::ZERO;
+            body.w = Vec3::ZERO;
+        }
+        body.kinematic_stop = false;
         let arrive = !dynamic && kinematic_target_velocity(body, dt, max_v, max_w);
         body.update_world_inertia();
         scratch
@@ -502,7 +508,8 @@ fn integrate_general_velocities(
     }
 }
 
-/// Moves the bodies with torque, gyroscopic motion or RK4 by their velocities.
+/// Moves the bodies with torque, gyroscopic motion or RK4 by their velocities, capped at the
+/// speed limits before and after (RK4's stiff damping is split out, see `rk4_step`).
 fn integrate_general_positions(
     vel: &mut [Velocity],
     states: &mut [BodyState],
@@ -575,7 +582,10 @@ impl Paths {
 
 /// Classical RK4 over the free rigid-body equations for one sub-step: position, orientation,
 /// linear velocity and world angular momentum, with continuous damping. Computed in f64 so
-/// rounding does not show as energy drift over long spins.
+/// rounding does not show as energy drift over long spins. Damping stiffer than one per
+/// sub-step (c·h > 1), where explicit RK4 loses accuracy (and past c·h ≈ 2.8 blows up), is
+/// taken out of the RK4 stages and applied exactly instead, as e^(−c·h/2) before and after
+/// them (Strang splitting).
 fn rk4_step(u: &mut Velocity, s: &mut BodyState, sim: &BodySim, h: f32) -> Quat {
     use glam::{DMat3, DQuat, DVec3, DVec4};
     #[derive(Clone, Copy)]
@@ -588,7 +598,16 @@ fn rk4_step(u: &mut Velocity, s: &mut BodyState, sim: &BodySim, h: f32) -> Quat 
     let h = h as f64;
     let (inertia, inv_inertia) = (sim.inertia.as_dmat3(), sim.inv_inertia.as_dmat3());
     let (accel, torque) = (sim.lin_accel.as_dvec3(), sim.torque.as_dvec3());
-    let (lin_d, ang_d) = (sim.lin_damping as f64, sim.ang_damping as f64);
+    let (mut lin_d, mut ang_d) = (sim.lin_damping as f64, sim.ang_damping as f64);
+    let (mut lin_half, mut ang_half) = (1.0, 1.0);
+    if lin_d * h > 1.0 {
+        lin_half = (-0.5 * lin_d * h).exp();
+        lin_d = 0.0;
+    }
+    if ang_d * h > 1.0 {
+        ang_half = (-0.5 * ang_d * h).exp();
+        ang_d = 0.0;
+    }
     let omega = |q: DVec4, l: DVec3| -> DVec3 {
         let r = DMat3::from_quat(DQuat::from_vec4(q).normalize());
         r * (inv_inertia * (r.transpose() * l))
@@ -614,8 +633,8 @@ fn rk4_step(u: &mut Velocity, s: &mut BodyState, sim: &BodySim, h: f32) -> Quat 
     let y0 = Y {
         p: s.dp().as_dvec3(),
         q: DVec4::from(q_start),
-        v: u.v.as_dvec3(),
-        l: r * (inertia * (r.transpose() * u.w.as_dvec3())),
+        v: u.v.as_dvec3() * lin_half,
+        l: r * (inertia * (r.transpose() * u.w.as_dvec3())) * ang_half,
     };
     let k1 = deriv(&y0);
     let k2 = deriv(&add(&y0, &k1, 0.5 * h));
@@ -624,8 +643,8 @@ fn rk4_step(u: &mut Velocity, s: &mut BodyState, sim: &BodySim, h: f32) -> Quat 
     let y = Y {
         p: y0.p + (k1.p + 2.0 * k2.p + 2.0 * k3.p + k4.p) * (h / 6.0),
         q: y0.q + (k1.q + 2.0 * k2.q + 2.0 * k3.q + k4.q) * (h / 6.0),
-        v: y0.v + (k1.v + 2.0 * k2.v + 2.0 * k3.v + k4.v) * (h / 6.0),
-        l: y0.l + (k1.l + 2.0 * k2.l + 2.0 * k3.l + k4.l) * (h / 6.0),
+        v: (y0.v + (k1.v + 2.0 * k2.v + 2.0 * k3.v + k4.v) * (h / 6.0)) * lin_half,
+        l: (y0.l + (k1.l + 2.0 * k2.l + 2.0 * k3.l + k4.l) * (h / 6.0)) * ang_half,
     };
     let q = DQuat::from_vec4(y.q).normalize();
     s.set_dp(y.p.as_vec3());
@@ -722,8 +741,10 @@ pub fn solve(world: &mut World, dt: f32) {
 }
 
 /// Writes solver results back: transforms, velocities, world inertia; clears forces.
-/// A kinematic body that reached its target is placed exactly on it and stopped (the
-/// sub-steps' rotation update is first order, so a large turn ends a little short).
+/// A kinematic body that reached its target is placed exactly on it (the sub-steps' rotation
+/// update is first order, so a large turn ends a little short); its velocities keep reading
+/// as those it moved with, and it stops at the start of the next step unless given a new
+/// target (`kinematic_stop`).
 /// Velocities are capped at the limits once more: the last relax sweep and restitution
 /// come after the last position update.
 fn finalize_bodies(world: &mut World) {
@@ -738,8 +759,7 @@ fn finalize_bodies(world: &mut World) {
         if sim.arrive {
             if let Some(target) = body.kinematic_target.take() {
                 body.set_transform(target);
-                body.v = Vec3::ZERO;
-                body.w = Vec3::ZERO;
+                body.kinematic_stop = true;
             }
         }
         body.update_world_inertia();

@@ -188,13 +188,16 @@ impl GeneratorDef {
                 max_radius,
                 ..
             } => {
-                check_vec("center", center)?;
-                check_non_negative("blast_radius", blast_radius)?;
-                check_non_negative("blast_impulse", blast_impulse)?;
-                check_non_negative("shock_speed", shock_speed)?;
-                check_non_negative("shock_thickness", shock_thickness)?;
-                check_non_negative("shock_force", shock_force)?;
-                check_non_negative("max_radius", max_radius)
+                // README "Supported ranges": the blast is applied as a force over one step,
+                // blast_impulse / dt, which stays finite for the shortest step.
+                use crate::error::{check_distance, check_position, check_range, MAX_FORCE, MAX_IMPULSE, MAX_SPEED};
+                check_position("center", center)?;
+                check_distance("blast_radius", blast_radius)?;
+                check_range("blast_impulse", blast_impulse, 0.0, MAX_IMPULSE, " N·s")?;
+                check_range("shock_speed", shock_speed, 0.0, MAX_SPEED, " m/s")?;
+                check_distance("shock_thickness", shock_thickness)?;
+                check_range("shock_force", shock_force, 0.0, MAX_FORCE, " N")?;
+                check_distance("max_radius", max_radius)
             }
             G::Rod { a, b, length } => {
                 check_ends(&a, &b)?;
@@ -497,6 +500,9 @@ impl World {
 
     pub fn detach_particle(&mut self, g: GeneratorHandle, p: Handle) -> Result<()> {
         self.check_attachable(g)?;
+        // A destroyed or expired particle stays in the list until the next step prunes it:
+        // its stale id is refused all the same.
+        self.particle_index(p)?;
         if !self.generator_mut(g)?.particles.remove(p) {
             return Err(Error::InvalidId("particle (not attached to this generator)"));
         }

@@ -51,11 +51,18 @@ impl Default for BurstDef {
 }
 
 impl BurstDef {
-    pub fn validate(&self) -> Result<()> {
-        check_vec("position", self.position)?;
+    /// Range-checks the burst and its particle def (README "Supported ranges"; speeds, added
+    /// to the particles' own velocity, against the world's `max_linear_speed`).
+    pub fn validate(&self, max_linear_speed: f32) -> Result<()> {
+        use crate::error::{check_position, check_range};
+        check_position("position", self.position)?;
         check_vec("direction", self.direction)?;
-        if self.direction.length_squared() < 1.0e-12 {
-            return Err(invalid("direction must not be zero"));
+        let l = self.direction.length();
+        if !(1.0e-6..=f32::MAX).contains(&l) {
+            return Err(invalid(format!(
+                "direction must be non-zero (length at least 1e-6) and finite, got {}",
+                self.direction
+            )));
         }
         if !(0.0..=std::f32::consts::PI).contains(&self.cone_half_angle) {
             return Err(invalid(format!(
@@ -72,19 +79,38 @@ impl BurstDef {
         check_non_negative("speed_min", self.speed_min)?;
         check_non_negative("speed_max", self.speed_max)?;
         if self.speed_min > self.speed_max {
-            return Err(invalid("speed_min must not exceed speed_max"));
+            return Err(invalid(format!(
+                "speed_min must not exceed speed_max, got {} > {}",
+                self.speed_min, self.speed_max
+            )));
         }
+        // Every particle's velocity is its def's plus up to speed_max along the cone.
+        let fastest = self.particle.velocity.length() + self.speed_max;
+        check_range(
+            "speed_max plus the length of particle.velocity",
+            fastest,
+            0.0,
+            max_linear_speed,
+            " m/s (the world's max_linear_speed)",
+        )?;
         if self.lifetime_min.is_nan() || self.lifetime_min <= 0.0 || self.lifetime_max.is_nan() {
-            return Err(invalid("lifetime_min must be > 0"));
+            return Err(invalid(format!(
+                "lifetime_min must be > 0 and lifetime_max not NaN, got {} and {}",
+                self.lifetime_min, self.lifetime_max
+            )));
         }
         if self.lifetime_min > self.lifetime_max {
-            return Err(invalid("lifetime_min must not exceed lifetime_max"));
+            return Err(invalid(format!(
+                "lifetime_min must not exceed lifetime_max, got {} > {}",
+                self.lifetime_min, self.lifetime_max
+            )));
         }
         ParticleDef {
             position: self.position,
             ..self.particle
         }
-        .validate()
+        .validate(max_linear_speed)
+        .map_err(|e| invalid(format!("particle.{e}")))
     }
 }
 
@@ -141,7 +167,7 @@ impl World {
 
     /// Emits a burst, calling `each` with every new id in order.
     pub fn emit_burst_with(&mut self, def: &BurstDef, mut each: impl FnMut(ParticleHandle)) -> Result<()> {
-        def.validate()?;
+        def.validate(self.settings.max_linear_speed)?;
         let axis = def.direction.normalize();
         let (t1, t2) = orthonormal_basis(axis);
         let cos_max = def.cone_half_angle.cos();

@@ -72,15 +72,23 @@ impl Default for ParticleDef {
 }
 
 impl ParticleDef {
-    pub fn validate(&self) -> Result<()> {
-        check_vec("position", self.position)?;
-        check_vec("velocity", self.velocity)?;
-        check_vec("acceleration", self.acceleration)?;
-        check_non_negative("inverse_mass", self.inverse_mass)?;
-        check_non_negative("radius", self.radius)?;
-        check_non_negative("damping", self.damping)?;
-        crate::error::check_finite("gravity_scale", self.gravity_scale)?;
-        check_non_negative("restitution", self.restitution)?;
+    /// Range-checks every number (README "Supported ranges"; the velocity against the
+    /// world's `max_linear_speed`).
+    pub fn validate(&self, max_linear_speed: f32) -> Result<()> {
+        use crate::error::{
+            check_acceleration, check_damping, check_gravity_scale, check_length, check_position, check_range,
+            check_restitution, check_velocity, MAX_INVERSE_MASS,
+        };
+        check_position("position", self.position)?;
+        check_velocity("velocity", self.velocity, max_linear_speed)?;
+        check_acceleration("acceleration", self.acceleration)?;
+        check_range("inverse_mass", self.inverse_mass, 0.0, MAX_INVERSE_MASS, " 1/kg")?;
+        if self.radius != 0.0 {
+            check_length("radius (0 for a point)", self.radius)?;
+        }
+        check_damping("damping", self.damping)?;
+        check_gravity_scale("gravity_scale", self.gravity_scale)?;
+        check_restitution("restitution", self.restitution)?;
         check_non_negative("friction", self.friction)?;
         if self.lifetime.is_nan() || self.lifetime <= 0.0 {
             return Err(invalid(format!(
@@ -293,7 +301,7 @@ impl Particles {
 impl World {
     /// Creates a particle.
     pub fn create_particle(&mut self, def: &ParticleDef) -> Result<ParticleHandle> {
-        def.validate()?;
+        def.validate(self.settings.max_linear_speed)?;
         Ok(self.particles.insert(def, self.settings.sleep_threshold))
     }
 
@@ -332,7 +340,7 @@ impl World {
     /// Teleports a particle and wakes it.
     pub fn set_particle_position(&mut self, h: ParticleHandle, p: Vec3) -> Result<()> {
         let i = self.particle_index(h)?;
-        check_vec("position", p)?;
+        crate::error::check_position("position", p)?;
         self.particles.pos[i] = p;
         self.particles.wake(i, self.settings.sleep_threshold);
         Ok(())
@@ -341,7 +349,7 @@ impl World {
     /// Sets a particle's velocity; a non-zero value wakes it.
     pub fn set_particle_velocity(&mut self, h: ParticleHandle, v: Vec3) -> Result<()> {
         let i = self.particle_index(h)?;
-        check_vec("velocity", v)?;
+        crate::error::check_velocity("velocity", v, self.settings.max_linear_speed)?;
         self.particles.vel[i] = v;
         if v != Vec3::ZERO {
             self.particles.wake(i, self.settings.sleep_threshold);
@@ -353,7 +361,7 @@ impl World {
     /// particle that is not woken ignores it.
     pub fn apply_particle_force(&mut self, h: ParticleHandle, f: Vec3, wake: bool) -> Result<()> {
         let i = self.particle_index(h)?;
-        check_vec("force", f)?;
+        crate::error::check_force("force", f)?;
         if wake {
             self.particles.wake(i, self.settings.sleep_threshold);
         }
@@ -366,12 +374,14 @@ impl World {
         Ok(())
     }
 
-    /// Applies an impulse (N·s): changes the velocity at once. Wakes the particle.
+    /// Applies an impulse (N·s): changes the velocity at once (capped at `max_linear_speed`).
+    /// Wakes the particle.
     pub fn apply_particle_impulse(&mut self, h: ParticleHandle, j: Vec3) -> Result<()> {
         let i = self.particle_index(h)?;
-        check_vec("impulse", j)?;
+        crate::error::check_impulse("impulse", j)?;
         self.particles.wake(i, self.settings.sleep_threshold);
-        self.particles.vel[i] += self.particles.inv_mass[i] * j;
+        let v = self.particles.vel[i] + self.particles.inv_mass[i] * j;
+        self.particles.vel[i] = crate::world::cap_speed(v, self.settings.max_linear_speed);
         Ok(())
     }
 

@@ -387,15 +387,22 @@ static void test_angular_speed_limit(void) {
     def.gravity = vec3(0, 0, 0);
     ENSURE_OK(hearth_world_create(&def, &w));
     HearthBodyId b = make_ball(w, 0, 0, 0);
-    /* Set above the limit: capped, axis kept. */
-    ENSURE_OK(hearth_body_set_angular_velocity(w, b, vec3(0, 0, 1.0e30f)));
+    /* Set above the limit: refused with a message naming the limit, nothing changes. */
     HearthVec3 av;
+    ENSURE_RESULT(hearth_body_set_angular_velocity(w, b, vec3(0, 0, 20.5f)), HEARTH_ERROR_INVALID_ARGUMENT);
+    char msg[256];
+    hearth_last_error_message(msg, sizeof msg);
+    ENSURE(strstr(msg, "max_angular_speed") != NULL);
+    ENSURE_OK(hearth_body_get_angular_velocity(w, b, &av));
+    ENSURE(av.x == 0.0f && av.y == 0.0f && av.z == 0.0f);
+    /* An impulse that would spin it faster: capped, axis kept. */
+    ENSURE_OK(hearth_body_apply_angular_impulse(w, b, vec3(0, 0, 1.0e6f)));
     ENSURE_OK(hearth_body_get_angular_velocity(w, b, &av));
     ENSURE_NEAR(av.z, 20.0, 1e-3);
     ENSURE(av.x == 0.0f && av.y == 0.0f);
-    /* Torques up to FLT_MAX: finite and within the limit. */
+    /* The largest torques: finite and within the limit. */
     for (int i = 0; i < 60; i++) {
-        ENSURE_OK(hearth_body_apply_torque(w, b, vec3(3.0e38f, -3.0e38f, 3.0e38f)));
+        ENSURE_OK(hearth_body_apply_torque(w, b, vec3(5.0e11f, -5.0e11f, 5.0e11f)));
         ENSURE_OK(hearth_world_step(w, 1.0f / 60.0f));
     }
     ENSURE_OK(hearth_body_get_angular_velocity(w, b, &av));

@@ -223,7 +223,8 @@ static void test_errors_as_exceptions() {
         hearth::World limited(wd);
         hearth::Body spun = limited.create_body(hearth::BodyType::Dynamic);
         spun.add(hearth::sphere(0.5f));
-        spun.set_angular_velocity(hearth::vec3(0, 1.0e6f, 0));
+        CHECK_THROWS(spun.set_angular_velocity(hearth::vec3(0, 6.0f, 0)), hearth::Code::InvalidArgument);
+        spun.apply_angular_impulse(hearth::vec3(0, 1.0e6f, 0)); // capped at the limit
         CHECK_NEAR(spun.angular_velocity().y, 5.0, 1e-4);
     }
     // Buffers too small (checked by the wrapper before the C call).
@@ -242,6 +243,7 @@ static void test_errors_as_exceptions() {
     w.destroy_generator(g);
     CHECK_THROWS(w.destroy_generator(g), hearth::Code::InvalidId); // stale now
     CHECK(hearth::code_name(hearth::Code::Panic) == std::string("HEARTH_ERROR_PANIC"));
+    CHECK(hearth::code_name(hearth::Code::LimitReached) == std::string("HEARTH_ERROR_LIMIT_REACHED"));
 }
 
 static void test_move_semantics() {

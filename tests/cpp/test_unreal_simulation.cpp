@@ -325,6 +325,7 @@ static void test_kinematic_platform_carries_a_box() {
         if (sim.Advance(dt) > 0) {
             const double physics_t = t - sim.GetAccumulator().GetAccumulated();
             followed = followed && Core::SamePose(stepped(sim, platform), platform_pose(physics_t, 1, 0));
+
             steady = steady && std::fabs(velocity(sim, platform).x - 1.0) < 1e-3; // the actor's speed, every step
         }
     }

@@ -226,6 +226,7 @@ internal static class HearthTests
         Equal(Native.ResultName(Result.Ok), "HEARTH_OK", "name of Ok");
         Equal(Native.ResultName(Result.InvalidId), "HEARTH_ERROR_INVALID_ID", "name of InvalidId");
         Equal(Native.ResultName(Result.BufferTooSmall), "HEARTH_ERROR_BUFFER_TOO_SMALL", "name of BufferTooSmall");
+        Equal(Native.ResultName(Result.LimitReached), "HEARTH_ERROR_LIMIT_REACHED", "name of LimitReached");
         Equal(Native.ResultName((Result)12345), "HEARTH_ERROR_UNKNOWN", "name of an unknown code");
         foreach (Result r in Enum.GetValues(typeof(Result)))
         {
@@ -514,13 +515,15 @@ internal static class HearthTests
         bad.MaxAngularSpeed = 0f;
         Fails(Result.InvalidArgument, () => new World(bad), "zero max angular speed");
 
-        // The angular speed limit holds for a set velocity (capped, axis kept).
+        // The angular speed limit: a set velocity above it is refused, an impulse is capped.
         WorldDef limited = WorldDef.Default();
         limited.MaxAngularSpeed = 5f;
         using (var limitedWorld = new World(limited))
         {
             Body spun = DynamicBox(limitedWorld, new Vec3(0f, 3f, 0f), 0.5f);
-            spun.AngularVelocity = new Vec3(0f, 1.0e6f, 0f);
+            HearthException e = Fails(Result.InvalidArgument, () => spun.AngularVelocity = new Vec3(0f, 6f, 0f), "angular velocity above the limit");
+            Ensure(e.Message.Contains("max_angular_speed"), "the message names the limit");
+            spun.ApplyAngularImpulse(new Vec3(0f, 1.0e6f, 0f));
             Near(spun.AngularVelocity, new Vec3(0f, 5f, 0f), 1e-4f, "angular velocity capped at the limit");
         }
     }

@@ -73,6 +73,7 @@ HEARTH_ERROR_WORLD_LOCKED = 4
 HEARTH_ERROR_BUFFER_TOO_SMALL = 5
 HEARTH_ERROR_PANIC = 6
 HEARTH_ERROR_IO = 7
+HEARTH_ERROR_LIMIT_REACHED = 8
 
 # ---------------------------------------------------------------------------- types
 

@@ -51,6 +51,10 @@ class Io(HearthError):
     """HEARTH_ERROR_IO: writing a recording (a file, or the write callback) failed."""
 
 
+class LimitReached(HearthError):
+    """HEARTH_ERROR_LIMIT_REACHED: a fixed capacity is used up (4,095 worlds alive at once)."""
+
+
 ERRORS = {
     _ffi.HEARTH_ERROR_NULL_POINTER: NullPointer,
     _ffi.HEARTH_ERROR_INVALID_ID: InvalidId,
@@ -59,6 +63,7 @@ ERRORS = {
     _ffi.HEARTH_ERROR_BUFFER_TOO_SMALL: BufferTooSmall,
     _ffi.HEARTH_ERROR_PANIC: Panic,
     _ffi.HEARTH_ERROR_IO: Io,
+    _ffi.HEARTH_ERROR_LIMIT_REACHED: LimitReached,
 }
 
 

@@ -115,10 +115,12 @@ def test_kinematic_target_transform(world):
     k.set_target_transform((0.0, 1.0, 0.0))
     world.step(DT)
     assert k.position.y == pytest.approx(1.0, abs=1e-4)
-    # reached: it stops there
-    assert k.linear_velocity == (0.0, 0.0, 0.0)
+    # reached: its velocity reads as the move's (1 m in one step) ...
+    assert k.linear_velocity[1] == pytest.approx(1.0 / DT, rel=1e-4)
     world.step(DT)
+    # ... and it stops there in the next step
     assert k.position.y == pytest.approx(1.0, abs=1e-4)
+    assert k.linear_velocity == (0.0, 0.0, 0.0)
 
 
 def test_max_angular_speed_is_a_world_setting():
@@ -126,7 +128,10 @@ def test_max_angular_speed_is_a_world_setting():
     with hearth.World(max_angular_speed=10.0, gravity=(0.0, 0.0, 0.0)) as w:
         body = w.create_body("dynamic")
         body.add_sphere(radius=0.5)
-        body.angular_velocity = (0.0, 1.0e6, 0.0)  # capped at the limit
+        with pytest.raises(hearth.InvalidArgument) as e:
+            body.angular_velocity = (0.0, 11.0, 0.0)  # above the limit: refused
+        assert "max_angular_speed" in e.value.message
+        body.apply_angular_impulse((0.0, 1.0e6, 0.0))  # an impulse is capped at the limit
         assert body.angular_velocity == pytest.approx((0.0, 10.0, 0.0))
     for bad in (0.0, -1.0, float("nan")):
         with pytest.raises(hearth.InvalidArgument) as e:
@@ -227,6 +232,8 @@ def test_result_names_and_unknown_codes():
     assert hearth.result_name(0) == "HEARTH_OK"
     assert hearth.result_name(3) == "HEARTH_ERROR_INVALID_ARGUMENT"
     assert hearth.result_name(999) == "HEARTH_ERROR_UNKNOWN"
+    assert hearth.result_name(8) == "HEARTH_ERROR_LIMIT_REACHED"
+    assert issubclass(hearth.LimitReached, hearth.HearthError)
     err = hearth.errors.error_for(999)
     assert type(err) is hearth.HearthError and err.code == 999
 

@@ -663,9 +663,9 @@ private:
                 Body.HoldSteps = 2;
             } else if (Body.HoldSteps > 0) {
                 // The actor stopped: the first step closes the gap to its pose (the body ran
-                // behind by the accumulator's leftover), the second holds it there, which sets
-                // the velocities to zero. A target is kept for one step only, and the velocity
-                // it set stays, so without the second step the body would drift on.
+                // behind by the accumulator's leftover), the second holds it there. (Hearth
+                // stops a kinematic body at the start of the step after it reached its target;
+                // the hold makes the stop explicit and survives a target set in between.)
                 Check(hearth_body_set_target_transform(World, Id, &Body.KinematicTo), "hearth_body_set_target_transform");
                 Body.HoldSteps -= 1;
             }
