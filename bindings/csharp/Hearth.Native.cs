@@ -1126,6 +1126,41 @@ namespace Hearth
         /// <summary>HEARTH_VERSION: compare with hearth_version() to detect a mismatched library.</summary>
         public const uint Version = (VersionMajor << 16) | (VersionMinor << 8) | VersionPatch;
 
+        /// <summary>
+        /// Whether a library of version <paramref name="library"/> (hearth_version()) has this
+        /// binding's ABI: the same major version, and the same minor while the major is 0.
+        /// Patch versions may differ.
+        /// </summary>
+        public static bool IsCompatible(uint library)
+        {
+            uint major = library >> 16, minor = (library >> 8) & 0xFF;
+            return major == VersionMajor && (major != 0 || minor == VersionMinor);
+        }
+
+        private static bool versionChecked;
+
+        /// <summary>
+        /// Throws InvalidOperationException when the loaded library's ABI is not this binding's
+        /// (a stale libhearth next to a newer binding: every struct layout could differ).
+        /// World's constructor calls it; the check runs once per process.
+        /// </summary>
+        public static void EnsureCompatibleLibrary()
+        {
+            if (versionChecked)
+            {
+                return;
+            }
+            uint library = hearth_version();
+            if (!IsCompatible(library))
+            {
+                throw new InvalidOperationException(string.Format(
+                    "the loaded Hearth library is version {0}.{1}.{2}, this binding was written for {3}.{4}.{5}; " +
+                    "the ABI versions must match (the major version, and the minor before 1.0)",
+                    library >> 16, (library >> 8) & 0xFF, library & 0xFF, VersionMajor, VersionMinor, VersionPatch));
+            }
+            versionChecked = true;
+        }
+
         /// <summary>hearth_result_name as a string ("HEARTH_ERROR_INVALID_ID"; never null).</summary>
         public static string ResultName(Result result)
         {

@@ -379,6 +379,7 @@ namespace Hearth
         /// <summary>hearth_world_create; start the def from WorldDef.Default().</summary>
         public World(WorldDef def)
         {
+            Native.EnsureCompatibleLibrary();
             WorldHandle created;
             Result result = Native.hearth_world_create(ref def, out created);
             if (result != Result.Ok)

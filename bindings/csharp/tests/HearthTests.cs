@@ -223,6 +223,14 @@ internal static class HearthTests
     private static void TestVersionAndResultNames()
     {
         Equal(Native.hearth_version(), Native.Version, "library version == binding's header version");
+        // The ABI check World's constructor makes: major, and minor before 1.0; patch is free.
+        Ensure(Native.IsCompatible(Native.Version), "the binding's own version is compatible");
+        Ensure(Native.IsCompatible(Native.Version + 7), "another patch version is compatible");
+        Ensure(!Native.IsCompatible(Native.Version + (1u << 8)), "another minor version before 1.0 is not");
+        Ensure(!Native.IsCompatible(Native.Version + (1u << 16)), "another major version is not");
+        Ensure(Native.IsCompatible((1u << 16) | (3u << 8)) == (Native.VersionMajor == 1),
+            "after 1.0 the minor may differ");
+        Native.EnsureCompatibleLibrary(); // the loaded library: no exception
         Equal(Native.ResultName(Result.Ok), "HEARTH_OK", "name of Ok");
         Equal(Native.ResultName(Result.InvalidId), "HEARTH_ERROR_INVALID_ID", "name of InvalidId");
         Equal(Native.ResultName(Result.BufferTooSmall), "HEARTH_ERROR_BUFFER_TOO_SMALL", "name of BufferTooSmall");
