@@ -734,6 +734,20 @@ static void test_errors_are_throttled() {
     CHECK(!broken.Create(bad));
     CHECK(!broken.IsRunning() && broken.Advance(1.0) == 0);
     CHECK(log.messages.back().find("hearth_world_create failed: HEARTH_ERROR_INVALID_ARGUMENT") == 0);
+    // A fixed step outside Hearth's time-step range would fail every step: refused at once.
+    for (double step : {0.0, 0.0005, 0.2, -1.0 / 60.0, (double)NAN}) {
+        Core::FSimulationSettings settings;
+        settings.StepSeconds = step;
+        Core::FSimulation odd;
+        odd.SetErrorCallback(&ErrorLog::Receive, &log);
+        CHECK(!odd.Create(hearth_world_def_default(), settings));
+        CHECK(!odd.IsRunning() && odd.Advance(1.0) == 0);
+        CHECK(log.messages.back().find("StepSeconds must be within 0.001 to 0.1 s") != std::string::npos);
+    }
+    Core::FSimulationSettings slow;
+    slow.StepSeconds = 0.1; // both ends of the range are accepted
+    Core::FSimulation ok;
+    CHECK(ok.Create(hearth_world_def_default(), slow) && ok.Advance(0.1) == 1);
 }
 
 // ---- shapes from simple-collision elements

@@ -122,7 +122,8 @@ private:
 
 /** How a simulation steps. */
 struct FSimulationSettings {
-    /** The fixed step (s). */
+    /** The fixed step (s): within Hearth's time-step range, 0.001 to 0.1 s (Create refuses
+     * others, since every step would fail). */
     double StepSeconds = 1.0 / 60.0;
     /** At most this many steps per frame; longer frames drop the excess (the game slows down). */
     int MaxStepsPerFrame = 8;
@@ -168,6 +169,14 @@ public:
      * created before. Returns false (and reports) when Hearth refuses. */
     bool Create(const HearthWorldDef &Def, const FSimulationSettings &InSettings = FSimulationSettings()) {
         Destroy();
+        if (!(InSettings.StepSeconds >= 0.001 && InSettings.StepSeconds <= 0.1)) {
+            char Message[160];
+            std::snprintf(Message, sizeof Message,
+                          "FSimulation::Create: StepSeconds must be within 0.001 to 0.1 s (Hearth's time-step range), got %g",
+                          InSettings.StepSeconds);
+            ReportError("Create", Message);
+            return false;
+        }
         Settings = InSettings;
         Accumulator = HearthConversion::FixedStepAccumulator(InSettings.StepSeconds, InSettings.MaxStepsPerFrame);
         Settings.StepSeconds = Accumulator.GetStepSeconds();
