@@ -89,9 +89,9 @@ fn abi_version(major: &str, minor: &str) -> String {
     }
 }
 
-/// Linux: the shared library's SONAME is `libhearth.so.<ABI>` (`libhearth.so.0.1` for 0.1.x),
+/// Linux: the shared library's SONAME is `libhearth.so.<ABI>` (`libhearth.so.0.2` for 0.2.x),
 /// so programs record the ABI they were built against, and the install script lays out
-/// `libhearth.so -> libhearth.so.0.1 -> libhearth.so.0.1.0`. Programs linked against the
+/// `libhearth.so -> libhearth.so.0.2 -> libhearth.so.0.2.0`. Programs linked against the
 /// build tree (`-Ltarget/release -lhearth`) ask for that name too, so it is created there as a
 /// link to the library cargo writes (in the profile directory and its `deps/`).
 fn shared_library_name(major: &str, minor: &str) {

@@ -1120,7 +1120,7 @@ namespace Hearth
         /// <summary>HEARTH_VERSION_MAJOR of the header this binding was written against.</summary>
         public const uint VersionMajor = 0;
         /// <summary>HEARTH_VERSION_MINOR.</summary>
-        public const uint VersionMinor = 1;
+        public const uint VersionMinor = 2;
         /// <summary>HEARTH_VERSION_PATCH.</summary>
         public const uint VersionPatch = 0;
         /// <summary>HEARTH_VERSION: compare with hearth_version() to detect a mismatched library.</summary>

@@ -19,7 +19,7 @@
 #   PREFIX/lib/cmake/hearth/hearthConfigVersion.cmake   hearth::hearth_static)
 #
 # ABI = the major version, or 0.MINOR while the major is 0 (every 0.x minor may break the ABI,
-# as Cargo treats it): version 0.1.0 installs libhearth.so.0.1.0 with SONAME libhearth.so.0.1.
+# as Cargo treats it): version 0.2.0 installs libhearth.so.0.2.0 with SONAME libhearth.so.0.2.
 #
 # Usage: bindings/packaging/install.sh --prefix DIR [--lib-dir DIR | --target TRIPLE] [--keep-debug]
 #   --prefix DIR      where to install (created if missing).
@@ -247,7 +247,7 @@ CMAKE
 
 # CMake's SameMajorVersion, with the ABI as the major: find_package(hearth X.Y) accepts this
 # copy when the ABI is the same and the request is not newer. Before 1.0 the ABI is 0.MINOR:
-# 0.1 and 0.1.0 are accepted by 0.1.x; 0.0, 0.2 and 1.0 are not; a bare "0" accepts any 0.x.
+# 0.2 and 0.2.0 are accepted by 0.2.x; 0.1, 0.3 and 1.0 are not; a bare "0" accepts any 0.x.
 cat > "$prefix/lib/cmake/hearth/hearthConfigVersion.cmake" <<CMAKE
 # hearthConfigVersion.cmake - written by bindings/packaging/install.sh.
 set(PACKAGE_VERSION "$version")

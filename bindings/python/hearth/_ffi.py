@@ -28,7 +28,7 @@ from ctypes import (
 # ---------------------------------------------------------------------------- constants
 
 HEARTH_VERSION_MAJOR = 0
-HEARTH_VERSION_MINOR = 1
+HEARTH_VERSION_MINOR = 2
 HEARTH_VERSION_PATCH = 0
 HEARTH_VERSION = (HEARTH_VERSION_MAJOR << 16) | (HEARTH_VERSION_MINOR << 8) | HEARTH_VERSION_PATCH
 

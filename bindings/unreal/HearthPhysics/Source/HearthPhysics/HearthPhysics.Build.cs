@@ -3,7 +3,7 @@
 //
 // Layout (../../README.md, "Installing"):
 //   Source/ThirdParty/hearth/include/hearth.h, hearth.hpp
-//   Source/ThirdParty/hearth/lib/libhearth.so, libhearth.so.0.1, libhearth.so.0.1.0   (Linux)
+//   Source/ThirdParty/hearth/lib/libhearth.so, libhearth.so.0.2, libhearth.so.0.2.0   (Linux)
 //   Source/ThirdParty/hearth/lib/Win64/hearth.dll, hearth.dll.lib                      (Win64)
 using System.IO;
 using UnrealBuildTool;
@@ -27,8 +27,8 @@ public class HearthPhysics : ModuleRules
 			string LibDir = Path.Combine(HearthRoot, "lib");
 			PublicAdditionalLibraries.Add(Path.Combine(LibDir, "libhearth.so"));
 			PublicRuntimeLibraryPaths.Add(LibDir);
-			// The executable asks for the library's SONAME (libhearth.so.0.1 while the version is
-			// 0.1.x): stage every libhearth.so.* file install.sh laid out, next to the rpath.
+			// The executable asks for the library's SONAME (libhearth.so.0.2 while the version is
+			// 0.2.x): stage every libhearth.so.* file install.sh laid out, next to the rpath.
 			foreach (string Versioned in Directory.GetFiles(LibDir, "libhearth.so.*"))
 			{
 				RuntimeDependencies.Add(Versioned);
