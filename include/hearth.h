@@ -1068,7 +1068,8 @@ typedef struct HearthExpiredParticle {
 
 /**
  * Material of a shape. Get one from `hearth_shape_def_default()`, then edit it. Where two
- * shapes touch, friction combines as the geometric mean and restitution as the maximum.
+ * shapes touch, friction combines as the geometric mean; restitution, rolling resistance and
+ * torsional friction as the maximum.
  */
 typedef struct HearthShapeDef {
     /**
@@ -1096,6 +1097,25 @@ typedef struct HearthShapeDef {
      * Set by `hearth_shape_def_default()`; do not change.
      */
     uint32_t internal_value;
+    /**
+     * Rolling resistance, 0..=1 (Box2D v3's `rollingResistance`). Default 0.05. Where the
+     * shapes touch, a torque against their relative rolling of up to
+     * `rolling_resistance × radius × normal force`, `radius` being the larger sphere or
+     * capsule radius of the two (boxes and planes have none: two of them never roll). A
+     * solid ball rolling on a level floor slows at `5/7 · rolling_resistance · g` (at the
+     * default, a ball at 2 m/s stops after 5.7 m) and rests on slopes up to
+     * `atan(rolling_resistance)`. Added after `internal_value`, so earlier fields keep
+     * their offsets.
+     */
+    float rolling_resistance;
+    /**
+     * Torsional (spin) friction, 0..=1. Default 0.05. A torque against the relative spin
+     * about the contact normal of up to `torsional_friction × radius × normal force`
+     * (`radius` as above), on top of the friction of a contact patch's own width. A solid
+     * ball spinning in place on a level floor slows at `5/2 · torsional_friction · g /
+     * radius` rad/s².
+     */
+    float torsional_friction;
 } HearthShapeDef;
 
 /**
@@ -2599,7 +2619,8 @@ HearthResult hearth_world_set_particle_iterations(struct HearthWorld *world,
                                                   uint32_t position_iterations);
 
 /**
- * Defaults: density 1000 kg/m³, friction 0.6 (static and dynamic), no bounce.
+ * Defaults: density 1000 kg/m³, friction 0.6 (static and dynamic), no bounce, rolling
+ * resistance and torsional friction 0.05.
  */
 struct HearthShapeDef hearth_shape_def_default(void);
 
