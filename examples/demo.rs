@@ -1,40 +1,24 @@
 //! The main Hearth demo: a pyramid of boxes with spheres and boxes dropped onto it.
 //!
 //! Run with `cargo run --release --example demo`. It uses only the Rust API
-//! (`hearth::World` and the shared scenes in `hearth::scenes`) and prints a line of
-//! statistics every half second of simulated time, then a short summary.
+//! (`hearth::World` and the shared scenes in `tests/scenes`) and prints a line of
+//! statistics every second of simulated time, then a short summary. The spheres roll off
+//! the pyramid and slow down by their rolling resistance; by the end every body sleeps
+//! (`tests/rolling.rs` asserts it), and the demo exits with status 1 if one does not.
 
 #[path = "../tests/scenes/mod.rs"]
 #[allow(dead_code)]
 mod scenes;
-use hearth::{BodyHandle, ShapeDef, Vec3, World};
+use hearth::{BodyHandle, World};
 use std::time::Instant;
 
-/// Fixed time step (s) and number of steps: 6 simulated seconds.
+/// Fixed time step (s) and number of steps: 16 simulated seconds.
 const DT: f32 = 1.0 / 60.0;
-const STEPS: usize = 360;
+const STEPS: usize = 960;
 /// Boxes per side in the bottom layer of the pyramid.
 const BASE: usize = 6;
-/// Print a status line every this many steps (0.5 s).
-const REPORT_EVERY: usize = 30;
-
-/// Adds the falling bodies: spheres and boxes above the four sides of the pyramid,
-/// staggered in height so they land one after another. They miss the top box on purpose,
-/// so the summary shows whether the pyramid itself stays standing.
-fn drop_bodies(world: &mut World) -> Vec<BodyHandle> {
-    let material = ShapeDef::default();
-    let mut out = Vec::new();
-    let sides = [(2.0, 0.0), (-2.0, 0.0), (0.0, 2.0), (0.0, -2.0)];
-    for (i, &(x, z)) in sides.iter().enumerate() {
-        let y = 9.0 + 1.5 * i as f32;
-        let ball_at = Vec3::new(x, y, z);
-        let box_at = Vec3::new(x * 0.6, y + 3.0, z * 0.6 + 0.3);
-        let half = Vec3::splat(0.3);
-        out.push(scenes::dynamic_sphere(world, ball_at, 0.4, &material));
-        out.push(scenes::dynamic_box(world, box_at, half, &material));
-    }
-    out
-}
+/// Print a status line every this many steps (1 s).
+const REPORT_EVERY: usize = 60;
 
 /// Largest speed (m/s) and total kinetic energy (J) over `bodies`.
 fn motion_stats(world: &World, bodies: &[BodyHandle]) -> (f32, f32) {
@@ -46,8 +30,7 @@ fn motion_stats(world: &World, bodies: &[BodyHandle]) -> (f32, f32) {
 
 fn main() {
     let mut world = scenes::world(true); // default settings, sleep on
-    let pyramid = scenes::pyramid(&mut world, BASE);
-    let dropped = drop_bodies(&mut world);
+    let (pyramid, dropped) = scenes::demo(&mut world, BASE);
     let top = *pyramid.last().expect("pyramid has boxes"); // last box = the apex
     let top_start = world.transform(top).expect("top box").p;
     let all: Vec<BodyHandle> = pyramid.iter().chain(&dropped).copied().collect();
@@ -70,10 +53,17 @@ fn main() {
     );
 
     let mut step_time = 0.0f64; // seconds spent inside World::step
+    let mut all_asleep_at = None;
     for step in 1..=STEPS {
         let t0 = Instant::now();
         world.step(DT).expect("step failed");
         step_time += t0.elapsed().as_secs_f64();
+        let asleep = all.iter().all(|&b| !world.is_awake(b).expect("live body"));
+        if asleep && all_asleep_at.is_none() {
+            all_asleep_at = Some(step as f32 * DT);
+        } else if !asleep {
+            all_asleep_at = None;
+        }
 
         if step % REPORT_EVERY == 0 {
             let (vmax, energy) = motion_stats(&world, &all);
@@ -97,8 +87,14 @@ fn main() {
     println!("\nSummary");
     println!("  pyramid {verdict}: top box moved {moved_cm:.2} cm");
     println!("  {asleep} of {} dynamic bodies asleep", all.len());
+    if let Some(t) = all_asleep_at {
+        println!("  all asleep from t = {t:.2} s");
+    }
     println!(
         "  {:.3} ms per step (mean over {STEPS} steps, wall clock)",
         step_time * 1000.0 / STEPS as f64
     );
+    if asleep != all.len() || !stood {
+        std::process::exit(1);
+    }
 }
