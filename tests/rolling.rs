@@ -329,7 +329,7 @@ const SETTLE: f32 = 4.5;
 
 /// The demo (`examples/demo.rs`): a 91-box pyramid hit by four balls and four boxes dropped
 /// from 9–16.5 m. The balls roll off across the ground box and stop; every body sleeps by
-/// 16 s (measured: all asleep from 14.2 s) and the pyramid's apex moved less than 5 cm.
+/// 16 s (measured: all asleep from 14.3 s) and the pyramid's apex moved less than 5 cm.
 #[test]
 fn demo_scene_ends_asleep() {
     let mut w = scenes::world(true);
@@ -446,7 +446,7 @@ fn ragdoll(w: &mut World, origin: Vec3) -> Vec<BodyHandle> {
 
 /// The ragdoll of `tests/joints.rs`, tipped over with its spin, lands in a heap and sleeps —
 /// before rolling resistance and spin friction its sphere head kept rolling in place and held
-/// the island awake. Every part asleep by 8 s (measured: 5.6 s).
+/// the island awake. Every part asleep by 8 s (measured: 5.55 s).
 #[test]
 fn ragdoll_comes_to_rest_and_sleeps() {
     let mut w = scenes::world(true);
@@ -474,7 +474,7 @@ fn mechanical_energy(w: &World, bodies: &[BodyHandle]) -> f32 {
 /// Ragdolls tipped over with seeded random spins (up to 3 rad/s about each axis): the state
 /// stays finite and the mechanical energy never rises above its start (by more than 0.1 % of
 /// the fall's potential energy), in 30 runs of 10 s. Whether each sleeps by then is printed,
-/// not asserted (measured: 19 of 30): in the others a limb or the head ends up off the ground,
+/// not asserted (measured: 20 of 30): in the others a limb or the head ends up off the ground,
 /// resting against a joint limit, and keeps circling along the frictionless limit (no contact
 /// is involved; the joints have no friction to stop it).
 #[test]

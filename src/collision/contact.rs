@@ -49,6 +49,9 @@ pub struct Contact {
     /// Rounding radii of the two shapes (`Geometry::rounding_radius`), for the solver.
     pub radius_a: f32,
     pub radius_b: f32,
+    /// The smaller of the two shapes' `Geometry::feature_size` (m): length tolerances of the
+    /// contact scale down to it.
+    pub size: f32,
     /// The manifold in the bodies' own frames, for reuse while they barely move relative to
     /// each other.
     pub cache: ManifoldCache,
@@ -80,8 +83,10 @@ pub struct ManifoldCache {
     pub local_b: [Vec3A; MAX_MANIFOLD_POINTS],
 }
 
-/// Largest relative translation (m) and rotation (cos of half the angle) for reuse.
+/// Largest relative translation for reuse: a millimetre, or a tenth of the smaller shape's
+/// size (`Contact::size`) for small shapes; and rotation (cos of half the angle).
 const CACHE_MAX_TRANSLATION: f32 = 1.0e-3;
+const CACHE_MAX_TRANSLATION_FRACTION: f32 = 0.1;
 const CACHE_MIN_COS_HALF_ANGLE: f32 = 0.999_962; // cos(0.5°): a turn of 1°
 
 /// A transform as a rotation matrix and a translation, for mapping several points.
@@ -128,13 +133,23 @@ impl ManifoldCache {
     /// Moves the cached manifold `m` to the current poses if they are close enough to the
     /// cached ones; returns whether it did.
     #[inline]
-    fn reuse(&self, m: &mut Manifold, xf_a: &Transform, radius_a: f32, xf_b: &Transform, radius_b: f32) -> bool {
+    #[allow(clippy::too_many_arguments)]
+    fn reuse(
+        &self,
+        m: &mut Manifold,
+        xf_a: &Transform,
+        radius_a: f32,
+        xf_b: &Transform,
+        radius_b: f32,
+        size: f32,
+    ) -> bool {
         if !self.valid {
             return false;
         }
         let fa = Frame::new(xf_a);
         let relative_p = fa.r.transpose() * (Vec3A::from(xf_b.p) - fa.p);
-        if (relative_p - self.relative_p).length_squared() > CACHE_MAX_TRANSLATION * CACHE_MAX_TRANSLATION
+        let max_translation = CACHE_MAX_TRANSLATION.min(CACHE_MAX_TRANSLATION_FRACTION * size);
+        if (relative_p - self.relative_p).length_squared() > max_translation * max_translation
             || (xf_a.q.conjugate() * xf_b.q).dot(self.relative_q).abs() < CACHE_MIN_COS_HALF_ANGLE
         {
             return false;
@@ -229,6 +244,7 @@ impl Contact {
             key,
             radius_a,
             radius_b,
+            size: a.geometry.feature_size().min(b.geometry.feature_size()),
             cache: ManifoldCache::default(),
         }
     }
@@ -246,7 +262,7 @@ impl Contact {
     /// touching in this update.
     pub fn update(&mut self, a: &Shape, xf_a: &Transform, b: &Shape, xf_b: &Transform, speculative: f32) -> bool {
         let (ra, rb) = (self.radius_a, self.radius_b);
-        if self.cache.reuse(&mut self.manifold, xf_a, ra, xf_b, rb) {
+        if self.cache.reuse(&mut self.manifold, xf_a, ra, xf_b, rb, self.size) {
             return false;
         }
         let old = self.manifold;

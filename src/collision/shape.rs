@@ -429,6 +429,17 @@ impl Geometry {
         }
     }
 
+    /// The shape's smallest dimension (m): a sphere's or capsule's radius, a box's smallest
+    /// half extent; a plane has none (`f32::MAX`). Contacts scale their length tolerances
+    /// (allowed overlap, manifold reuse) down to it, so millimetre bodies rest like metre ones.
+    pub fn feature_size(&self) -> f32 {
+        match *self {
+            Geometry::Sphere { radius, .. } | Geometry::Capsule { radius, .. } => radius,
+            Geometry::Box { half_extents, .. } => half_extents.min_element(),
+            Geometry::Plane { .. } => f32::MAX,
+        }
+    }
+
     /// Radius of a sphere about the body's centre of mass that bounds the shape (planes: 0).
     pub fn extent_from(&self, local_center: Vec3) -> f32 {
         match *self {

@@ -191,9 +191,13 @@ impl Body {
             self.inv_mass = 1.0 / mp.mass;
             self.local_center = mp.center;
             self.inertia_local = mp.inertia;
-            let det = mp.inertia.determinant();
-            self.inv_inertia_local = if det > 0.0 && det.is_finite() {
-                mp.inertia.inverse()
+            // In f64: the determinant of a millimetre body's inertia (~1e-40 kg³m⁶) is below
+            // f32's normal range, and an f32 inverse came out infinite (then NaN).
+            let inertia = mp.inertia.as_dmat3();
+            let det = inertia.determinant();
+            let inverse = inertia.inverse().as_mat3();
+            self.inv_inertia_local = if det > 0.0 && det.is_finite() && inverse.is_finite() {
+                inverse
             } else {
                 Mat3::ZERO
             };

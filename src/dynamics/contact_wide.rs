@@ -133,6 +133,11 @@ pub struct WideContact<L: Lanes> {
     soft_ms: L,
     soft_is: L,
     soft_keep: L,
+    /// The smaller shape's size (`Contact::size`; `f32::MAX` for generated contacts), and the
+    /// overlap allowed without push-out: `linear_slop`, or a fiftieth of the size for small
+    /// shapes (`set_softness`).
+    size: L,
+    slop: L,
     has_restitution: bool,
     points: [WidePoint<L>; MAXP],
     k: [[L; MAXP]; MAXP],
@@ -257,7 +262,15 @@ impl Batches {
         }
         self.singles.clear();
         let colors = &mut self.body_colors;
-        for (ri, r) in refs.iter().enumerate() {
+        // Contacts between two awake bodies are coloured first, those with a static or
+        // sleeping body (the static dummy) after them: a body's contacts with the ground then
+        // take later colours, so a sweep ends each body on its support. Solved the other way
+        // round, a light box pressed by a heavy one left every sweep moving into the ground
+        // (the heavy box's push came last) and rocked: a 30× heavier box on a box floor never
+        // came to rest, though it did on a plane, whose contacts happened to come last.
+        let moving = refs.iter().enumerate().filter(|(_, r)| r.b != 0);
+        let grounded = refs.iter().enumerate().filter(|(_, r)| r.b == 0);
+        for (ri, r) in moving.chain(grounded) {
             // The first colour neither written body uses yet.
             let (a, b) = (r.a as usize, r.b as usize);
             let used_a = if r.writes_a { colors[a] } else { 0 };
@@ -373,8 +386,8 @@ impl<A> Stage3<A> {
 /// is loaded into lanes; empty lanes stay zero.
 struct Staging<L: Lanes> {
     /// ma, mb, radius_a, radius_b, static and dynamic friction, restitution, twist impulse,
-    /// 1/point count, rigid (all-ones), rolling and torsion levers.
-    f: [L::Floats; 12],
+    /// 1/point count, rigid (all-ones), rolling and torsion levers, size.
+    f: [L::Floats; 13],
     /// Normal, centres of mass of A and B, friction and rolling impulses on B (world).
     v: [Stage3<L::Floats>; 5],
     /// Per point: separation, normal impulse, active (all-ones).
@@ -387,7 +400,7 @@ impl<L: Lanes> Staging<L> {
     #[inline(always)]
     fn new() -> Self {
         Staging {
-            f: [L::Floats::default(); 12],
+            f: [L::Floats::default(); 13],
             v: [Stage3::default(); 5],
             pf: [[L::Floats::default(); 3]; MAXP],
             pv: [Stage3::default(); MAXP],
@@ -425,6 +438,7 @@ impl<L: Lanes> Staging<L> {
         self.f[8].as_mut()[i] = 1.0 / count as f32;
         self.f[10].as_mut()[i] = c.rolling_resistance;
         self.f[11].as_mut()[i] = c.torsional_friction;
+        self.f[12].as_mut()[i] = c.size;
         for (slot, x) in self.v.iter_mut().zip([n, ca, cb, friction, rolling]) {
             slot.set(i, x);
         }
@@ -455,6 +469,7 @@ impl<L: Lanes> Staging<L> {
         self.lane(i, r, s, [0.0, 0.0, g.friction, g.friction], g.restitution);
         self.f[8].as_mut()[i] = 1.0;
         self.f[9].as_mut()[i] = on();
+        self.f[12].as_mut()[i] = f32::MAX;
         for (slot, x) in self.v.iter_mut().zip([n, ca, cb]) {
             slot.set(i, x);
         }
@@ -558,7 +573,9 @@ fn point_velocity<L: Lanes>(v: V<L>, w: V<L>, r: V<L>) -> V<L> {
 #[inline(always)]
 fn build<L: Lanes, const N: usize>(w: &mut WideContact<L>, st: &Staging<L>, vel: &[Velocity]) {
     let zero = L::zero();
-    let [ma, mb, radius_a, radius_b, fs, fd, e, twist, inv_count, rigid, rolling, torsion] = load_all::<L, 12>(&st.f);
+    let [ma, mb, radius_a, radius_b, fs, fd, e, twist, inv_count, rigid, rolling, torsion, size] =
+        load_all::<L, 13>(&st.f);
+    w.size = size;
     let [n, ca, cb, friction, roll] = [0, 1, 2, 3, 4].map(|i| st.v[i].load::<L>());
     (
         w.ma,
@@ -791,8 +808,11 @@ fn arms<L: Lanes>(
 }
 
 /// Relative motion (m; rad counts as m of arm) since the start of the step below which a
-/// constraint keeps the arms of its last full refresh and updates separations to first order.
+/// constraint keeps the arms of its last full refresh and updates separations to first order
+/// (a tenth of the smaller shape's size for shapes under a centimetre).
 const LIGHT_REFRESH_MOTION: f32 = 1.0e-3;
+/// For small shapes the threshold is at most this fraction of the smaller shape's size.
+const LIGHT_REFRESH_FRACTION: f32 = 0.1;
 
 pub fn refresh(states: &[BodyState], batches: &mut Batches, first: bool) {
     dispatch!(&mut batches.sets, refresh_all(states, first))
@@ -834,7 +854,8 @@ fn light_refresh<L: Lanes, const N: usize, const SB: bool>(states: &[BodyState],
         )
     };
     let d = dpb - dpa;
-    let tol2 = L::splat(LIGHT_REFRESH_MOTION * LIGHT_REFRESH_MOTION);
+    let tol = L::splat(LIGHT_REFRESH_MOTION).min(w.size * L::splat(LIGHT_REFRESH_FRACTION));
+    let tol2 = tol * tol;
     let light = d
         .length_squared()
         .le(tol2)
@@ -988,8 +1009,13 @@ fn set_softness_all<L: Lanes>(batches: &mut Vec<WideContact<L>>, soft: &SoftSwee
         w.soft_ms = L::select(w.rigid, one, ms);
         w.soft_is = L::select(w.rigid, zero, is);
         w.soft_keep = (one - w.soft_is) / w.soft_ms;
+        w.slop = L::splat(soft.slop).min(w.size * L::splat(SLOP_FRACTION));
     }
 }
+
+/// Largest allowed overlap as a fraction of the smaller shape's size (`Contact::size`): a
+/// 1 cm box keeps a tenth of a millimetre, under the 0.2 mm `linear_slop` of larger ones.
+const SLOP_FRACTION: f32 = 0.02;
 
 /// Relative velocity along `d` with angular Jacobians `ja`, `jb`.
 #[inline(always)]
@@ -1149,7 +1175,7 @@ fn solve_batch<L: Lanes, const N: usize, const SB: bool>(
             w.soft_is,
             w.soft_keep,
             L::splat(-b.max_push),
-            L::splat(b.slop),
+            w.slop,
         ),
         None => (zero, one, zero, one, zero, zero),
     };
