@@ -9,6 +9,11 @@ use crate::collision::shape::{Geometry, ShapeDef};
 /// Material of a shape. Get one from `hearth_shape_def_default()`, then edit it. Where two
 /// shapes touch, friction combines as the geometric mean; restitution, rolling resistance and
 /// torsional friction as the maximum.
+///
+/// Sizes: shapes down to 1 mm rest like large ones; a resting shape overlaps what it rests
+/// on by about 0.2 mm, or a fiftieth of its radius or smallest half extent when that is under
+/// 1 cm (a 1 cm shape rests 0.11 mm deep, 1.1 % of its size; a 1 mm one 0.018 mm, 1.8 %).
+/// Mass ratios between touching bodies: see `HearthBodyDef`.
 #[repr(C)]
 #[derive(Clone, Copy, Debug)]
 pub struct HearthShapeDef {

@@ -155,6 +155,18 @@ impl ManifoldCache {
             return false;
         }
         let fb = Frame::new(xf_b);
+        let pairs = self.local_a.iter().zip(&self.local_b);
+        if radius_a == 0.0 && radius_b == 0.0 {
+            // Two flat shapes (boxes, planes): surface points and normal turn with the bodies.
+            let n = fa.r * self.normal;
+            m.normal = n.into();
+            for (p, (la, lb)) in m.points[..m.count].iter_mut().zip(pairs) {
+                let (pa, pb) = (fa.r * *la + fa.p, fb.r * *lb + fb.p);
+                p.point = (0.5 * (pa + pb)).into();
+                p.separation = (pb - pa).dot(n);
+            }
+            return true;
+        }
         let core = |i: usize| (fa.r * self.local_a[i] + fa.p, fb.r * self.local_b[i] + fb.p);
         let n = match (radius_a > 0.0, radius_b > 0.0) {
             (false, _) => fa.r * self.normal,
@@ -171,8 +183,8 @@ impl ManifoldCache {
             }
         };
         m.normal = n.into();
-        for (i, p) in m.points[..m.count].iter_mut().enumerate() {
-            let (mut pa, mut pb) = core(i);
+        for (p, (la, lb)) in m.points[..m.count].iter_mut().zip(pairs) {
+            let (mut pa, mut pb) = (fa.r * *la + fa.p, fb.r * *lb + fb.p);
             if radius_a > 0.0 {
                 pa += radius_a * n;
             }

@@ -160,9 +160,15 @@ pub struct LaneImpulses {
     /// Friction impulse on side B as a world vector, and about the normal.
     pub tangent: Vec3,
     pub twist: f32,
-    /// Rolling-resistance angular impulse on side B (world).
-    pub rolling: Vec3,
     pub sliding: bool,
+}
+
+/// Keeps a lane's rolling-resistance impulse (on side B, world) on its contact.
+#[inline]
+pub fn store_rolling(r: &ContactRef, rolling: Vec3, contacts: &mut Pool<Contact>) {
+    if let Some(ci) = r.contact() {
+        contacts.at_mut(ci).friction.rolling = if r.swapped { -rolling } else { rolling };
+    }
 }
 
 /// Keeps a lane's impulses on its contact (generated contacts keep none).
@@ -178,6 +184,6 @@ pub fn store(r: &ContactRef, out: &LaneImpulses, contacts: &mut Pool<Contact>) {
     }
     contact.friction.tangent = if r.swapped { -out.tangent } else { out.tangent };
     contact.friction.twist = out.twist;
-    contact.friction.rolling = if r.swapped { -out.rolling } else { out.rolling };
+
     contact.friction.sliding = out.sliding;
 }

@@ -14,7 +14,8 @@
 //! `warm_start`, a soft `solve` sweep that pushes overlap out and damps, the position update,
 //! then a rigid relax `solve` sweep that removes the push velocity. Each sweep block-solves a
 //! manifold's normal impulses (exactly through K⁻¹, by projected Gauss–Seidel on K where a point
-//! would pull) and then its patch friction (static/dynamic coefficients, twist). After the
+//! would pull), then, in batches of rounded pairs, its rolling resistance, then its patch
+//! friction (static/dynamic coefficients, twist with torsional friction). After the
 //! sub-steps: `restitution`, then `store` writes the impulses back for warm starting.
 
 use crate::collision::contact::{Contact, GeneratedContact};
@@ -138,6 +139,8 @@ pub struct WideContact<L: Lanes> {
     /// shapes (`set_softness`).
     size: L,
     slop: L,
+    /// Squared relative motion under which a refresh is light (`LIGHT_REFRESH_MOTION`).
+    light_tol2: L,
     has_restitution: bool,
     points: [WidePoint<L>; MAXP],
     k: [[L; MAXP]; MAXP],
@@ -576,7 +579,9 @@ fn build<L: Lanes, const N: usize>(w: &mut WideContact<L>, st: &Staging<L>, vel:
     let [ma, mb, radius_a, radius_b, fs, fd, e, twist, inv_count, rigid, rolling, torsion, size] =
         load_all::<L, 13>(&st.f);
     w.size = size;
-    let [n, ca, cb, friction, roll] = [0, 1, 2, 3, 4].map(|i| st.v[i].load::<L>());
+    let light_tol = L::splat(LIGHT_REFRESH_MOTION).min(size * L::splat(LIGHT_REFRESH_FRACTION));
+    w.light_tol2 = light_tol * light_tol;
+    let [n, ca, cb, friction] = [0, 1, 2, 3].map(|i| st.v[i].load::<L>());
     (
         w.ma,
         w.mb,
@@ -631,8 +636,11 @@ fn build<L: Lanes, const N: usize>(w: &mut WideContact<L>, st: &Staging<L>, vel:
     let f = &mut w.friction;
     (f.ca0, f.cb0, f.twist_radius, f.twist_impulse) = (ra - oa, rb - ob, twist_radius, twist);
     f.tangent_impulse = [friction.dot(t1), friction.dot(t2)];
-    (f.rolling, f.torsion) = (rolling, torsion);
-    f.rolling_impulse = [roll.dot(t1), roll.dot(t2)];
+    if w.spin {
+        let roll = st.v[4].load::<L>();
+        (f.rolling, f.torsion) = (rolling, torsion);
+        f.rolling_impulse = [roll.dot(t1), roll.dot(t2)];
+    }
     f.sliding = vt.length_squared().gt(L::splat(STICK_SPEED * STICK_SPEED));
 }
 
@@ -854,8 +862,7 @@ fn light_refresh<L: Lanes, const N: usize, const SB: bool>(states: &[BodyState],
         )
     };
     let d = dpb - dpa;
-    let tol = L::splat(LIGHT_REFRESH_MOTION).min(w.size * L::splat(LIGHT_REFRESH_FRACTION));
-    let tol2 = tol * tol;
+    let tol2 = w.light_tol2;
     let light = d
         .length_squared()
         .le(tol2)
@@ -1445,11 +1452,6 @@ fn store_all<L: Lanes>(batches: &mut Vec<WideContact<L>>, refs: &[ContactRef], c
             f.twist_impulse.to_floats(),
             f.sliding.bits(),
         );
-        let (r0, r1) = if w.spin {
-            (f.rolling_impulse[0].to_floats(), f.rolling_impulse[1].to_floats())
-        } else {
-            (L::Floats::default(), L::Floats::default())
-        };
         let tangents = [floats3(&w.tangents[0]), floats3(&w.tangents[1])];
         let mut impulses = [L::Floats::default(); MAXP];
         for (i, p) in impulses.iter_mut().zip(&w.points) {
@@ -1465,10 +1467,37 @@ fn store_all<L: Lanes>(batches: &mut Vec<WideContact<L>>, refs: &[ContactRef], c
                 normal: impulses.each_ref().map(at),
                 tangent: tangent(0) * at(&t0) + tangent(1) * at(&t1),
                 twist: at(&tw),
-                rolling: tangent(0) * at(&r0) + tangent(1) * at(&r1),
                 sliding: sl & (1 << lane) != 0,
             };
             contact_solver::store(&refs[src as usize], &out, contacts);
         }
+        if w.spin {
+            store_rolling(w, &tangents, refs, contacts);
+        }
+    }
+}
+
+/// Writes each lane's rolling impulse back to its contact (batches with rolling resistance).
+#[inline(always)]
+fn store_rolling<L: Lanes>(
+    w: &WideContact<L>,
+    tangents: &[[L::Floats; 3]; 2],
+    refs: &[ContactRef],
+    contacts: &mut Pool<Contact>,
+) {
+    let r = [
+        w.friction.rolling_impulse[0].to_floats(),
+        w.friction.rolling_impulse[1].to_floats(),
+    ];
+    for (lane, &src) in w.src.as_ref().iter().enumerate() {
+        if src == EMPTY {
+            continue;
+        }
+        let mut rolling = Vec3::ZERO;
+        for (t, imp) in tangents.iter().zip(&r) {
+            let at = |x: &L::Floats| x.as_ref()[lane];
+            rolling += Vec3::new(at(&t[0]), at(&t[1]), at(&t[2])) * at(imp);
+        }
+        contact_solver::store_rolling(&refs[src as usize], rolling, contacts);
     }
 }
