@@ -1114,9 +1114,10 @@ typedef struct HearthShapeDef {
      * `rolling_resistance × radius × normal force`, `radius` being the larger sphere or
      * capsule radius of the two (boxes and planes have none: two of them never roll). A
      * solid ball rolling on a level floor slows at `5/7 · rolling_resistance · g` (at the
-     * default, a ball at 2 m/s stops after 5.7 m) and rests on slopes up to
-     * `atan(rolling_resistance)`. Added after `internal_value`, so earlier fields keep
-     * their offsets.
+     * default, a ball at 2 m/s stops after 5.7 m) while friction can keep it rolling
+     * (`rolling_resistance` up to 1.4 × friction; above, it slides and slows at
+     * `friction · g`), and rests on slopes up to `atan(rolling_resistance)` where friction
+     * holds it too. Added after `internal_value`, so earlier fields keep their offsets.
      */
     float rolling_resistance;
     /**

@@ -35,9 +35,10 @@ pub struct HearthShapeDef {
     /// `rolling_resistance × radius × normal force`, `radius` being the larger sphere or
     /// capsule radius of the two (boxes and planes have none: two of them never roll). A
     /// solid ball rolling on a level floor slows at `5/7 · rolling_resistance · g` (at the
-    /// default, a ball at 2 m/s stops after 5.7 m) and rests on slopes up to
-    /// `atan(rolling_resistance)`. Added after `internal_value`, so earlier fields keep
-    /// their offsets.
+    /// default, a ball at 2 m/s stops after 5.7 m) while friction can keep it rolling
+    /// (`rolling_resistance` up to 1.4 × friction; above, it slides and slows at
+    /// `friction · g`), and rests on slopes up to `atan(rolling_resistance)` where friction
+    /// holds it too. Added after `internal_value`, so earlier fields keep their offsets.
     pub rolling_resistance: f32,
     /// Torsional (spin) friction, 0..=1. Default 0.05. A torque against the relative spin
     /// about the contact normal of up to `torsional_friction × radius × normal force`

@@ -315,14 +315,16 @@ pub struct ShapeDef {
     /// about axes in the contact plane) of up to `rolling_resistance × radius × normal force`,
     /// where `radius` is the larger rounding radius of the pair (sphere or capsule radius; 0
     /// for boxes and planes, which do not roll). The pair uses the larger value. A solid ball
-    /// rolling on a level floor decelerates at `5/7 · rolling_resistance · g` and rests on
-    /// slopes up to `atan(rolling_resistance)`.
+    /// rolling on a level floor decelerates at `5/7 · rolling_resistance · g` while friction
+    /// can keep it rolling (`rolling_resistance` up to 1.4 × friction; above, it slides and
+    /// slows at `friction · g`), and rests on slopes up to `atan(rolling_resistance)` where
+    /// friction holds it too.
     pub rolling_resistance: f32,
     /// Torsional (spin) friction, in `0..=TORSIONAL_MAX`: a torque against the relative spin
     /// of two touching shapes about the contact normal of up to
     /// `torsional_friction × radius × normal force` (`radius` as above), on top of the
     /// friction of a contact patch's own extent. The pair uses the larger value. A solid ball
-    /// spinning in place on a level floor stops at `5/2 · torsional_friction · g / radius`
+    /// spinning in place on a level floor slows at `5/2 · torsional_friction · g / radius`
     /// rad/s².
     pub torsional_friction: f32,
 }
