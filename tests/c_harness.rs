@@ -211,3 +211,19 @@ fn shared_library_exports_only_hearth_symbols() {
     }
     assert!(exported >= 30, "only {exported} hearth_ symbols exported");
 }
+
+/// `examples/c/pyramid.c` (55 boxes, then 60 spheres and boxes dropped on them, 30 s at
+/// 60 Hz) ends with every one of its 115 bodies asleep: the rolling spheres stop by their
+/// rolling resistance. It exits 1 otherwise; its last line reports `0/115` awake.
+#[test]
+fn c_pyramid_example_ends_with_every_body_asleep() {
+    let text = run(&mut common::program(&common::build_c_pyramid(&out_dir())));
+    print!("{text}");
+    let last = text
+        .lines()
+        .rev()
+        .filter_map(|l| l.split_whitespace().next_back())
+        .find(|w| w.contains('/'))
+        .unwrap_or_else(|| panic!("no awake count printed:\n{text}"));
+    assert_eq!(last, "0/115", "bodies still awake at the end:\n{text}");
+}

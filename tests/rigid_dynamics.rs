@@ -361,7 +361,18 @@ fn kinematic_platform_carries_a_box() {
 fn rolling_sphere_and_capsule_keep_their_height_and_do_not_gain_energy() {
     for capsule in [false, true] {
         let mut w = scenes::world(false);
-        scenes::ground_plane(&mut w);
+        // Neither surface resists rolling (tests/rolling.rs covers rolling resistance).
+        let free = ShapeDef {
+            rolling_resistance: 0.0,
+            torsional_friction: 0.0,
+            ..ShapeDef::default()
+        };
+        let ground = body_at(&mut w, BodyType::Static, Vec3::ZERO, Quat::IDENTITY);
+        let plane = Geometry::Plane {
+            normal: Vec3::Y,
+            offset: 0.0,
+        };
+        w.create_shape(ground, &free, &plane).unwrap();
         let r = 0.4;
         let b = body_at(&mut w, BodyType::Dynamic, Vec3::new(0.0, r, 0.0), Quat::IDENTITY);
         let g = if capsule {
@@ -377,7 +388,7 @@ fn rolling_sphere_and_capsule_keep_their_height_and_do_not_gain_energy() {
                 radius: r,
             }
         };
-        w.create_shape(b, &ShapeDef::default(), &g).unwrap();
+        w.create_shape(b, &free, &g).unwrap();
         w.set_linear_velocity(b, Vec3::new(2.7, 0.0, 0.0)).unwrap();
         w.set_angular_velocity(b, Vec3::new(0.0, 0.0, -2.7 / r)).unwrap();
         let e0 = w.body(b).unwrap().kinetic_energy();
@@ -392,7 +403,7 @@ fn rolling_sphere_and_capsule_keep_their_height_and_do_not_gain_energy() {
         }
         assert!(worst < 1e-3, "capsule {capsule}: height error {worst}");
         assert!(w.linear_velocity(b).unwrap().y.abs() < 1e-3);
-        // Rolling without slipping keeps its speed (no rolling resistance modelled).
+        // Rolling without slipping and without rolling resistance keeps its speed.
         assert!((w.linear_velocity(b).unwrap().x - 2.7).abs() < 0.02 * 2.7);
     }
 }

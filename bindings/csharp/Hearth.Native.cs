@@ -842,6 +842,10 @@ namespace Hearth
         public ulong UserData;
         /// <summary>Set by <c>hearth_shape_def_default()</c>; do not change.</summary>
         public uint InternalValue;
+        /// <summary>Rolling resistance, 0..=1. Default 0.05: a torque against relative rolling of up to rolling_resistance × radius × normal force (radius: the larger sphere or capsule radius of the pair). The pair uses the larger value.</summary>
+        public float RollingResistance;
+        /// <summary>Torsional (spin) friction, 0..=1. Default 0.05: a torque against relative spin about the contact normal of up to torsional_friction × radius × normal force. The pair uses the larger value.</summary>
+        public float TorsionalFriction;
     }
 
     /// <summary>Sphere: centre in the body frame and radius (m, &gt; 0).</summary>

@@ -3,8 +3,9 @@
  * (bindings/cpp/hearth.hpp), printing the same text (only the language name differs).
  *
  * Builds a pyramid of unit boxes on a ground plane, drops a "pile" of 60 alternating spheres
- * and boxes onto it from a grid above, and steps 5 s at 60 Hz. Every second it prints the
- * time, the height of the pyramid's top box and how many bodies are awake.
+ * and boxes onto it from a grid above, and steps 30 s at 60 Hz. Every three seconds it prints
+ * the time, the height of the pyramid's top box and how many bodies are awake. By the end
+ * every body sleeps; it exits with status 1 if one does not.
  *
  * Build and run from the repository root, after `cargo build --release`:
  *   c++ -std=c++17 -Wall -Wextra -O2 -Iinclude -Ibindings/cpp examples/cpp/pyramid.cpp \
@@ -23,8 +24,8 @@ const int PYRAMID_BOXES = 55;
 const int PILE_BODIES = 60;   // alternating spheres (r = 0.5) and unit boxes
 const int PILE_ROW = 8;       // the pile starts as an 8 x 8 grid (60 of its 64 cells used)
 const float DT = 1.0f / 60.0f;
-const int STEPS = 300;        // 5 s
-const int REPORT_EVERY = 60;
+const int STEPS = 1800;       // 30 s
+const int REPORT_EVERY = 180;
 
 hearth::Body add_box(hearth::World &world, hearth::Vec3 p) {
     hearth::Body body = world.create_body(hearth::BodyType::Dynamic, p);
@@ -38,7 +39,8 @@ hearth::Body add_sphere(hearth::World &world, hearth::Vec3 p) {
     return body;
 }
 
-void run() {
+/// Runs the scene; returns how many bodies are awake at the end.
+int run() {
     if (!hearth::version_matches()) {
         throw std::runtime_error("the library's version is not the header's");
     }
@@ -70,31 +72,38 @@ void run() {
     std::printf("%8s %14s %8s\n", "t [s]", "top box y [m]", "awake");
 
     std::vector<hearth::Transform> transforms(bodies.size()); // filled in one call per report
+    int awake = (int)bodies.size();
     for (int step = 1; step <= STEPS; step++) {
         world.step(DT);
         if (step % REPORT_EVERY != 0) {
             continue;
         }
         world.transforms(bodies, transforms);
-        int awake = 0;
+        awake = 0;
         for (const hearth::BodyId id : bodies) {
             awake += world.body(id).is_awake() ? 1 : 0;
         }
         const double t = (double)((float)step * DT);
         std::printf("%8.2f %14.3f %4d/%d\n", t, (double)transforms[top].position.y, awake, (int)bodies.size());
     }
+    return awake;
 }
 
 } // namespace
 
 int main() {
+    int awake = 0;
     try {
-        run();
+        awake = run();
     } catch (const hearth::Error &e) {
         std::fprintf(stderr, "error: %s\n", e.what()); // "HEARTH_ERROR_...: message"
         return 1;
     } catch (const std::exception &e) {
         std::fprintf(stderr, "error: %s\n", e.what());
+        return 1;
+    }
+    if (awake != 0) {
+        std::fprintf(stderr, "error: %d bodies still awake after %d steps\n", awake, STEPS);
         return 1;
     }
     std::printf("done\n");

@@ -2,8 +2,9 @@
 // text (tests/bindings_csharp.rs checks that line by line; Hearth is deterministic).
 //
 // Builds a pyramid of unit boxes on a ground plane, drops a "pile" of 60 alternating
-// spheres and boxes onto it from a grid above, and steps 5 s at 60 Hz. Every second it
-// prints the time, the height of the pyramid's top box and how many bodies are awake.
+// spheres and boxes onto it from a grid above, and steps 30 s at 60 Hz. Every three seconds it
+// prints the time, the height of the pyramid's top box and how many bodies are awake (all
+// asleep by the end, or it exits with status 1).
 //
 // Build and run from the repository root, after `cargo build --release`:
 //   mcs -out:target/Pyramid.exe bindings/csharp/Hearth.Native.cs bindings/csharp/Hearth.cs \
@@ -23,8 +24,8 @@ internal static class Pyramid
     private const int MaxBodies = PyramidBoxes + PileBodies;
 
     private static readonly float Dt = 1.0f / 60.0f;
-    private const int Steps = 300; // 5 s
-    private const int ReportEvery = 60;
+    private const int Steps = 1800; // 30 s
+    private const int ReportEvery = 180;
 
     // A dynamic body at p with no shapes yet.
     private static Body DynamicBody(World world, Vec3 p)
@@ -83,6 +84,7 @@ internal static class Pyramid
             return 1;
         }
 
+        int awake;
         try
         {
             using (var world = new World(WorldDef.Default()))
@@ -122,6 +124,7 @@ internal static class Pyramid
                 Console.WriteLine("{0,8} {1,14} {2,8}", "t [s]", "top box y [m]", "awake");
 
                 var transforms = new Transform[MaxBodies]; // caller-owned, filled in one call per report
+                awake = count;
                 for (int step = 1; step <= Steps; step++)
                 {
                     world.Step(Dt);
@@ -130,7 +133,7 @@ internal static class Pyramid
                         continue;
                     }
                     world.GetTransforms(bodies, transforms, count);
-                    int awake = 0;
+                    awake = 0;
                     for (int b = 0; b < count; b++)
                     {
                         awake += world.GetBody(bodies[b]).IsAwake ? 1 : 0;
@@ -143,6 +146,11 @@ internal static class Pyramid
         catch (HearthException e)
         {
             Console.Error.WriteLine("error: {0}", e.Message);
+            return 1;
+        }
+        if (awake != 0)
+        {
+            Console.Error.WriteLine("error: {0} bodies still awake after {1} steps", awake, Steps);
             return 1;
         }
         Console.WriteLine("done");

@@ -310,7 +310,29 @@ pub struct ShapeDef {
     pub dynamic_friction: f32,
     pub restitution: f32,
     pub user_data: u64,
+    /// Rolling resistance (Box2D v3's `rollingResistance`), in `0..=ROLLING_MAX`: a torque
+    /// against the relative rolling of two touching shapes (their relative angular velocity
+    /// about axes in the contact plane) of up to `rolling_resistance × radius × normal force`,
+    /// where `radius` is the larger rounding radius of the pair (sphere or capsule radius; 0
+    /// for boxes and planes, which do not roll). The pair uses the larger value. A solid ball
+    /// rolling on a level floor decelerates at `5/7 · rolling_resistance · g` while friction
+    /// can keep it rolling (`rolling_resistance` up to 1.4 × friction; above, it slides and
+    /// slows at `friction · g`), and rests on slopes up to `atan(rolling_resistance)` where
+    /// friction holds it too.
+    pub rolling_resistance: f32,
+    /// Torsional (spin) friction, in `0..=TORSIONAL_MAX`: a torque against the relative spin
+    /// of two touching shapes about the contact normal of up to
+    /// `torsional_friction × radius × normal force` (`radius` as above), on top of the
+    /// friction of a contact patch's own extent. The pair uses the larger value. A solid ball
+    /// spinning in place on a level floor slows at `5/2 · torsional_friction · g / radius`
+    /// rad/s².
+    pub torsional_friction: f32,
 }
+
+/// Largest accepted `ShapeDef::rolling_resistance`: a lever as long as the radius.
+pub const ROLLING_MAX: f32 = 1.0;
+/// Largest accepted `ShapeDef::torsional_friction`: a contact patch as wide as the radius.
+pub const TORSIONAL_MAX: f32 = 1.0;
 
 impl Default for ShapeDef {
     fn default() -> Self {
@@ -320,18 +342,34 @@ impl Default for ShapeDef {
             dynamic_friction: 0.6,
             restitution: 0.0,
             user_data: 0,
+            rolling_resistance: ShapeDef::DEFAULT_ROLLING_RESISTANCE,
+            torsional_friction: ShapeDef::DEFAULT_TORSIONAL_FRICTION,
         }
     }
 }
 
 impl ShapeDef {
+    /// Default rolling resistance: a ball stops like one rolling on short grass or carpet.
+    pub const DEFAULT_ROLLING_RESISTANCE: f32 = 0.05;
+    /// Default torsional friction.
+    pub const DEFAULT_TORSIONAL_FRICTION: f32 = 0.05;
+
     /// Range-checks the material (README "Supported ranges").
     pub fn validate(&self) -> crate::error::Result<()> {
-        use crate::error::{check_density, check_non_negative, check_restitution};
+        use crate::error::{check_density, check_non_negative, check_restitution, invalid};
         check_density("density", self.density)?;
         check_non_negative("static_friction", self.static_friction)?;
         check_non_negative("dynamic_friction", self.dynamic_friction)?;
         check_restitution("restitution", self.restitution)?;
+        for (name, x, max) in [
+            ("rolling_resistance", self.rolling_resistance, ROLLING_MAX),
+            ("torsional_friction", self.torsional_friction, TORSIONAL_MAX),
+        ] {
+            check_non_negative(name, x)?;
+            if x > max {
+                return Err(invalid(format!("{name} must be in 0..={max}, got {x}")));
+            }
+        }
         Ok(())
     }
 }
@@ -397,6 +435,17 @@ impl Geometry {
         match *self {
             Geometry::Sphere { radius, .. } | Geometry::Capsule { radius, .. } => radius,
             Geometry::Box { .. } | Geometry::Plane { .. } => 0.0,
+        }
+    }
+
+    /// The shape's smallest dimension (m): a sphere's or capsule's radius, a box's smallest
+    /// half extent; a plane has none (`f32::MAX`). Contacts scale their length tolerances
+    /// (allowed overlap, manifold reuse) down to it, so millimetre bodies rest like metre ones.
+    pub fn feature_size(&self) -> f32 {
+        match *self {
+            Geometry::Sphere { radius, .. } | Geometry::Capsule { radius, .. } => radius,
+            Geometry::Box { half_extents, .. } => half_extents.min_element(),
+            Geometry::Plane { .. } => f32::MAX,
         }
     }
 

@@ -35,7 +35,8 @@ pub struct ContactRef {
 }
 
 impl ContactRef {
-    fn new(source: u32, a: u32, b: u32, ma: f32, mb: f32, count: usize, loaded: bool) -> ContactRef {
+    #[allow(clippy::too_many_arguments)]
+    fn new(source: u32, a: u32, b: u32, ma: f32, mb: f32, count: usize, spins: bool, loaded: bool) -> ContactRef {
         // A static (or sleeping) A goes to B.
         let swapped = a == 0 && b != 0;
         let (a, b, ma, mb) = if swapped { (b, a, mb, ma) } else { (a, b, ma, mb) };
@@ -46,22 +47,33 @@ impl ContactRef {
             swapped,
             writes_a: ma > 0.0,
             writes_b: mb > 0.0,
-            key: u8::from(count > 1) << 2 | u8::from(b != 0) << 1 | u8::from(loaded),
+            key: u8::from(spins) << 3 | u8::from(count > 1) << 2 | u8::from(b != 0) << 1 | u8::from(loaded),
         }
     }
 
-    /// Point-count class and whether side B is dynamic: a batch holds one kind only, so a
-    /// constraint is solved the same way whatever its batch-mates (and the lane width).
+    /// Whether it resists rolling and spin, point-count class and whether side B is dynamic:
+    /// a batch holds one kind only, so a constraint is solved the same way whatever its
+    /// batch-mates (and the lane width).
     #[inline(always)]
     pub fn kind(&self) -> u8 {
         self.key >> 1
     }
 
     /// Like with like: the kinds, then whether the constraint carried load last step (batches
-    /// of idle constraints end their sweep early). Three bits.
+    /// of idle constraints end their sweep early). Four bits.
     #[inline(always)]
     pub fn order_key(&self) -> usize {
         self.key as usize
+    }
+
+    /// Number of distinct `order_key` values.
+    pub const ORDER_KEYS: usize = 16;
+
+    /// The constraint has rolling resistance or torsional friction (rows about the tangents,
+    /// and a twist row even with one point).
+    #[inline(always)]
+    pub fn spins(&self) -> bool {
+        self.key & 8 != 0
     }
 
     /// Index in `World::generated_contacts` of a generated contact.
@@ -123,8 +135,9 @@ pub fn prepare(world: &mut World) {
             continue;
         }
         let loaded = c.impulses[..count].iter().any(|p| p.normal > 0.0);
+        let spins = c.rolling_resistance > 0.0 || c.torsional_friction > 0.0;
         bounces |= c.restitution > 0.0;
-        refs.push(ContactRef::new(ci, a, b, ma, mb, count, loaded));
+        refs.push(ContactRef::new(ci, a, b, ma, mb, count, spins, loaded));
     }
     for (gi, g) in world.generated_contacts.iter().enumerate() {
         let (a, b) = (
@@ -136,7 +149,7 @@ pub fn prepare(world: &mut World) {
             continue;
         }
         bounces |= g.restitution > 0.0;
-        refs.push(ContactRef::new(GENERATED | gi as u32, a, b, ma, mb, 1, false));
+        refs.push(ContactRef::new(GENERATED | gi as u32, a, b, ma, mb, 1, false, false));
     }
     scratch.bounces = bounces;
 }
@@ -148,6 +161,14 @@ pub struct LaneImpulses {
     pub tangent: Vec3,
     pub twist: f32,
     pub sliding: bool,
+}
+
+/// Keeps a lane's rolling-resistance impulse (on side B, world) on its contact.
+#[inline]
+pub fn store_rolling(r: &ContactRef, rolling: Vec3, contacts: &mut Pool<Contact>) {
+    if let Some(ci) = r.contact() {
+        contacts.at_mut(ci).friction.rolling = if r.swapped { -rolling } else { rolling };
+    }
 }
 
 /// Keeps a lane's impulses on its contact (generated contacts keep none).
@@ -163,5 +184,6 @@ pub fn store(r: &ContactRef, out: &LaneImpulses, contacts: &mut Pool<Contact>) {
     }
     contact.friction.tangent = if r.swapped { -out.tangent } else { out.tangent };
     contact.friction.twist = out.twist;
+
     contact.friction.sliding = out.sliding;
 }

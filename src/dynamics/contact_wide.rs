@@ -14,7 +14,8 @@
 //! `warm_start`, a soft `solve` sweep that pushes overlap out and damps, the position update,
 //! then a rigid relax `solve` sweep that removes the push velocity. Each sweep block-solves a
 //! manifold's normal impulses (exactly through K⁻¹, by projected Gauss–Seidel on K where a point
-//! would pull) and then its patch friction (static/dynamic coefficients, twist). After the
+//! would pull), then, in batches of rounded pairs, its rolling resistance, then its patch
+//! friction (static/dynamic coefficients, twist with torsional friction). After the
 //! sub-steps: `restitution`, then `store` writes the impulses back for warm starting.
 
 use crate::collision::contact::{Contact, GeneratedContact};
@@ -83,6 +84,17 @@ pub struct WideFriction<L> {
     tangent_impulse: [L; 2],
     twist_impulse: L,
     sliding: L,
+    /// Rolling resistance and torsional friction as levers (m): the largest rolling and
+    /// extra twist impulse per unit of normal impulse (spin batches only).
+    rolling: L,
+    torsion: L,
+    /// Inverse inertia times each tangent, and the rolling rows' 2×2 effective mass (the
+    /// inverse of `tᵢ·(I_A⁻¹ + I_B⁻¹)·tⱼ`; entries 00, 01, 11).
+    ira: [V<L>; 2],
+    irb: [V<L>; 2],
+    rolling_mass: [L; 3],
+    /// Rolling impulse about each tangent (an angular impulse on B).
+    rolling_impulse: [L; 2],
 }
 
 #[derive(Clone, Copy, Default)]
@@ -96,6 +108,9 @@ pub struct WideContact<L: Lanes> {
     count: usize,
     /// Every lane's body B is the static dummy: B's half of the work is skipped.
     b_static: bool,
+    /// The lanes resist rolling and spin (`ContactRef::spins`; a batch holds one kind): rows
+    /// about the two tangents, and the twist row even for one-point manifolds.
+    spin: bool,
     ma: L,
     mb: L,
     normal: V<L>,
@@ -119,6 +134,13 @@ pub struct WideContact<L: Lanes> {
     soft_ms: L,
     soft_is: L,
     soft_keep: L,
+    /// The smaller shape's size (`Contact::size`; `f32::MAX` for generated contacts), and the
+    /// overlap allowed without push-out: `linear_slop`, or a fiftieth of the size for small
+    /// shapes (`set_softness`).
+    size: L,
+    slop: L,
+    /// Squared relative motion under which a refresh is light (`LIGHT_REFRESH_MOTION`).
+    light_tol2: L,
     has_restitution: bool,
     points: [WidePoint<L>; MAXP],
     k: [[L; MAXP]; MAXP],
@@ -243,7 +265,15 @@ impl Batches {
         }
         self.singles.clear();
         let colors = &mut self.body_colors;
-        for (ri, r) in refs.iter().enumerate() {
+        // Contacts between two awake bodies are coloured first, those with a static or
+        // sleeping body (the static dummy) after them: a body's contacts with the ground then
+        // take later colours, so a sweep ends each body on its support. Solved the other way
+        // round, a light box pressed by a heavy one left every sweep moving into the ground
+        // (the heavy box's push came last) and rocked: a 30× heavier box on a box floor never
+        // came to rest, though it did on a plane, whose contacts happened to come last.
+        let moving = refs.iter().enumerate().filter(|(_, r)| r.b != 0);
+        let grounded = refs.iter().enumerate().filter(|(_, r)| r.b == 0);
+        for (ri, r) in moving.chain(grounded) {
             // The first colour neither written body uses yet.
             let (a, b) = (r.a as usize, r.b as usize);
             let used_a = if r.writes_a { colors[a] } else { 0 };
@@ -275,11 +305,11 @@ impl Batches {
 /// Orders a colour's members by `ContactRef::order_key`, keeping their order within a key (a
 /// counting sort: linear, stable, no allocation once `scratch` has grown).
 fn order(members: &mut [u32], scratch: &mut Vec<u32>, refs: &[ContactRef]) {
-    let mut start = [0usize; 9];
+    let mut start = [0usize; ContactRef::ORDER_KEYS + 1];
     for &i in members.iter() {
         start[refs[i as usize].order_key() + 1] += 1;
     }
-    for k in 1..9 {
+    for k in 1..start.len() {
         start[k] += start[k - 1];
     }
     scratch.clear();
@@ -359,10 +389,10 @@ impl<A> Stage3<A> {
 /// is loaded into lanes; empty lanes stay zero.
 struct Staging<L: Lanes> {
     /// ma, mb, radius_a, radius_b, static and dynamic friction, restitution, twist impulse,
-    /// 1/point count, rigid (all-ones).
-    f: [L::Floats; 10],
-    /// Normal, centres of mass of A and B, friction impulse on B (world).
-    v: [Stage3<L::Floats>; 4],
+    /// 1/point count, rigid (all-ones), rolling and torsion levers, size.
+    f: [L::Floats; 13],
+    /// Normal, centres of mass of A and B, friction and rolling impulses on B (world).
+    v: [Stage3<L::Floats>; 5],
     /// Per point: separation, normal impulse, active (all-ones).
     pf: [[L::Floats; 3]; MAXP],
     /// Per point: the point midway between the surfaces.
@@ -373,8 +403,8 @@ impl<L: Lanes> Staging<L> {
     #[inline(always)]
     fn new() -> Self {
         Staging {
-            f: [L::Floats::default(); 10],
-            v: [Stage3::default(); 4],
+            f: [L::Floats::default(); 13],
+            v: [Stage3::default(); 5],
             pf: [[L::Floats::default(); 3]; MAXP],
             pv: [Stage3::default(); MAXP],
         }
@@ -384,14 +414,20 @@ impl<L: Lanes> Staging<L> {
     #[inline(always)]
     fn contact(&mut self, i: usize, r: &ContactRef, c: &Contact, s: &Sources) {
         let (mut ca, mut cb) = (s.bodies.at(c.body_a).center, s.bodies.at(c.body_b).center);
-        let (mut n, mut radius_a, mut radius_b, mut friction) =
-            (c.manifold.normal, c.radius_a, c.radius_b, c.friction.tangent);
+        let (mut n, mut radius_a, mut radius_b, mut friction, mut rolling) = (
+            c.manifold.normal,
+            c.radius_a,
+            c.radius_b,
+            c.friction.tangent,
+            c.friction.rolling,
+        );
         if r.swapped {
             std::mem::swap(&mut ca, &mut cb);
             std::mem::swap(&mut radius_a, &mut radius_b);
             n = -n;
-            // The stored friction impulse acts on the contact's B, here side A.
+            // The stored friction and rolling impulses act on the contact's B, here side A.
             friction = -friction;
+            rolling = -rolling;
         }
         let count = c.manifold.count;
         self.lane(
@@ -403,7 +439,10 @@ impl<L: Lanes> Staging<L> {
         );
         self.f[7].as_mut()[i] = c.friction.twist;
         self.f[8].as_mut()[i] = 1.0 / count as f32;
-        for (slot, x) in self.v.iter_mut().zip([n, ca, cb, friction]) {
+        self.f[10].as_mut()[i] = c.rolling_resistance;
+        self.f[11].as_mut()[i] = c.torsional_friction;
+        self.f[12].as_mut()[i] = c.size;
+        for (slot, x) in self.v.iter_mut().zip([n, ca, cb, friction, rolling]) {
             slot.set(i, x);
         }
         for (p, (mp, imp)) in c.manifold.points().iter().zip(&c.impulses).enumerate() {
@@ -433,6 +472,7 @@ impl<L: Lanes> Staging<L> {
         self.lane(i, r, s, [0.0, 0.0, g.friction, g.friction], g.restitution);
         self.f[8].as_mut()[i] = 1.0;
         self.f[9].as_mut()[i] = on();
+        self.f[12].as_mut()[i] = f32::MAX;
         for (slot, x) in self.v.iter_mut().zip([n, ca, cb]) {
             slot.set(i, x);
         }
@@ -495,6 +535,8 @@ fn pack<L: Lanes>(w: &mut WideContact<L>, lanes: &[u32], refs: &[ContactRef], so
     let mut src = L::Indices::default();
     src.as_mut().fill(EMPTY);
     (w.a, w.b, w.src, w.count, w.has_restitution) = (L::Indices::default(), L::Indices::default(), src, 1, false);
+    // Batches hold one kind (see `pack_all`), so the first lane speaks for all.
+    w.spin = refs[lanes[0] as usize].spins();
     for (i, &k) in lanes.iter().enumerate() {
         let r = &refs[k as usize];
         w.a.as_mut()[i] = r.a;
@@ -534,7 +576,11 @@ fn point_velocity<L: Lanes>(v: V<L>, w: V<L>, r: V<L>) -> V<L> {
 #[inline(always)]
 fn build<L: Lanes, const N: usize>(w: &mut WideContact<L>, st: &Staging<L>, vel: &[Velocity]) {
     let zero = L::zero();
-    let [ma, mb, radius_a, radius_b, fs, fd, e, twist, inv_count, rigid] = load_all::<L, 10>(&st.f);
+    let [ma, mb, radius_a, radius_b, fs, fd, e, twist, inv_count, rigid, rolling, torsion, size] =
+        load_all::<L, 13>(&st.f);
+    w.size = size;
+    let light_tol = L::splat(LIGHT_REFRESH_MOTION).min(size * L::splat(LIGHT_REFRESH_FRACTION));
+    w.light_tol2 = light_tol * light_tol;
     let [n, ca, cb, friction] = [0, 1, 2, 3].map(|i| st.v[i].load::<L>());
     (
         w.ma,
@@ -590,6 +636,11 @@ fn build<L: Lanes, const N: usize>(w: &mut WideContact<L>, st: &Staging<L>, vel:
     let f = &mut w.friction;
     (f.ca0, f.cb0, f.twist_radius, f.twist_impulse) = (ra - oa, rb - ob, twist_radius, twist);
     f.tangent_impulse = [friction.dot(t1), friction.dot(t2)];
+    if w.spin {
+        let roll = st.v[4].load::<L>();
+        (f.rolling, f.torsion) = (rolling, torsion);
+        f.rolling_impulse = [roll.dot(t1), roll.dot(t2)];
+    }
     f.sliding = vt.length_squared().gt(L::splat(STICK_SPEED * STICK_SPEED));
 }
 
@@ -765,8 +816,11 @@ fn arms<L: Lanes>(
 }
 
 /// Relative motion (m; rad counts as m of arm) since the start of the step below which a
-/// constraint keeps the arms of its last full refresh and updates separations to first order.
+/// constraint keeps the arms of its last full refresh and updates separations to first order
+/// (a tenth of the smaller shape's size for shapes under a centimetre).
 const LIGHT_REFRESH_MOTION: f32 = 1.0e-3;
+/// For small shapes the threshold is at most this fraction of the smaller shape's size.
+const LIGHT_REFRESH_FRACTION: f32 = 0.1;
 
 pub fn refresh(states: &[BodyState], batches: &mut Batches, first: bool) {
     dispatch!(&mut batches.sets, refresh_all(states, first))
@@ -808,7 +862,7 @@ fn light_refresh<L: Lanes, const N: usize, const SB: bool>(states: &[BodyState],
         )
     };
     let d = dpb - dpa;
-    let tol2 = L::splat(LIGHT_REFRESH_MOTION * LIGHT_REFRESH_MOTION);
+    let tol2 = w.light_tol2;
     let light = d
         .length_squared()
         .le(tol2)
@@ -905,8 +959,9 @@ fn refresh_batch<L: Lanes, const N: usize, const SB: bool>(states: &[BodyState],
         }
         f.tangent_mass[k] = L::select(keep, f.tangent_mass[k], safe_inverse(km));
     }
-    // One-point manifolds have no twist lever (the radius is zero).
-    if N > 1 {
+    // One-point manifolds have no twist lever (the radius is zero) unless they have
+    // torsional friction.
+    if N > 1 || w.spin {
         f.ina = V::select(keep, f.ina, ia.mul_vec(n));
         let mut kt = n.dot(f.ina);
         if !SB {
@@ -914,6 +969,28 @@ fn refresh_batch<L: Lanes, const N: usize, const SB: bool>(states: &[BodyState],
             kt = kt + n.dot(f.inb);
         }
         f.twist_mass = L::select(keep, f.twist_mass, safe_inverse(kt));
+    }
+    if w.spin {
+        // Rolling rows: relative angular velocity about the two tangents.
+        let mut k = [L::zero(); 3];
+        for t in 0..2 {
+            let tangent = w.tangents[t];
+            f.ira[t] = V::select(keep, f.ira[t], ia.mul_vec(tangent));
+            if !SB {
+                f.irb[t] = V::select(keep, f.irb[t], ib.mul_vec(tangent));
+            }
+        }
+        for (slot, (i, j)) in k.iter_mut().zip([(0, 0), (0, 1), (1, 1)]) {
+            *slot = w.tangents[i].dot(f.ira[j]);
+            if !SB {
+                *slot = *slot + w.tangents[i].dot(f.irb[j]);
+            }
+        }
+        let inv_det = safe_inverse(k[0] * k[2] - k[1] * k[1]);
+        let mass = [k[2] * inv_det, -(k[1] * inv_det), k[0] * inv_det];
+        for (m, x) in f.rolling_mass.iter_mut().zip(mass) {
+            *m = L::select(keep, *m, x);
+        }
     }
 }
 
@@ -939,8 +1016,13 @@ fn set_softness_all<L: Lanes>(batches: &mut Vec<WideContact<L>>, soft: &SoftSwee
         w.soft_ms = L::select(w.rigid, one, ms);
         w.soft_is = L::select(w.rigid, zero, is);
         w.soft_keep = (one - w.soft_is) / w.soft_ms;
+        w.slop = L::splat(soft.slop).min(w.size * L::splat(SLOP_FRACTION));
     }
 }
+
+/// Largest allowed overlap as a fraction of the smaller shape's size (`Contact::size`): a
+/// 1 cm box keeps a tenth of a millimetre, under the 0.2 mm `linear_slop` of larger ones.
+const SLOP_FRACTION: f32 = 0.02;
 
 /// Relative velocity along `d` with angular Jacobians `ja`, `jb`.
 #[inline(always)]
@@ -993,11 +1075,19 @@ fn warm_start_batch<L: Lanes, const N: usize, const SB: bool>(vel: &mut [Velocit
     let (mut va, mut wa) = gather(vel, &w.a);
     let mut lin = w.normal.scale(sum_impulses::<L, N>(w));
     let f = &w.friction;
-    let (mut ang_a, mut ang_b) = if N > 1 {
+    let (mut ang_a, mut ang_b) = if N > 1 || w.spin {
         (f.ina.scale(f.twist_impulse), f.inb.scale(f.twist_impulse))
     } else {
         (V::zero(), V::zero())
     };
+    if w.spin {
+        for k in 0..2 {
+            ang_a = ang_a.add_scaled(f.ira[k], f.rolling_impulse[k]);
+            if !SB {
+                ang_b = ang_b.add_scaled(f.irb[k], f.rolling_impulse[k]);
+            }
+        }
+    }
     for p in &w.points[..N] {
         ang_a = ang_a.add_scaled(p.ia, p.impulse);
         if !SB {
@@ -1092,7 +1182,7 @@ fn solve_batch<L: Lanes, const N: usize, const SB: bool>(
             w.soft_is,
             w.soft_keep,
             L::splat(-b.max_push),
-            L::splat(b.slop),
+            w.slop,
         ),
         None => (zero, one, zero, one, zero, zero),
     };
@@ -1124,7 +1214,12 @@ fn solve_batch<L: Lanes, const N: usize, const SB: bool>(
         let still = still
             .and(f.tangent_impulse[1].ge(zero))
             .and(f.tangent_impulse[1].le(zero));
-        let still = still.and(f.twist_impulse.ge(zero)).and(f.twist_impulse.le(zero));
+        let mut still = still.and(f.twist_impulse.ge(zero)).and(f.twist_impulse.le(zero));
+        if w.spin {
+            for r in f.rolling_impulse {
+                still = still.and(r.ge(zero)).and(r.le(zero));
+            }
+        }
         if still.bits() == L::ALL {
             return;
         }
@@ -1189,6 +1284,9 @@ fn solve_batch<L: Lanes, const N: usize, const SB: bool>(
         vb = vb.add_scaled(n, w.mb * lin);
         wb = wb + ang_b;
     }
+    if w.spin {
+        rolling_resistance::<L, SB>(&mut w.friction, &w.tangents, total, &mut wa, &mut wb);
+    }
 
     // Patch friction: the static coefficient while the patch sticks, dynamic once it slides.
     let f = &mut w.friction;
@@ -1199,7 +1297,7 @@ fn solve_batch<L: Lanes, const N: usize, const SB: bool>(
         new[k] = old[k] - f.tangent_mass[k] * vt;
     }
     let old_twist = f.twist_impulse;
-    let twist = if N > 1 {
+    let twist = if N > 1 || w.spin {
         old_twist - f.twist_mass * (wb - wa).dot(n)
     } else {
         zero
@@ -1213,11 +1311,16 @@ fn solve_batch<L: Lanes, const N: usize, const SB: bool>(
     let scale = L::select(over, limit / L::select(over, len2, L::splat(1.0)).sqrt(), L::splat(1.0));
     new[0] = new[0] * scale;
     new[1] = new[1] * scale;
-    let twist_limit = limit * f.twist_radius;
+    // The patch's own extent, plus torsional friction where the lanes have it.
+    let twist_limit = if w.spin {
+        limit * f.twist_radius + f.torsion * total
+    } else {
+        limit * f.twist_radius
+    };
     let twist = twist.min(twist_limit).max(-twist_limit);
     let d_twist = twist - old_twist;
     let mut lin = V::zero();
-    let (mut ang_a, mut ang_b) = if N > 1 {
+    let (mut ang_a, mut ang_b) = if N > 1 || w.spin {
         (f.ina.scale(d_twist), f.inb.scale(d_twist))
     } else {
         (V::zero(), V::zero())
@@ -1239,6 +1342,41 @@ fn solve_batch<L: Lanes, const N: usize, const SB: bool>(
         vb = vb.add_scaled(lin, w.mb);
         wb = wb + ang_b;
         scatter(vel, &w.b, vb, wb);
+    }
+}
+
+/// Rolling resistance (Box2D v3's, about both tangents): the relative angular velocity in the
+/// contact plane is driven to zero by an angular impulse no larger than the lever
+/// `f.rolling` times the manifold's normal impulse `total` (the 2D impulse clamped to a disc).
+#[inline(always)]
+fn rolling_resistance<L: Lanes, const SB: bool>(
+    f: &mut WideFriction<L>,
+    tangents: &[V<L>; 2],
+    total: L,
+    wa: &mut V<L>,
+    wb: &mut V<L>,
+) {
+    let (c0, c1) = if SB {
+        (-wa.dot(tangents[0]), -wa.dot(tangents[1]))
+    } else {
+        let dw = *wb - *wa;
+        (dw.dot(tangents[0]), dw.dot(tangents[1]))
+    };
+    let old = f.rolling_impulse;
+    let m = &f.rolling_mass;
+    let mut new = [old[0] - (m[0] * c0 + m[1] * c1), old[1] - (m[1] * c0 + m[2] * c1)];
+    let limit = f.rolling * total;
+    let len2 = new[0] * new[0] + new[1] * new[1];
+    let over = len2.gt(limit * limit);
+    let one = L::one();
+    let scale = L::select(over, limit / L::select(over, len2, one).sqrt(), one);
+    new[0] = new[0] * scale;
+    new[1] = new[1] * scale;
+    let (d0, d1) = (new[0] - old[0], new[1] - old[1]);
+    f.rolling_impulse = new;
+    *wa = *wa - f.ira[0].scale(d0) - f.ira[1].scale(d1);
+    if !SB {
+        *wb = *wb + f.irb[0].scale(d0) + f.irb[1].scale(d1);
     }
 }
 
@@ -1333,5 +1471,33 @@ fn store_all<L: Lanes>(batches: &mut Vec<WideContact<L>>, refs: &[ContactRef], c
             };
             contact_solver::store(&refs[src as usize], &out, contacts);
         }
+        if w.spin {
+            store_rolling(w, &tangents, refs, contacts);
+        }
+    }
+}
+
+/// Writes each lane's rolling impulse back to its contact (batches with rolling resistance).
+#[inline(always)]
+fn store_rolling<L: Lanes>(
+    w: &WideContact<L>,
+    tangents: &[[L::Floats; 3]; 2],
+    refs: &[ContactRef],
+    contacts: &mut Pool<Contact>,
+) {
+    let r = [
+        w.friction.rolling_impulse[0].to_floats(),
+        w.friction.rolling_impulse[1].to_floats(),
+    ];
+    for (lane, &src) in w.src.as_ref().iter().enumerate() {
+        if src == EMPTY {
+            continue;
+        }
+        let mut rolling = Vec3::ZERO;
+        for (t, imp) in tangents.iter().zip(&r) {
+            let at = |x: &L::Floats| x.as_ref()[lane];
+            rolling += Vec3::new(at(&t[0]), at(&t[1]), at(&t[2])) * at(imp);
+        }
+        contact_solver::store_rolling(&refs[src as usize], rolling, contacts);
     }
 }

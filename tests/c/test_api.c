@@ -304,6 +304,34 @@ static void test_shape_errors(void) {
     bad = sd;
     bad.restitution = -0.5f;
     ENSURE_RESULT(hearth_shape_create_sphere(w, body, &bad, &sphere, &s), HEARTH_ERROR_INVALID_ARGUMENT);
+
+    /* Rolling resistance and torsional friction: defaults, and 0..=1, finite. */
+    ENSURE_NEAR(sd.rolling_resistance, 0.05, 1e-7);
+    ENSURE_NEAR(sd.torsional_friction, 0.05, 1e-7);
+    const float bad_coefficients[] = {NAN, INFINITY, -0.01f, 1.01f};
+    HearthCapsule capsule = {{0, 0, 0}, {0, 1, 0}, 0.2f};
+    for (size_t k = 0; k < sizeof bad_coefficients / sizeof bad_coefficients[0]; k++) {
+        char msg[256];
+        bad = sd;
+        bad.rolling_resistance = bad_coefficients[k];
+        ENSURE_RESULT(hearth_shape_create_sphere(w, body, &bad, &sphere, &s), HEARTH_ERROR_INVALID_ARGUMENT);
+        hearth_last_error_message(msg, sizeof msg);
+        ENSURE(strstr(msg, "rolling_resistance") != NULL);
+        bad = sd;
+        bad.torsional_friction = bad_coefficients[k];
+        ENSURE_RESULT(hearth_shape_create_capsule(w, body, &bad, &capsule, &s), HEARTH_ERROR_INVALID_ARGUMENT);
+        hearth_last_error_message(msg, sizeof msg);
+        ENSURE(strstr(msg, "torsional_friction") != NULL);
+    }
+    /* Failures wrote nothing. */
+    ENSURE(s.index == 5u && s.generation == 6u);
+    bad = sd;
+    bad.rolling_resistance = 1.0f;
+    bad.torsional_friction = 0.0f;
+    ENSURE_OK(hearth_shape_create_sphere(w, body, &bad, &sphere, &s));
+    ENSURE_OK(hearth_shape_destroy(w, s));
+    s.index = 5u;
+    s.generation = 6u;
     HearthSphere bad_sphere = {{0, 0, 0}, -0.5f};
     ENSURE_RESULT(hearth_shape_create_sphere(w, body, &sd, &bad_sphere, &s), HEARTH_ERROR_INVALID_ARGUMENT);
     bad_sphere.radius = 0.0f;
@@ -568,6 +596,51 @@ static void test_box_comes_to_rest(void) {
     hearth_world_destroy(w);
 }
 
+/* A ball rolling on a level plane with rolling resistance c (the pair's larger value) slows
+ * at 5/7·c·g and stops after 7v²/(10·c·g); then it sleeps. Spinning in place with torsional
+ * friction t it stops after 2·r·ω/(5·t·g). */
+static void test_rolling_ball_stops(void) {
+    HearthWorld *w = make_world();
+    HearthBodyId ground = make_body(w, HEARTH_BODY_STATIC, 0, 0, 0);
+    add_ground_plane(w, ground); /* default material: 0.05 */
+    const float r = 0.3f, v0 = 2.0f, c = 0.2f, t = 0.3f, spin = 6.0f, g = 9.81f;
+    HearthShapeDef sd = hearth_shape_def_default();
+    sd.rolling_resistance = c;
+    sd.torsional_friction = t;
+    HearthSphere sphere = {{0, 0, 0}, r};
+    HearthShapeId sid;
+    HearthBodyId ball = make_body(w, HEARTH_BODY_DYNAMIC, 0, r, 0);
+    ENSURE_OK(hearth_shape_create_sphere(w, ball, &sd, &sphere, &sid));
+    HearthBodyId top = make_body(w, HEARTH_BODY_DYNAMIC, 5, r, 0);
+    ENSURE_OK(hearth_shape_create_sphere(w, top, &sd, &sphere, &sid));
+    HearthVec3 v = {v0, 0, 0}, omega = {0, 0, -v0 / r}, spin_up = {0, spin, 0};
+    ENSURE_OK(hearth_body_set_linear_velocity(w, ball, v));
+    ENSURE_OK(hearth_body_set_angular_velocity(w, ball, omega));
+    ENSURE_OK(hearth_body_set_angular_velocity(w, top, spin_up));
+    int rolled = -1, spun = -1;
+    for (int i = 1; i <= 600; i++) {
+        ENSURE_OK(hearth_world_step(w, 1.0f / 60.0f));
+        HearthVec3 u;
+        ENSURE_OK(hearth_body_get_linear_velocity(w, ball, &u));
+        if (rolled < 0 && u.x <= 1e-3f) rolled = i;
+        ENSURE_OK(hearth_body_get_angular_velocity(w, top, &u));
+        if (spun < 0 && u.y <= 1e-3f) spun = i;
+    }
+    HearthTransform tf;
+    ENSURE_OK(hearth_body_get_transform(w, ball, &tf));
+    double distance = 7.0 * v0 * v0 / (10.0 * c * g), stop_time = 2.0 * r * spin / (5.0 * t * g);
+    ENSURE_NEAR(tf.position.x, distance, 0.05 * distance);
+    ENSURE(spun > 0);
+    ENSURE_NEAR(spun / 60.0, stop_time, 0.05 * stop_time + 1.0 / 60.0);
+    ENSURE(rolled > 0);
+    bool awake = true;
+    ENSURE_OK(hearth_body_is_awake(w, ball, &awake));
+    ENSURE(!awake);
+    ENSURE_OK(hearth_body_is_awake(w, top, &awake));
+    ENSURE(!awake);
+    hearth_world_destroy(w);
+}
+
 int main(void) {
     test_version_and_names();
     test_last_error_message();
@@ -579,5 +652,6 @@ int main(void) {
     test_bulk_read();
     test_churn();
     test_box_comes_to_rest();
+    test_rolling_ball_stops();
     return ensure_report("test_api");
 }

@@ -246,6 +246,50 @@ static void test_errors_as_exceptions() {
     CHECK(hearth::code_name(hearth::Code::LimitReached) == std::string("HEARTH_ERROR_LIMIT_REACHED"));
 }
 
+// Rolling resistance and torsional friction, the shape def's last fields: defaults, range
+// errors, and a ball that rolls and one that spins to rest on the closed forms
+// (7v²/(10cg) and 2rω/(5tg), within 5 %).
+static void test_rolling_resistance_and_torsional_friction() {
+    hearth::World w = make_world(true);
+    const hearth::ShapeDef defaults = hearth::shape_def();
+    CHECK_NEAR(defaults.rolling_resistance, 0.05, 1e-7);
+    CHECK_NEAR(defaults.torsional_friction, 0.05, 1e-7);
+    hearth::Body probe = w.create_body(hearth::BodyType::Dynamic, hearth::vec3(0, 5, 0));
+    for (float bad : {-0.1f, 1.5f, NaN, INFINITY}) {
+        hearth::ShapeDef def = hearth::shape_def();
+        def.rolling_resistance = bad;
+        CHECK_THROWS(probe.add(hearth::sphere(0.3f), def), hearth::Code::InvalidArgument);
+        def = hearth::shape_def();
+        def.torsional_friction = bad;
+        CHECK_THROWS(probe.add(hearth::sphere(0.3f), def), hearth::Code::InvalidArgument);
+    }
+    probe.destroy();
+
+    add_ground(w);
+    const float r = 0.3f, v = 2.0f, c = 0.2f, t = 0.3f, spin = 6.0f, g = 9.81f;
+    hearth::ShapeDef ball = hearth::shape_def();
+    ball.rolling_resistance = c;
+    ball.torsional_friction = t;
+    hearth::Body rolling = w.create_body(hearth::BodyType::Dynamic, hearth::vec3(0, r, 0));
+    rolling.add(hearth::sphere(r), ball);
+    rolling.set_linear_velocity(hearth::vec3(v, 0, 0));
+    rolling.set_angular_velocity(hearth::vec3(0, 0, -v / r));
+    hearth::Body spinning = w.create_body(hearth::BodyType::Dynamic, hearth::vec3(5, r, 0));
+    spinning.add(hearth::sphere(r), ball);
+    spinning.set_angular_velocity(hearth::vec3(0, spin, 0));
+    int stopped = -1;
+    for (int i = 1; i <= 600; i++) {
+        w.step(DT);
+        if (stopped < 0 && spinning.angular_velocity().y <= 1e-3f) {
+            stopped = i;
+        }
+    }
+    const double distance = 7.0 * v * v / (10.0 * c * g), time = 2.0 * r * spin / (5.0 * t * g);
+    CHECK_NEAR(rolling.transform().position.x, distance, 0.05 * distance);
+    CHECK_NEAR(stopped * DT, time, 0.05 * time + DT);
+    CHECK(!rolling.is_awake() && !spinning.is_awake());
+}
+
 static void test_move_semantics() {
     static_assert(!std::is_copy_constructible<hearth::World>::value, "World is move-only");
     static_assert(!std::is_copy_assignable<hearth::World>::value, "World is move-only");
@@ -784,6 +828,7 @@ static void test_recording_start_failure() {
 static void run_throwing_tests() {
     test_box_rests_on_plane();
     test_errors_as_exceptions();
+    test_rolling_resistance_and_torsional_friction();
     test_move_semantics();
     test_lambda_force_hovers();
     test_lambda_exception_rethrown_by_step();

@@ -188,6 +188,25 @@ pub fn spheres_grid(world: &mut World, n: usize) -> Vec<BodyHandle> {
     out
 }
 
+/// The demo's scene (`examples/demo.rs`): a pyramid with `base` boxes per side on a static
+/// ground box, and eight bodies (spheres of radius 0.4 and boxes of 0.6 m, default material)
+/// dropped from 9–16.5 m onto its four sides, staggered so they land one after another and
+/// miss the top box. Returns the pyramid's boxes (the apex last) and the dropped bodies.
+pub fn demo(world: &mut World, base: usize) -> (Vec<BodyHandle>, Vec<BodyHandle>) {
+    let pyramid = pyramid(world, base);
+    let def = ShapeDef::default();
+    let mut dropped = Vec::new();
+    let sides = [(2.0, 0.0), (-2.0, 0.0), (0.0, 2.0), (0.0, -2.0)];
+    for (i, &(x, z)) in sides.iter().enumerate() {
+        let y = 9.0 + 1.5 * i as f32;
+        let ball_at = Vec3::new(x, y, z);
+        let box_at = Vec3::new(x * 0.6, y + 3.0, z * 0.6 + 0.3);
+        dropped.push(dynamic_sphere(world, ball_at, 0.4, &def));
+        dropped.push(dynamic_box(world, box_at, Vec3::splat(0.3), &def));
+    }
+    (pyramid, dropped)
+}
+
 /// A world with default settings, optionally without sleep.
 pub fn world(sleep: bool) -> World {
     World::new(WorldSettings {

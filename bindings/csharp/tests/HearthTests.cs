@@ -261,6 +261,8 @@ internal static class HearthTests
         ShapeDef s = ShapeDef.Default();
         Equal(s.Density, 1000f, "shape density");
         Near(s.StaticFriction, 0.6f, 1e-6f, "shape friction");
+        Near(s.RollingResistance, 0.05f, 1e-7f, "shape rolling resistance");
+        Near(s.TorsionalFriction, 0.05f, 1e-7f, "shape torsional friction");
         DragGeneratorDef d = DragGeneratorDef.Default();
         Near(d.K1, 0.1f, 1e-7f, "drag k1");
         Near(d.K2, 0.01f, 1e-8f, "drag k2");
@@ -1241,6 +1243,52 @@ internal static class HearthTests
         }
     }
 
+    // Rolling resistance and torsional friction (the shape def's last fields): range errors
+    // name the field; a rolling ball stops after 7v²/(10cg) and a spinning one after
+    // 2rω/(5tg), within 5 %.
+    private static void TestRollingResistanceAndTorsionalFriction()
+    {
+        using (var world = new World())
+        {
+            Body body = world.CreateBody(BodyType.Dynamic, new Vec3(0f, 5f, 0f));
+            foreach (float bad in new[] { -0.1f, 1.5f, float.NaN, float.PositiveInfinity })
+            {
+                ShapeDef def = ShapeDef.Default();
+                def.RollingResistance = bad;
+                HearthException e = Fails(Result.InvalidArgument, () => body.CreateSphere(def, new Sphere(Vec3.Zero, 0.3f)), "rolling resistance " + bad);
+                Ensure(e.Detail.Contains("rolling_resistance"), "the message names rolling_resistance");
+                def = ShapeDef.Default();
+                def.TorsionalFriction = bad;
+                e = Fails(Result.InvalidArgument, () => body.CreateSphere(def, new Sphere(Vec3.Zero, 0.3f)), "torsional friction " + bad);
+                Ensure(e.Detail.Contains("torsional_friction"), "the message names torsional_friction");
+            }
+            body.Destroy();
+
+            Ground(world);
+            const float r = 0.3f, v = 2f, c = 0.2f, t = 0.3f, spin = 6f, g = 9.81f;
+            ShapeDef ball = ShapeDef.Default();
+            ball.RollingResistance = c;
+            ball.TorsionalFriction = t;
+            Body rolling = world.CreateBody(BodyType.Dynamic, new Vec3(0f, r, 0f));
+            rolling.CreateSphere(ball, new Sphere(Vec3.Zero, r));
+            rolling.LinearVelocity = new Vec3(v, 0f, 0f);
+            rolling.AngularVelocity = new Vec3(0f, 0f, -v / r);
+            Body spinning = world.CreateBody(BodyType.Dynamic, new Vec3(5f, r, 0f));
+            spinning.CreateSphere(ball, new Sphere(Vec3.Zero, r));
+            spinning.AngularVelocity = new Vec3(0f, spin, 0f);
+            int stopped = -1;
+            for (int i = 1; i <= 600; i++)
+            {
+                world.Step(Dt);
+                if (stopped < 0 && spinning.AngularVelocity.Y <= 1e-3f) stopped = i;
+            }
+            float distance = 7f * v * v / (10f * c * g), time = 2f * r * spin / (5f * t * g);
+            Near(rolling.Position.X, distance, 0.05f * distance, "rolling distance");
+            Near(stopped * Dt, time, 0.05f * time + Dt, "spin-down time");
+            Ensure(!rolling.IsAwake && !spinning.IsAwake, "both sleep");
+        }
+    }
+
     private static int Main(string[] args)
     {
         layoutPath = args.Length > 0 ? args[0] : null;
@@ -1254,6 +1302,7 @@ internal static class HearthTests
             new KeyValuePair<string, Action>("body setters and forces", TestBodySettersAndForces),
             new KeyValuePair<string, Action>("bulk transforms equal single reads", TestBulkTransformsEqualSingleReads),
             new KeyValuePair<string, Action>("error paths", TestErrorPaths),
+            new KeyValuePair<string, Action>("rolling resistance and torsional friction", TestRollingResistanceAndTorsionalFriction),
             new KeyValuePair<string, Action>("disposal", TestDisposal),
             new KeyValuePair<string, Action>("force generator makes a body hover", TestForceGeneratorMakesABodyHover),
             new KeyValuePair<string, Action>("callback exception is rethrown from Step", TestCallbackExceptionIsRethrownFromStep),

@@ -429,6 +429,8 @@ class HearthShapeDef(_Struct):
         ("restitution", c_float),
         ("user_data", c_uint64),
         ("internal_value", c_uint32),
+        ("rolling_resistance", c_float),
+        ("torsional_friction", c_float),
     ]
 
 

@@ -261,3 +261,37 @@ def test_separate_worlds_step_on_separate_threads():
         t.join()
     simulate(results, "alone")
     assert results[0] == results[1] == results["alone"]  # deterministic, independent worlds
+
+
+def test_rolling_resistance_and_torsional_friction(world):
+    """The shape def's last two fields: defaults, range errors, and a ball that rolls and one
+    that spins to rest on the analytic answers (7v²/10cg and 2rω/5tg)."""
+    defaults = hearth.lib.hearth_shape_def_default()
+    assert defaults.rolling_resistance == pytest.approx(0.05)
+    assert defaults.torsional_friction == pytest.approx(0.05)
+    body = world.create_body("dynamic", position=(0.0, 5.0, 0.0))
+    for bad in (-0.1, 1.5, math.nan, math.inf):
+        with pytest.raises(hearth.InvalidArgument, match="rolling_resistance"):
+            body.add_sphere(radius=0.3, rolling_resistance=bad)
+        with pytest.raises(hearth.InvalidArgument, match="torsional_friction"):
+            body.add_sphere(radius=0.3, torsional_friction=bad)
+    body.destroy()
+
+    ground(world)  # default material: the balls' larger values win
+    r, v, c, t, spin, g = 0.3, 2.0, 0.2, 0.3, 6.0, -world.gravity.y
+    rolling = world.create_body("dynamic", position=(0.0, r, 0.0))
+    rolling.add_sphere(radius=r, rolling_resistance=c, torsional_friction=t)
+    rolling.linear_velocity = (v, 0.0, 0.0)
+    rolling.angular_velocity = (0.0, 0.0, -v / r)
+    spinning = world.create_body("dynamic", position=(5.0, r, 0.0))
+    spinning.add_sphere(radius=r, rolling_resistance=c, torsional_friction=t)
+    spinning.angular_velocity = (0.0, spin, 0.0)
+    stopped = None
+    for step in range(1, 601):
+        world.step(DT)
+        if stopped is None and spinning.angular_velocity.y <= 1e-3:
+            stopped = step * DT
+    distance = 7.0 * v * v / (10.0 * c * g)
+    assert rolling.position.x == pytest.approx(distance, rel=0.05)
+    assert stopped == pytest.approx(2.0 * r * spin / (5.0 * t * g), rel=0.05, abs=DT)
+    assert not rolling.is_awake and not spinning.is_awake

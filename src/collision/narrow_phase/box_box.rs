@@ -26,6 +26,10 @@ const FACE_ABS_TOL: f32 = 0.001;
 /// An edge axis replaces the best face only when better by this slack.
 const EDGE_REL_TOL: f32 = 0.05;
 const EDGE_ABS_TOL: f32 = 0.002;
+/// The absolute slacks above (and `REDUCE_DEPTH_TOL`) shrink to at most this fraction of the
+/// smaller box's smallest half extent, so millimetre boxes choose axes and points like metre
+/// ones (a 1 mm slack on a 1 mm box let any axis win).
+const ABS_TOL_FRACTION: f32 = 0.02;
 /// Edge pairs whose cross product is shorter than this (squared) are parallel: skipped.
 const PARALLEL_EDGE_SQ: f32 = 1.0e-6;
 /// Polygon capacity while clipping (a quad against four planes has at most 8 vertices).
@@ -36,7 +40,8 @@ const REF_ON_B_FLAG: u32 = 1 << 13;
 /// `ANCHOR_MAX_TOL` metres) of an incident vertex or reference corner are named after it.
 const ANCHOR_REL_TOL: f32 = 0.1;
 const ANCHOR_MAX_TOL: f32 = 0.05;
-/// Depth difference (metres) under which reduction treats points as equally deep.
+/// Depth difference (metres) under which reduction treats points as equally deep (at most
+/// `ABS_TOL_FRACTION` of the boxes' smallest half extent).
 const REDUCE_DEPTH_TOL: f32 = 0.001;
 
 #[derive(Clone, Copy, Default)]
@@ -75,6 +80,7 @@ pub(crate) fn box_box(a: &WorldBox, b: &WorldBox, speculative: f32) -> Manifold 
     let ac = rc.map(|c| c.abs() + Vec3::splat(1.0e-6));
     let t = a.apply_inv(b.center);
     let (ha, hb) = (a.half, b.half);
+    let scale = ABS_TOL_FRACTION * ha.min_element().min(hb.min_element());
 
     let (mut sep_a, mut face_a) = (f32::MIN, 0usize);
     for i in 0..3 {
@@ -120,11 +126,11 @@ pub(crate) fn box_box(a: &WorldBox, b: &WorldBox, speculative: f32) -> Manifold 
     }
 
     let mut best = sep_a;
-    let use_b = sep_b > sep_a + FACE_REL_TOL * sep_a.abs() + FACE_ABS_TOL;
+    let use_b = sep_b > sep_a + FACE_REL_TOL * sep_a.abs() + FACE_ABS_TOL.min(scale);
     if use_b {
         best = sep_b;
     }
-    if sep_e > best + EDGE_REL_TOL * best.abs() + EDGE_ABS_TOL {
+    if sep_e > best + EDGE_REL_TOL * best.abs() + EDGE_ABS_TOL.min(2.0 * scale) {
         return edge_contact(a, &rc, t, ha, hb, edge.0, edge.1, speculative);
     }
     if use_b {
@@ -339,7 +345,8 @@ fn face_contact(
         normal: if on_b { -normal } else { normal },
         ..Manifold::EMPTY
     };
-    let (keep, kept) = reduce(&cand[..m_count], k1, k2);
+    let depth_tol = REDUCE_DEPTH_TOL.min(ABS_TOL_FRACTION * h.min_element().min(h_inc.min_element()));
+    let (keep, kept) = reduce(&cand[..m_count], k1, k2, depth_tol);
     for &ci in &keep[..kept] {
         let cp = cand[ci];
         push_point(&mut m, rf.apply(cp.p - (0.5 * cp.sep) * normal_local), cp.sep, cp.id);
@@ -355,7 +362,7 @@ fn cross2(o: Vec3, a: Vec3, b: Vec3, k1: usize, k2: usize) -> f32 {
 /// Picks at most four of the candidates (points on the reference plane, coordinates `k1`,
 /// `k2`): the deepest (to within `REDUCE_DEPTH_TOL`), the farthest from it, the one making the largest triangle, then the
 /// one adding the most area outside that triangle.
-fn reduce(c: &[Candidate], k1: usize, k2: usize) -> ([usize; 4], usize) {
+fn reduce(c: &[Candidate], k1: usize, k2: usize, depth_tol: f32) -> ([usize; 4], usize) {
     let n = c.len();
     if n <= 4 {
         return ([0, 1, 2, 3], n);
@@ -373,7 +380,7 @@ fn reduce(c: &[Candidate], k1: usize, k2: usize) -> ([usize; 4], usize) {
     let (cx, cy) = (cx / n as f32, cy / n as f32);
     let (mut i0, mut best) = (0usize, -1.0f32);
     for (i, ci) in c.iter().enumerate() {
-        if ci.sep <= min_sep + REDUCE_DEPTH_TOL {
+        if ci.sep <= min_sep + depth_tol {
             let (dx, dy) = (ci.p[k1] - cx, ci.p[k2] - cy);
             let d = dx * dx + dy * dy;
             if d > best {

@@ -20,6 +20,15 @@ const MIN_POINT_SPACING: f32 = 0.005;
 /// Face axes beat edge axes unless the edge is better by this relative and absolute slack.
 const EDGE_REL_TOL: f32 = 0.05;
 const EDGE_ABS_TOL: f32 = 0.002;
+/// The absolute lengths above shrink to at most this fraction of the capsule radius (the
+/// smaller radius for two capsules), so a millimetre capsule lying down still gets two points.
+const ABS_TOL_FRACTION: f32 = 0.1;
+
+/// `MIN_POINT_SPACING` for a capsule of radius `r`.
+#[inline]
+fn min_spacing(r: f32) -> f32 {
+    MIN_POINT_SPACING.min(ABS_TOL_FRACTION * r)
+}
 
 /// Capsule A (world segment `pa`–`qa`) against capsule B.
 pub(crate) fn capsule_capsule(pa: Vec3, qa: Vec3, ra: f32, pb: Vec3, qb: Vec3, rb: f32, speculative: f32) -> Manifold {
@@ -66,7 +75,7 @@ pub(crate) fn capsule_capsule(pa: Vec3, qa: Vec3, ra: f32, pb: Vec3, qb: Vec3, r
                 let ua1 = (la - t1) / dt;
                 let u0 = ua0.min(ua1).max(0.0);
                 let u1 = ua0.max(ua1).min(1.0);
-                if (u1 - u0) * lb_sq.sqrt() > MIN_POINT_SPACING {
+                if (u1 - u0) * lb_sq.sqrt() > min_spacing(ra.min(rb)) {
                     let mut m = Manifold {
                         normal: n,
                         ..Manifold::EMPTY
@@ -117,7 +126,8 @@ pub(crate) fn capsule_plane(pa: Vec3, qa: Vec3, r: f32, plane: &WorldPlane, spec
         normal: -n,
         ..Manifold::EMPTY
     };
-    let degenerate = (qa - pa).length_squared() <= MIN_POINT_SPACING * MIN_POINT_SPACING;
+    let spacing = min_spacing(r);
+    let degenerate = (qa - pa).length_squared() <= spacing * spacing;
     for (p, id) in [(pa, 0u32), (qa, 1u32)] {
         let sep = plane.distance(p) - r;
         if sep <= speculative {
@@ -221,7 +231,8 @@ fn capsule_face(bx: &WorldBox, p: Vec3, q: Vec3, r: f32, k: usize, sign: f32, sp
         normal,
         ..Manifold::EMPTY
     };
-    if (t1 - t0) * (t1 - t0) * d.length_squared() < MIN_POINT_SPACING * MIN_POINT_SPACING {
+    let spacing = min_spacing(r);
+    if (t1 - t0) * (t1 - t0) * d.length_squared() < spacing * spacing {
         let (s, sep, id) = if sep0 <= sep1 { (s0, sep0, 0) } else { (s1, sep1, 1) };
         if sep <= speculative {
             push_point(&mut m, bx.apply(s - (r + 0.5 * sep) * f), sep, id);
@@ -320,7 +331,8 @@ pub(crate) fn capsule_box(pa: Vec3, qa: Vec3, r: f32, bx: &WorldBox, speculative
         }
     }
 
-    if edge_sep > face_sep + EDGE_REL_TOL * face_sep.abs() + EDGE_ABS_TOL {
+    let abs_tol = EDGE_ABS_TOL.min(ABS_TOL_FRACTION * r.min(h.min_element()));
+    if edge_sep > face_sep + EDGE_REL_TOL * face_sep.abs() + abs_tol {
         // Box edge along e_k on the side the axis points to.
         let mut base = Vec3::ZERO;
         for j in 0..3 {
