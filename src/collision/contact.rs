@@ -2,6 +2,7 @@
 //! Each keeps its manifold and the impulses of its points between steps (warm starting),
 //! matched by feature id.
 
+use crate::collision::geometry_store::GeometryStore;
 use crate::collision::narrow_phase::{collide, Manifold, MAX_MANIFOLD_POINTS};
 use crate::collision::shape::{Shape, ShapeDef};
 use crate::math::{Quat, Transform, Vec3};
@@ -136,7 +137,7 @@ pub fn mix_materials(a: &ShapeDef, b: &ShapeDef) -> (f32, f32, f32) {
 }
 
 impl Contact {
-    pub fn new(shape_a: u32, shape_b: u32, a: &Shape, b: &Shape, key: u64) -> Contact {
+    pub fn new(store: &GeometryStore, shape_a: u32, shape_b: u32, a: &Shape, b: &Shape, key: u64) -> Contact {
         let (fs, fd, e) = mix_materials(&a.def, &b.def);
         Contact {
             shape_a,
@@ -152,8 +153,8 @@ impl Contact {
             touching: false,
             awake_index: crate::dynamics::body::NONE,
             key,
-            radius_a: a.geometry.rounding_radius(),
-            radius_b: b.geometry.rounding_radius(),
+            radius_a: a.geometry.rounding_radius(store),
+            radius_b: b.geometry.rounding_radius(store),
             cache: ManifoldCache::default(),
         }
     }
@@ -169,14 +170,22 @@ impl Contact {
     /// Recomputes the manifold (or moves the cached one, see `ManifoldCache`) and carries
     /// impulses over to points with the same feature id. Returns true when the contact started
     /// touching in this update.
-    pub fn update(&mut self, a: &Shape, xf_a: &Transform, b: &Shape, xf_b: &Transform, speculative: f32) -> bool {
+    pub fn update(
+        &mut self,
+        store: &GeometryStore,
+        a: &Shape,
+        xf_a: &Transform,
+        b: &Shape,
+        xf_b: &Transform,
+        speculative: f32,
+    ) -> bool {
         if self.cache.reuse(&mut self.manifold, xf_a, xf_b) {
             return false;
         }
         let old = self.manifold;
         let old_impulses = self.impulses;
         let was_touching = self.touching;
-        self.manifold = collide(&a.geometry, xf_a, &b.geometry, xf_b, speculative);
+        self.manifold = collide(store, &a.geometry, xf_a, &b.geometry, xf_b, speculative);
         self.cache.store(&self.manifold, xf_a, xf_b);
         self.touching = self.manifold.count > 0;
         for (point, impulse) in self.manifold.points[..self.manifold.count]

@@ -6,10 +6,14 @@
 //! * `broad_phase` — the tree plus static planes, the move buffer and the pair set.
 //! * `narrow_phase` — pure geometry: contact manifolds for every pair of shape kinds.
 //! * `contact` — a touching (or nearly touching) pair with its persistent manifold.
+//! * `geometry_store` — shared geometry (convex hulls) built once, used by many shapes.
+//! * `hull` — convex hulls: quickhull builder, polyhedral mass properties.
 
 pub mod aabb;
 pub mod broad_phase;
 pub mod contact;
 pub mod dynamic_tree;
+pub mod geometry_store;
+pub mod hull;
 pub mod narrow_phase;
 pub mod shape;

@@ -1,6 +1,7 @@
 //! Shape geometry in the local frame of its body, its bounds and its mass.
 
 use crate::collision::aabb::Aabb;
+use crate::collision::geometry_store::{ConvexHullHandle, GeometryStore};
 use crate::math::{Mat3, Quat, Transform, Vec3};
 
 /// Collision geometry, placed in the local frame of the body that owns it.
@@ -27,6 +28,13 @@ pub enum Geometry {
         normal: Vec3,
         offset: f32,
     },
+    /// A convex hull from the world's `GeometryStore`, placed by `local` (relative to the
+    /// body) and scaled uniformly by `scale` about the hull's origin.
+    Hull {
+        hull: ConvexHullHandle,
+        local: Transform,
+        scale: f32,
+    },
 }
 
 /// Shape kinds in dispatch order; narrowphase pairs are ordered so `kind(a) <= kind(b)`.
@@ -35,7 +43,8 @@ pub enum ShapeKind {
     Sphere = 0,
     Capsule = 1,
     Box = 2,
-    Plane = 3,
+    Hull = 3,
+    Plane = 4,
 }
 
 impl Geometry {
@@ -44,6 +53,7 @@ impl Geometry {
             Geometry::Sphere { .. } => ShapeKind::Sphere,
             Geometry::Capsule { .. } => ShapeKind::Capsule,
             Geometry::Box { .. } => ShapeKind::Box,
+            Geometry::Hull { .. } => ShapeKind::Hull,
             Geometry::Plane { .. } => ShapeKind::Plane,
         }
     }
@@ -54,7 +64,7 @@ impl Geometry {
     }
 
     /// World-space bounds under the body transform `xf`. Planes get an enormous box.
-    pub fn aabb(&self, xf: &Transform) -> Aabb {
+    pub fn aabb(&self, store: &GeometryStore, xf: &Transform) -> Aabb {
         match *self {
             Geometry::Sphere { center, radius } => Aabb::from_center_extents(xf.apply(center), Vec3::splat(radius)),
             Geometry::Box {
@@ -76,11 +86,23 @@ impl Geometry {
                 Aabb::new(wa.min(wb), wa.max(wb)).expanded(radius)
             }
             Geometry::Plane { .. } => Aabb::new(Vec3::splat(-1.0e18), Vec3::splat(1.0e18)),
+            Geometry::Hull { hull, local, scale } => {
+                let h = store.hull_at(hull.index);
+                let m = Mat3::from_quat(xf.q * local.q) * scale;
+                let (mut lo, mut hi) = (Vec3::splat(f32::MAX), Vec3::splat(f32::MIN));
+                for v in h.vertices() {
+                    let w = m * *v;
+                    lo = lo.min(w);
+                    hi = hi.max(w);
+                }
+                let p = xf.apply(local.p);
+                Aabb::new(lo + p, hi + p).expanded(h.radius() * scale)
+            }
         }
     }
 
     /// Volume in m³ (0 for a plane).
-    pub fn volume(&self) -> f32 {
+    pub fn volume(&self, store: &GeometryStore) -> f32 {
         match *self {
             Geometry::Sphere { radius, .. } => 4.0 / 3.0 * std::f32::consts::PI * radius.powi(3),
             Geometry::Box { half_extents: h, .. } => 8.0 * h.x * h.y * h.z,
@@ -89,15 +111,16 @@ impl Geometry {
                 std::f32::consts::PI * radius * radius * (l + 4.0 / 3.0 * radius)
             }
             Geometry::Plane { .. } => 0.0,
+            Geometry::Hull { hull, scale, .. } => store.hull_at(hull.index).volume() * scale * scale * scale,
         }
     }
 
     /// Mass properties at `density` (kg/m³), expressed in the body frame.
-    pub fn mass_properties(&self, density: f32) -> MassProperties {
+    pub fn mass_properties(&self, store: &GeometryStore, density: f32) -> MassProperties {
         use std::f32::consts::PI;
         match *self {
             Geometry::Sphere { center, radius } => {
-                let m = density * self.volume();
+                let m = density * self.volume(store);
                 let i = 0.4 * m * radius * radius;
                 MassProperties {
                     mass: m,
@@ -110,7 +133,7 @@ impl Geometry {
                 rotation,
                 half_extents: h,
             } => {
-                let m = density * self.volume();
+                let m = density * self.volume(store);
                 let s = h * h;
                 let d = Vec3::new(s.y + s.z, s.x + s.z, s.x + s.y) * (m / 3.0);
                 let r = Mat3::from_quat(rotation);
@@ -147,6 +170,16 @@ impl Geometry {
                 }
             }
             Geometry::Plane { .. } => MassProperties::ZERO,
+            Geometry::Hull { hull, local, scale } => {
+                let mp = store.hull_at(hull.index).mass_properties(density);
+                let s3 = scale * scale * scale;
+                let r = Mat3::from_quat(local.q);
+                MassProperties {
+                    mass: mp.mass * s3,
+                    center: local.apply(mp.center * scale),
+                    inertia: r * (mp.inertia * (s3 * scale * scale)) * r.transpose(),
+                }
+            }
         }
     }
 }
@@ -197,6 +230,10 @@ fn outer(a: Vec3, b: Vec3) -> Mat3 {
 mod tests {
     use super::*;
 
+    fn store() -> GeometryStore {
+        GeometryStore::new(1)
+    }
+
     fn close(a: f32, b: f32, tol: f32) -> bool {
         (a - b).abs() <= tol * b.abs().max(1.0)
     }
@@ -208,7 +245,7 @@ mod tests {
             rotation: Quat::IDENTITY,
             half_extents: Vec3::new(1.0, 2.0, 3.0),
         };
-        let mp = g.mass_properties(2.0);
+        let mp = g.mass_properties(&store(), 2.0);
         assert!(close(mp.mass, 96.0, 1e-6));
         // I_x = m/12 (h² + d²) with full sizes 4 and 6
         assert!(close(mp.inertia.x_axis.x, 96.0 / 12.0 * (16.0 + 36.0), 1e-5));
@@ -234,8 +271,9 @@ mod tests {
             rotation: Quat::IDENTITY,
             half_extents: Vec3::new(1.0, 0.5, 0.5),
         };
-        let c = MassProperties::combine([a.mass_properties(3.0), b.mass_properties(3.0)].into_iter());
-        let w = whole.mass_properties(3.0);
+        let c =
+            MassProperties::combine([a.mass_properties(&store(), 3.0), b.mass_properties(&store(), 3.0)].into_iter());
+        let w = whole.mass_properties(&store(), 3.0);
         assert!(close(c.mass, w.mass, 1e-6));
         assert!(c.center.length() < 1e-6);
         for i in 0..3 {
@@ -257,8 +295,8 @@ mod tests {
             rotation: Quat::IDENTITY,
             half_extents: Vec3::new(0.25, 1.0, 0.5),
         };
-        let a = g.mass_properties(1.0).inertia;
-        let b = s.mass_properties(1.0).inertia;
+        let a = g.mass_properties(&store(), 1.0).inertia;
+        let b = s.mass_properties(&store(), 1.0).inertia;
         for i in 0..3 {
             assert!((a.col(i) - b.col(i)).length() < 1e-4);
         }
@@ -276,7 +314,7 @@ mod tests {
             center: Vec3::ZERO,
             radius: 0.5,
         };
-        let (mc, ms) = (c.mass_properties(1.0), s.mass_properties(1.0));
+        let (mc, ms) = (c.mass_properties(&store(), 1.0), s.mass_properties(&store(), 1.0));
         assert!(close(mc.mass, ms.mass, 1e-5));
         assert!(close(mc.inertia.x_axis.x, ms.inertia.x_axis.x, 1e-4));
         assert!(close(mc.inertia.y_axis.y, ms.inertia.y_axis.y, 1e-4));
@@ -293,7 +331,7 @@ mod tests {
             Vec3::new(0.0, 5.0, 0.0),
             Quat::from_rotation_y(std::f32::consts::FRAC_PI_4),
         );
-        let bb = g.aabb(&xf);
+        let bb = g.aabb(&store(), &xf);
         let r = 2.0f32.sqrt();
         assert!((bb.max.x - r).abs() < 1e-5 && (bb.max.y - 6.0).abs() < 1e-5);
     }
@@ -380,21 +418,32 @@ impl Geometry {
                     offset: offset / l,
                 }
             }
+            Geometry::Hull { hull, local, scale } => {
+                check_vec("hull position", local.p)?;
+                let q = check_quat("hull rotation", local.q)?;
+                check_positive("hull scale", scale)?;
+                Geometry::Hull {
+                    hull,
+                    local: Transform::new(local.p, q),
+                    scale,
+                }
+            }
         })
     }
 
     /// Radius by which the shape rounds its core (a point for a sphere, a segment for a
     /// capsule); 0 for boxes and planes. A contact point on a rounded surface does not turn
     /// with the body: rolling moves the contact over the surface.
-    pub fn rounding_radius(&self) -> f32 {
+    pub fn rounding_radius(&self, store: &GeometryStore) -> f32 {
         match *self {
             Geometry::Sphere { radius, .. } | Geometry::Capsule { radius, .. } => radius,
             Geometry::Box { .. } | Geometry::Plane { .. } => 0.0,
+            Geometry::Hull { hull, scale, .. } => store.hull_at(hull.index).radius() * scale,
         }
     }
 
     /// Radius of a sphere about the body's centre of mass that bounds the shape (planes: 0).
-    pub fn extent_from(&self, local_center: Vec3) -> f32 {
+    pub fn extent_from(&self, store: &GeometryStore, local_center: Vec3) -> f32 {
         match *self {
             Geometry::Sphere { center, radius } => (center - local_center).length() + radius,
             Geometry::Box {
@@ -402,6 +451,11 @@ impl Geometry {
             } => (center - local_center).length() + half_extents.length(),
             Geometry::Capsule { a, b, radius } => (a - local_center).length().max((b - local_center).length()) + radius,
             Geometry::Plane { .. } => 0.0,
+            Geometry::Hull { hull, local, scale } => {
+                let h = store.hull_at(hull.index);
+                let c = local.apply(h.mass_properties(1.0).center * scale);
+                (c - local_center).length() + scale * (h.bound_radius() + h.radius())
+            }
         }
     }
 }

@@ -19,6 +19,7 @@ mod geom;
 mod plane;
 mod sphere;
 
+use crate::collision::geometry_store::GeometryStore;
 use crate::collision::shape::Geometry;
 use crate::math::{Transform, Vec3};
 use geom::{WorldBox, WorldPlane};
@@ -70,17 +71,45 @@ impl Manifold {
 ///
 /// Pairs are handled with `kind(a) <= kind(b)`; the other order swaps the arguments and
 /// flips the normal (points, separations and ids are unchanged).
-pub fn collide(a: &Geometry, xf_a: &Transform, b: &Geometry, xf_b: &Transform, speculative: f32) -> Manifold {
+/// Shared geometry (hulls) is read from `store`.
+pub fn collide(
+    store: &GeometryStore,
+    a: &Geometry,
+    xf_a: &Transform,
+    b: &Geometry,
+    xf_b: &Transform,
+    speculative: f32,
+) -> Manifold {
     if a.kind() > b.kind() {
-        let mut m = collide_ordered(b, xf_b, a, xf_a, speculative);
+        let mut m = collide_ordered(store, b, xf_b, a, xf_a, speculative);
         m.normal = -m.normal;
         return m;
     }
-    collide_ordered(a, xf_a, b, xf_b, speculative)
+    collide_ordered(store, a, xf_a, b, xf_b, speculative)
+}
+
+/// `collide` for shapes that use no shared geometry (unit tests of the primitive pairs).
+#[cfg(test)]
+pub(crate) fn collide_primitives(
+    a: &Geometry,
+    xf_a: &Transform,
+    b: &Geometry,
+    xf_b: &Transform,
+    speculative: f32,
+) -> Manifold {
+    collide(&GeometryStore::new(1), a, xf_a, b, xf_b, speculative)
 }
 
 /// `collide` for `kind(a) <= kind(b)`.
-fn collide_ordered(a: &Geometry, xf_a: &Transform, b: &Geometry, xf_b: &Transform, speculative: f32) -> Manifold {
+fn collide_ordered(
+    store: &GeometryStore,
+    a: &Geometry,
+    xf_a: &Transform,
+    b: &Geometry,
+    xf_b: &Transform,
+    speculative: f32,
+) -> Manifold {
+    let _ = store;
     use Geometry as G;
     match (*a, *b) {
         (G::Sphere { center: ca, radius: ra }, G::Sphere { center: cb, radius: rb }) => {
