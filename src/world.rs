@@ -3,9 +3,11 @@
 
 use crate::collision::broad_phase::BroadPhase;
 use crate::collision::contact::Contact;
-use crate::collision::geometry_store::{ConvexHullHandle, GeometryStore};
+use crate::collision::geometry_store::{ConvexHullHandle, GeometryStore, HeightfieldHandle, MeshHandle};
+use crate::collision::heightfield::Heightfield;
 use crate::collision::hull::builder::HullSettings;
 use crate::collision::hull::ConvexHull;
+use crate::collision::mesh::TriangleMesh;
 use crate::collision::shape::{Geometry, MassProperties, Shape, ShapeDef};
 use crate::dynamics::body::{Body, BodyDef, BodyHandle, BodyType, ShapeHandle, NONE};
 use crate::dynamics::contact_wide::Batches;
@@ -407,6 +409,18 @@ impl World {
         if geometry.is_unbounded() && !self.bodies.at(bi).is_static() {
             return Err(invalid("a plane can only be attached to a static body"));
         }
+        if geometry.is_triangles() && self.bodies.at(bi).is_dynamic() {
+            let what = if matches!(geometry, Geometry::Mesh { .. }) {
+                "a triangle mesh"
+            } else {
+                "a heightfield"
+            };
+            return Err(invalid(format!(
+                "{what} can only be attached to a static or kinematic body: it is a surface \
+                 without volume, so it gives a dynamic body no mass or inertia (use convex \
+                 hulls or primitives for moving bodies)"
+            )));
+        }
         self.geometry.check(&geometry)?;
         if let Geometry::Hull { hull, scale, .. } = geometry {
             let (lo, hi) = self.geometry.hull(hull)?.local_bounds();
@@ -564,6 +578,45 @@ impl World {
 
     pub fn convex_hull(&self, h: ConvexHullHandle) -> Result<&ConvexHull> {
         self.geometry.hull(h)
+    }
+
+    /// Builds a triangle mesh (`collision/mesh/`) from vertices and triangles (copied) and
+    /// stores it for shapes to use. Nothing is stored on error.
+    pub fn create_mesh(&mut self, vertices: &[Vec3], triangles: &[[u32; 3]]) -> Result<MeshHandle> {
+        let mesh = TriangleMesh::new(vertices, triangles)?;
+        Ok(self.geometry.add_mesh(mesh))
+    }
+
+    /// Frees a triangle mesh; refused (`InvalidArgument`, naming the number of users) while
+    /// shapes use it.
+    pub fn destroy_mesh(&mut self, h: MeshHandle) -> Result<()> {
+        self.geometry.remove_mesh(h)
+    }
+
+    pub fn mesh(&self, h: MeshHandle) -> Result<&TriangleMesh> {
+        self.geometry.mesh(h)
+    }
+
+    /// Builds a heightfield (`collision/heightfield.rs`) of `rows × columns` row-major
+    /// heights with optional per-cell holes (copied) and stores it for shapes to use.
+    pub fn create_heightfield(
+        &mut self,
+        rows: u32,
+        columns: u32,
+        heights: &[f32],
+        holes: Option<&[bool]>,
+    ) -> Result<HeightfieldHandle> {
+        let hf = Heightfield::new(rows, columns, heights, holes)?;
+        Ok(self.geometry.add_heightfield(hf))
+    }
+
+    /// Frees a heightfield; refused while shapes use it.
+    pub fn destroy_heightfield(&mut self, h: HeightfieldHandle) -> Result<()> {
+        self.geometry.remove_heightfield(h)
+    }
+
+    pub fn heightfield(&self, h: HeightfieldHandle) -> Result<&Heightfield> {
+        self.geometry.heightfield(h)
     }
 
     // ---------------------------------------------------------------- contacts

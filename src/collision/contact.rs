@@ -1,9 +1,18 @@
 //! Persistent contacts: one per overlapping shape pair, kept while their fat boxes overlap.
 //! Each keeps its manifold and the impulses of its points between steps (warm starting),
 //! matched by feature id.
+//!
+//! A convex shape against a triangle mesh or heightfield touches along several normals (a
+//! box across a crease): such a contact (`multi`) holds up to `MAX_MESH_MANIFOLDS`
+//! manifolds, the first in `manifold` like any contact, the others in `more`, each with
+//! its own impulses and friction and solved as its own constraint. Impulses carry over by
+//! feature id (which names the triangle, or the shape's vertex), friction from the old
+//! manifold with the closest normal.
 
 use crate::collision::geometry_store::GeometryStore;
-use crate::collision::narrow_phase::{collide, Manifold, MAX_MANIFOLD_POINTS};
+use crate::collision::narrow_phase::{
+    collide, collide_triangles, Manifold, MeshManifolds, MAX_MANIFOLD_POINTS, MAX_MESH_MANIFOLDS,
+};
 use crate::collision::shape::{Shape, ShapeDef};
 use crate::math::{Quat, Transform, Vec3};
 use glam::{Mat3A, Vec3A};
@@ -47,7 +56,23 @@ pub struct Contact {
     /// The manifold in the bodies' own frames, for reuse while they barely move relative to
     /// each other.
     pub cache: ManifoldCache,
+    /// A convex shape against a mesh or heightfield: several manifolds.
+    pub multi: bool,
+    /// Manifolds after the first (`multi` only; the storage is kept between steps).
+    pub more: Vec<ChildManifold>,
 }
+
+/// A manifold after the first of a `multi` contact, with its impulses and cached frames.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct ChildManifold {
+    pub manifold: Manifold,
+    pub impulses: [PointImpulse; MAX_MANIFOLD_POINTS],
+    pub friction: FrictionImpulse,
+    local: ManifoldLocal,
+}
+
+/// Normal cosine above which a new manifold takes over an old one's friction.
+const FRICTION_MATCH_COS: f32 = 0.9;
 
 /// Body-pair cache (after Jolt's): the relative pose of B in A's frame when the manifold was
 /// last computed, the normal in A's frame and each point's surface points in its body's frame.
@@ -59,9 +84,44 @@ pub struct ManifoldCache {
     /// B's position and rotation in A's frame (the rotation to rounding, not renormalised).
     pub relative_p: Vec3A,
     pub relative_q: Quat,
-    pub normal_a: Vec3A,
-    pub local_a: [Vec3A; MAX_MANIFOLD_POINTS],
-    pub local_b: [Vec3A; MAX_MANIFOLD_POINTS],
+    local: ManifoldLocal,
+}
+
+/// One manifold in the bodies' frames: the normal in A's, each point's surface points in
+/// its body's.
+#[derive(Clone, Copy, Debug, Default)]
+struct ManifoldLocal {
+    normal_a: Vec3A,
+    local_a: [Vec3A; MAX_MANIFOLD_POINTS],
+    local_b: [Vec3A; MAX_MANIFOLD_POINTS],
+}
+
+impl ManifoldLocal {
+    #[inline]
+    fn store(&mut self, m: &Manifold, fa: &Frame, fb: &Frame) {
+        let (ta, tb) = (fa.r.transpose(), fb.r.transpose());
+        let n = Vec3A::from(m.normal);
+        self.normal_a = ta * n;
+        for (i, p) in m.points().iter().enumerate() {
+            let (point, half) = (Vec3A::from(p.point), 0.5 * p.separation * n);
+            self.local_a[i] = ta * (point - half - fa.p);
+            self.local_b[i] = tb * (point + half - fb.p);
+        }
+    }
+
+    #[inline]
+    fn apply(&self, m: &mut Manifold, fa: &Frame, fb: &Frame) {
+        let n = fa.r * self.normal_a;
+        m.normal = n.into();
+        for (p, (la, lb)) in m.points[..m.count]
+            .iter_mut()
+            .zip(self.local_a.iter().zip(&self.local_b))
+        {
+            let (pa, pb) = (fa.r * *la + fa.p, fb.r * *lb + fb.p);
+            p.point = (0.5 * (pa + pb)).into();
+            p.separation = (pb - pa).dot(n);
+        }
+    }
 }
 
 /// Largest relative translation (m) and rotation (cos of half the angle) for reuse.
@@ -85,47 +145,31 @@ impl Frame {
 }
 
 impl ManifoldCache {
-    fn store(&mut self, m: &Manifold, xf_a: &Transform, xf_b: &Transform) {
+    /// Records the relative pose and the first manifold; returns the frames for the others.
+    fn store(&mut self, m: &Manifold, xf_a: &Transform, xf_b: &Transform) -> (Frame, Frame) {
         let (fa, fb) = (Frame::new(xf_a), Frame::new(xf_b));
-        let (ta, tb) = (fa.r.transpose(), fb.r.transpose());
         self.valid = true;
-        self.relative_p = ta * (fb.p - fa.p);
+        self.relative_p = fa.r.transpose() * (fb.p - fa.p);
         self.relative_q = xf_a.q.conjugate() * xf_b.q;
-        let n = Vec3A::from(m.normal);
-        self.normal_a = ta * n;
-        for (i, p) in m.points().iter().enumerate() {
-            let (point, half) = (Vec3A::from(p.point), 0.5 * p.separation * n);
-            self.local_a[i] = ta * (point - half - fa.p);
-            self.local_b[i] = tb * (point + half - fb.p);
-        }
+        self.local.store(m, &fa, &fb);
+        (fa, fb)
     }
 
-    /// Moves the cached manifold `m` to the current poses if they are close enough to the
-    /// cached ones; returns whether it did.
+    /// The bodies' frames if their relative pose is close enough to the cached one for the
+    /// cached manifolds to be reused.
     #[inline]
-    fn reuse(&self, m: &mut Manifold, xf_a: &Transform, xf_b: &Transform) -> bool {
+    fn reusable(&self, xf_a: &Transform, xf_b: &Transform) -> Option<(Frame, Frame)> {
         if !self.valid {
-            return false;
+            return None;
         }
         let fa = Frame::new(xf_a);
         let relative_p = fa.r.transpose() * (Vec3A::from(xf_b.p) - fa.p);
         if (relative_p - self.relative_p).length_squared() > CACHE_MAX_TRANSLATION * CACHE_MAX_TRANSLATION
             || (xf_a.q.conjugate() * xf_b.q).dot(self.relative_q).abs() < CACHE_MIN_COS_HALF_ANGLE
         {
-            return false;
+            return None;
         }
-        let fb = Frame::new(xf_b);
-        let n = fa.r * self.normal_a;
-        m.normal = n.into();
-        for (p, (la, lb)) in m.points[..m.count]
-            .iter_mut()
-            .zip(self.local_a.iter().zip(&self.local_b))
-        {
-            let (pa, pb) = (fa.r * *la + fa.p, fb.r * *lb + fb.p);
-            p.point = (0.5 * (pa + pb)).into();
-            p.separation = (pb - pa).dot(n);
-        }
-        true
+        Some((fa, Frame::new(xf_b)))
     }
 }
 
@@ -156,6 +200,8 @@ impl Contact {
             radius_a: a.geometry.rounding_radius(store),
             radius_b: b.geometry.rounding_radius(store),
             cache: ManifoldCache::default(),
+            multi: a.geometry.is_triangles() || b.geometry.is_triangles(),
+            more: Vec::new(),
         }
     }
 
@@ -165,6 +211,38 @@ impl Contact {
         self.cache.valid = false;
         self.touching = false;
         self.friction = FrictionImpulse::default();
+        self.more.clear();
+    }
+
+    /// Manifolds (1, or more for a `multi` contact; some may be empty).
+    #[inline]
+    pub fn manifold_count(&self) -> usize {
+        1 + self.more.len()
+    }
+
+    /// Manifold `k`, its points' impulses and its friction.
+    #[inline]
+    pub fn child(&self, k: usize) -> (&Manifold, &[PointImpulse; MAX_MANIFOLD_POINTS], &FrictionImpulse) {
+        if k == 0 {
+            (&self.manifold, &self.impulses, &self.friction)
+        } else {
+            let c = &self.more[k - 1];
+            (&c.manifold, &c.impulses, &c.friction)
+        }
+    }
+
+    /// Manifold `k`'s point count and its impulses, to store the solver's results.
+    #[inline]
+    pub fn child_impulses_mut(
+        &mut self,
+        k: usize,
+    ) -> (usize, &mut [PointImpulse; MAX_MANIFOLD_POINTS], &mut FrictionImpulse) {
+        if k == 0 {
+            (self.manifold.count, &mut self.impulses, &mut self.friction)
+        } else {
+            let c = &mut self.more[k - 1];
+            (c.manifold.count, &mut c.impulses, &mut c.friction)
+        }
     }
 
     /// Recomputes the manifold (or moves the cached one, see `ManifoldCache`) and carries
@@ -179,8 +257,15 @@ impl Contact {
         xf_b: &Transform,
         speculative: f32,
     ) -> bool {
-        if self.cache.reuse(&mut self.manifold, xf_a, xf_b) {
+        if let Some((fa, fb)) = self.cache.reusable(xf_a, xf_b) {
+            self.cache.local.apply(&mut self.manifold, &fa, &fb);
+            for c in self.more.iter_mut() {
+                c.local.apply(&mut c.manifold, &fa, &fb);
+            }
             return false;
+        }
+        if self.multi {
+            return self.update_multi(store, a, xf_a, b, xf_b, speculative);
         }
         let old = self.manifold;
         let old_impulses = self.impulses;
@@ -203,6 +288,103 @@ impl Contact {
         }
         self.touching && !was_touching
     }
+
+    /// `update` for a shape against a mesh or heightfield: every manifold of the pair.
+    fn update_multi(
+        &mut self,
+        store: &GeometryStore,
+        a: &Shape,
+        xf_a: &Transform,
+        b: &Shape,
+        xf_b: &Transform,
+        speculative: f32,
+    ) -> bool {
+        // The old manifolds, for warm starting.
+        let mut old = [ChildManifold::default(); MAX_MESH_MANIFOLDS];
+        let old_count = self.manifold_count().min(MAX_MESH_MANIFOLDS);
+        for (k, o) in old[..old_count].iter_mut().enumerate() {
+            let (m, i, f) = self.child(k);
+            (o.manifold, o.impulses, o.friction) = (*m, *i, *f);
+        }
+        let was_touching = self.touching;
+        let mut out = MeshManifolds::EMPTY;
+        // The pair is ordered like `collide`: the convex shape first.
+        let flip = a.geometry.is_triangles();
+        if flip {
+            collide_triangles(store, &b.geometry, xf_b, &a.geometry, xf_a, speculative, &mut out);
+            for m in out.manifolds[..out.count].iter_mut() {
+                m.normal = -m.normal;
+            }
+        } else {
+            collide_triangles(store, &a.geometry, xf_a, &b.geometry, xf_b, speculative, &mut out);
+        }
+        let count = out.count.max(1);
+        self.more.truncate(count - 1);
+        while self.more.len() < count - 1 {
+            self.more.push(ChildManifold::default());
+        }
+        self.touching = out.count > 0;
+        for k in 0..count {
+            let m = if k < out.count {
+                out.manifolds[k]
+            } else {
+                Manifold::EMPTY
+            };
+            let (impulses, friction) = carry_over(&m, &old[..old_count]);
+            if k == 0 {
+                (self.manifold, self.impulses, self.friction) = (m, impulses, friction);
+            } else {
+                let c = &mut self.more[k - 1];
+                (c.manifold, c.impulses, c.friction) = (m, impulses, friction);
+            }
+        }
+        let (fa, fb) = self.cache.store(&self.manifold, xf_a, xf_b);
+        for c in self.more.iter_mut() {
+            c.local.store(&c.manifold, &fa, &fb);
+        }
+        self.touching && !was_touching
+    }
+}
+
+/// Impulses for a new manifold `m` from the old ones: each point's from the old point with
+/// its id (in the old manifold with the closest normal first), friction from the closest
+/// old manifold if its normal is within `FRICTION_MATCH_COS`.
+fn carry_over(m: &Manifold, old: &[ChildManifold]) -> ([PointImpulse; MAX_MANIFOLD_POINTS], FrictionImpulse) {
+    let mut impulses = [PointImpulse::default(); MAX_MANIFOLD_POINTS];
+    let mut friction = FrictionImpulse::default();
+    if m.count == 0 {
+        return (impulses, friction);
+    }
+    let (mut best, mut best_cos) = (usize::MAX, FRICTION_MATCH_COS);
+    for (k, o) in old.iter().enumerate() {
+        let c = o.manifold.normal.dot(m.normal);
+        if o.manifold.count > 0 && c >= best_cos {
+            (best, best_cos) = (k, c);
+        }
+    }
+    if best != usize::MAX {
+        friction = old[best].friction;
+    }
+    for (p, imp) in m.points().iter().zip(impulses.iter_mut()) {
+        let find = |o: &ChildManifold| {
+            o.manifold
+                .points()
+                .iter()
+                .zip(&o.impulses)
+                .find(|(q, _)| q.id == p.id)
+                .map(|(_, i)| *i)
+        };
+        *imp = (best != usize::MAX)
+            .then(|| find(&old[best]))
+            .flatten()
+            .or_else(|| {
+                old.iter()
+                    .filter(|o| o.manifold.normal.dot(m.normal) >= FRICTION_MATCH_COS)
+                    .find_map(find)
+            })
+            .unwrap_or_default();
+    }
+    (impulses, friction)
 }
 
 /// A contact written by a contact generator (rod, cable, user callback) for one step: body

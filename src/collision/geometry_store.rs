@@ -16,7 +16,11 @@
 //!   `Geometry::rounding_radius` and `Geometry::extent_from` take `&GeometryStore`.
 //! * **Determinism.** Slots are handed out in call order, like every pool.
 //!
-//! ## Adding a kind (triangle meshes, heightfields)
+//! Triangle meshes (`collision/mesh/`) and heightfields (`collision/heightfield.rs`) are
+//! stored the same way, with `Geometry::Mesh` / `Geometry::Heightfield` placing them with a
+//! per-axis scale.
+//!
+//! ## Adding a kind
 //!
 //! 1. Put the data type in its own module under `collision/` (as `collision/hull/`), built
 //!    and validated by a constructor that returns `Result`.
@@ -31,13 +35,19 @@
 //! 4. World operations (`create_*`/`destroy_*` in `world.rs`), C exports in a new
 //!    `capi/` file, and the recording (`src/record`) when it learns the kind.
 
+use crate::collision::heightfield::Heightfield;
 use crate::collision::hull::ConvexHull;
+use crate::collision::mesh::TriangleMesh;
 use crate::collision::shape::Geometry;
 use crate::error::{invalid, Error, Result};
 use crate::pool::{Handle, Pool};
 
 /// Handle of a convex hull in a world.
 pub type ConvexHullHandle = Handle;
+/// Handle of a triangle mesh in a world.
+pub type MeshHandle = Handle;
+/// Handle of a heightfield in a world.
+pub type HeightfieldHandle = Handle;
 
 /// A stored object and the number of shapes using it.
 pub struct Stored<T> {
@@ -62,12 +72,82 @@ impl<T> Stored<T> {
 /// The world's shared geometry (see the module doc).
 pub struct GeometryStore {
     hulls: Pool<Stored<ConvexHull>>,
+    meshes: Pool<Stored<TriangleMesh>>,
+    heightfields: Pool<Stored<Heightfield>>,
+}
+
+/// The checked getters, users count and refusing removal of one kind.
+macro_rules! stored_kind {
+    ($add:ident, $remove:ident, $get:ident, $users:ident, $count:ident, $at:ident, $field:ident, $ty:ty, $what:literal) => {
+        pub fn $add(&mut self, value: $ty) -> Handle {
+            self.$field.insert(Stored { value, users: 0 })
+        }
+
+        /// Frees the object; refused while shapes use it.
+        pub fn $remove(&mut self, h: Handle) -> Result<()> {
+            self.$field
+                .get(h)
+                .ok_or(Error::InvalidId($what))?
+                .release_check($what)?;
+            self.$field.remove(h);
+            Ok(())
+        }
+
+        pub fn $get(&self, h: Handle) -> Result<&$ty> {
+            self.$field
+                .get(h)
+                .map(|s| &s.value)
+                .ok_or(Error::InvalidId($what))
+        }
+
+        /// Number of shapes using the object.
+        pub fn $users(&self, h: Handle) -> Result<u32> {
+            self.$field.get(h).map(|s| s.users).ok_or(Error::InvalidId($what))
+        }
+
+        pub fn $count(&self) -> usize {
+            self.$field.len()
+        }
+
+        /// The object by slot, for the hot path: the slot is live while a shape refers to it.
+        #[inline]
+        pub fn $at(&self, slot: u32) -> &$ty {
+            &self.$field.at(slot).value
+        }
+    };
 }
 
 impl GeometryStore {
     pub fn new(tag: u32) -> GeometryStore {
-        GeometryStore { hulls: Pool::new(tag) }
+        GeometryStore {
+            hulls: Pool::new(tag),
+            meshes: Pool::new(tag),
+            heightfields: Pool::new(tag),
+        }
     }
+
+    stored_kind!(
+        add_mesh,
+        remove_mesh,
+        mesh,
+        mesh_users,
+        mesh_count,
+        mesh_at,
+        meshes,
+        TriangleMesh,
+        "triangle mesh"
+    );
+    stored_kind!(
+        add_heightfield,
+        remove_heightfield,
+        heightfield,
+        heightfield_users,
+        heightfield_count,
+        heightfield_at,
+        heightfields,
+        Heightfield,
+        "heightfield"
+    );
 
     pub fn add_hull(&mut self, hull: ConvexHull) -> ConvexHullHandle {
         self.hulls.insert(Stored { value: hull, users: 0 })
@@ -112,22 +192,33 @@ impl GeometryStore {
     pub fn check(&self, g: &Geometry) -> Result<()> {
         match g {
             Geometry::Hull { hull, .. } => self.hull(*hull).map(|_| ()),
+            Geometry::Mesh { mesh, .. } => self.mesh(*mesh).map(|_| ()),
+            Geometry::Heightfield { heightfield, .. } => self.heightfield(*heightfield).map(|_| ()),
             _ => Ok(()),
+        }
+    }
+
+    /// The user count of the geometry's shared object, if it has one.
+    fn users_mut(&mut self, g: &Geometry) -> Option<&mut u32> {
+        match g {
+            Geometry::Hull { hull, .. } => Some(&mut self.hulls.at_mut(hull.index).users),
+            Geometry::Mesh { mesh, .. } => Some(&mut self.meshes.at_mut(mesh.index).users),
+            Geometry::Heightfield { heightfield, .. } => Some(&mut self.heightfields.at_mut(heightfield.index).users),
+            _ => None,
         }
     }
 
     /// Counts a new user of the geometry's shared object (after `check`).
     pub fn retain(&mut self, g: &Geometry) {
-        if let Geometry::Hull { hull, .. } = g {
-            self.hulls.at_mut(hull.index).users += 1;
+        if let Some(u) = self.users_mut(g) {
+            *u += 1;
         }
     }
 
     /// Forgets a user of the geometry's shared object.
     pub fn release(&mut self, g: &Geometry) {
-        if let Geometry::Hull { hull, .. } = g {
-            let s = self.hulls.at_mut(hull.index);
-            s.users = s.users.saturating_sub(1);
+        if let Some(u) = self.users_mut(g) {
+            *u = u.saturating_sub(1);
         }
     }
 }

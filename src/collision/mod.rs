@@ -8,12 +8,16 @@
 //! * `contact` — a touching (or nearly touching) pair with its persistent manifold.
 //! * `geometry_store` — shared geometry (convex hulls) built once, used by many shapes.
 //! * `hull` — convex hulls: quickhull builder, polyhedral mass properties.
+//! * `mesh` — triangle meshes: BVH, active edges.
+//! * `heightfield` — terrain grids with holes and a min/max pyramid.
 
 pub mod aabb;
 pub mod broad_phase;
 pub mod contact;
 pub mod dynamic_tree;
 pub mod geometry_store;
+pub mod heightfield;
 pub mod hull;
+pub mod mesh;
 pub mod narrow_phase;
 pub mod shape;

@@ -1,7 +1,7 @@
 //! Shape geometry in the local frame of its body, its bounds and its mass.
 
 use crate::collision::aabb::Aabb;
-use crate::collision::geometry_store::{ConvexHullHandle, GeometryStore};
+use crate::collision::geometry_store::{ConvexHullHandle, GeometryStore, HeightfieldHandle, MeshHandle};
 use crate::math::{Mat3, Quat, Transform, Vec3};
 
 /// Collision geometry, placed in the local frame of the body that owns it.
@@ -35,6 +35,20 @@ pub enum Geometry {
         local: Transform,
         scale: f32,
     },
+    /// A triangle mesh from the world's `GeometryStore` (static and kinematic bodies only),
+    /// scaled per axis by `scale` (each > 0) in its own frame, then placed by `local`.
+    Mesh {
+        mesh: MeshHandle,
+        local: Transform,
+        scale: Vec3,
+    },
+    /// A heightfield from the world's `GeometryStore` (static and kinematic bodies only):
+    /// `scale.x` and `scale.z` are the sample spacing, `scale.y` multiplies the heights.
+    Heightfield {
+        heightfield: HeightfieldHandle,
+        local: Transform,
+        scale: Vec3,
+    },
 }
 
 /// Shape kinds in dispatch order; narrowphase pairs are ordered so `kind(a) <= kind(b)`.
@@ -44,7 +58,9 @@ pub enum ShapeKind {
     Capsule = 1,
     Box = 2,
     Hull = 3,
-    Plane = 4,
+    Mesh = 4,
+    Heightfield = 5,
+    Plane = 6,
 }
 
 impl Geometry {
@@ -54,7 +70,28 @@ impl Geometry {
             Geometry::Capsule { .. } => ShapeKind::Capsule,
             Geometry::Box { .. } => ShapeKind::Box,
             Geometry::Hull { .. } => ShapeKind::Hull,
+            Geometry::Mesh { .. } => ShapeKind::Mesh,
+            Geometry::Heightfield { .. } => ShapeKind::Heightfield,
             Geometry::Plane { .. } => ShapeKind::Plane,
+        }
+    }
+
+    /// Triangle meshes and heightfields: static level geometry made of triangles, touching
+    /// a convex shape along several manifolds.
+    pub fn is_triangles(&self) -> bool {
+        matches!(self, Geometry::Mesh { .. } | Geometry::Heightfield { .. })
+    }
+
+    /// Bounds of a mesh or heightfield in its own unscaled frame, with its placement.
+    fn triangles_frame(&self, store: &GeometryStore) -> Option<(Aabb, Transform, Vec3)> {
+        match *self {
+            Geometry::Mesh { mesh, local, scale } => Some((store.mesh_at(mesh.index).bounds(), local, scale)),
+            Geometry::Heightfield {
+                heightfield,
+                local,
+                scale,
+            } => Some((store.heightfield_at(heightfield.index).bounds(), local, scale)),
+            _ => None,
         }
     }
 
@@ -98,6 +135,13 @@ impl Geometry {
                 let p = xf.apply(local.p);
                 Aabb::new(lo + p, hi + p).expanded(h.radius() * scale)
             }
+            Geometry::Mesh { .. } | Geometry::Heightfield { .. } => {
+                let (b, local, scale) = self.triangles_frame(store).expect("a mesh or heightfield");
+                let m = Mat3::from_quat(xf.q * local.q);
+                let (c, e) = (b.center() * scale, b.extents() * scale);
+                let e = Vec3::new(m.row(0).abs().dot(e), m.row(1).abs().dot(e), m.row(2).abs().dot(e));
+                Aabb::from_center_extents(xf.apply(local.apply(c)), e)
+            }
         }
     }
 
@@ -110,7 +154,7 @@ impl Geometry {
                 let l = (b - a).length();
                 std::f32::consts::PI * radius * radius * (l + 4.0 / 3.0 * radius)
             }
-            Geometry::Plane { .. } => 0.0,
+            Geometry::Plane { .. } | Geometry::Mesh { .. } | Geometry::Heightfield { .. } => 0.0,
             Geometry::Hull { hull, scale, .. } => store.hull_at(hull.index).volume() * scale * scale * scale,
         }
     }
@@ -169,7 +213,7 @@ impl Geometry {
                     inertia: rot * local * rot.transpose(),
                 }
             }
-            Geometry::Plane { .. } => MassProperties::ZERO,
+            Geometry::Plane { .. } | Geometry::Mesh { .. } | Geometry::Heightfield { .. } => MassProperties::ZERO,
             Geometry::Hull { hull, local, scale } => {
                 let mp = store.hull_at(hull.index).mass_properties(density);
                 let s3 = scale * scale * scale;
@@ -428,6 +472,22 @@ impl Geometry {
                     scale,
                 }
             }
+            Geometry::Mesh { mesh, local, scale } => {
+                let (local, scale) = triangles_placement("mesh", local, scale)?;
+                Geometry::Mesh { mesh, local, scale }
+            }
+            Geometry::Heightfield {
+                heightfield,
+                local,
+                scale,
+            } => {
+                let (local, scale) = triangles_placement("heightfield", local, scale)?;
+                Geometry::Heightfield {
+                    heightfield,
+                    local,
+                    scale,
+                }
+            }
         })
     }
 
@@ -437,7 +497,7 @@ impl Geometry {
     pub fn rounding_radius(&self, store: &GeometryStore) -> f32 {
         match *self {
             Geometry::Sphere { radius, .. } | Geometry::Capsule { radius, .. } => radius,
-            Geometry::Box { .. } | Geometry::Plane { .. } => 0.0,
+            Geometry::Box { .. } | Geometry::Plane { .. } | Geometry::Mesh { .. } | Geometry::Heightfield { .. } => 0.0,
             Geometry::Hull { hull, scale, .. } => store.hull_at(hull.index).radius() * scale,
         }
     }
@@ -456,8 +516,30 @@ impl Geometry {
                 let c = local.apply(h.mass_properties(1.0).center * scale);
                 (c - local_center).length() + scale * (h.bound_radius() + h.radius())
             }
+            Geometry::Mesh { .. } | Geometry::Heightfield { .. } => {
+                let (b, local, scale) = self.triangles_frame(store).expect("a mesh or heightfield");
+                let c = local.apply(b.center() * scale);
+                (c - local_center).length() + (b.extents() * scale).length()
+            }
         }
     }
+}
+
+/// Smallest per-axis scale of a mesh or heightfield shape.
+pub const MIN_TRIANGLES_SCALE: f32 = 1.0e-4;
+
+/// Checks the placement of a mesh or heightfield shape; returns it with a unit rotation.
+fn triangles_placement(what: &str, local: Transform, scale: Vec3) -> crate::error::Result<(Transform, Vec3)> {
+    use crate::error::{check_quat, check_vec, invalid};
+    check_vec(&format!("{what} position"), local.p)?;
+    let q = check_quat(&format!("{what} rotation"), local.q)?;
+    check_vec(&format!("{what} scale"), scale)?;
+    if scale.min_element() < MIN_TRIANGLES_SCALE {
+        return Err(invalid(format!(
+            "{what} scale must be >= {MIN_TRIANGLES_SCALE} on every axis, got {scale}"
+        )));
+    }
+    Ok((Transform::new(local.p, q), scale))
 }
 
 /// A shape attached to a body.

@@ -1,5 +1,7 @@
 //! Contacts to solve, per step. `prepare` lists every touching manifold (and every contact a
 //! generator wrote) as a small `ContactRef`: its solver bodies, which way round, and its kind.
+//! A contact against a mesh or heightfield may have several manifolds (`Contact::child`);
+//! each is its own ref, naming the manifold by `child`, and so its own constraint.
 //! The batched solver (`contact_wide.rs`) colours the refs and builds the constraints in lanes
 //! straight from the contacts as it packs them, so no array of scalar constraints is written
 //! and read back; after the solve, `store` keeps each lane's impulses on its contact for warm
@@ -27,15 +29,19 @@ pub struct ContactRef {
     pub b: u32,
     /// A and B are the contact's B and A.
     pub swapped: bool,
-    /// Side A (resp. B) has finite mass: the colouring reserves its body.
-    pub writes_a: bool,
-    pub writes_b: bool,
-    /// Batch kind and load, see `ContactRef::order_key`.
+    /// Batch kind and load (bits 0..2, see `ContactRef::order_key`), and whether side A
+    /// (bit 3) and B (bit 4) have finite mass (`writes_a`, `writes_b`).
     key: u8,
+    /// Which of the contact's manifolds (`Contact::child`).
+    pub child: u16,
 }
 
+const WRITES_A: u8 = 1 << 3;
+const WRITES_B: u8 = 1 << 4;
+
 impl ContactRef {
-    fn new(source: u32, a: u32, b: u32, ma: f32, mb: f32, count: usize, loaded: bool) -> ContactRef {
+    #[allow(clippy::too_many_arguments)]
+    fn new(source: u32, child: u16, a: u32, b: u32, ma: f32, mb: f32, count: usize, loaded: bool) -> ContactRef {
         // A static (or sleeping) A goes to B.
         let swapped = a == 0 && b != 0;
         let (a, b, ma, mb) = if swapped { (b, a, mb, ma) } else { (a, b, ma, mb) };
@@ -44,24 +50,39 @@ impl ContactRef {
             a,
             b,
             swapped,
-            writes_a: ma > 0.0,
-            writes_b: mb > 0.0,
-            key: u8::from(count > 1) << 2 | u8::from(b != 0) << 1 | u8::from(loaded),
+            key: u8::from(count > 1) << 2
+                | u8::from(b != 0) << 1
+                | u8::from(loaded)
+                | if ma > 0.0 { WRITES_A } else { 0 }
+                | if mb > 0.0 { WRITES_B } else { 0 },
+            child,
         }
+    }
+
+    /// Side A has finite mass: the colouring reserves its body.
+    #[inline(always)]
+    pub fn writes_a(&self) -> bool {
+        self.key & WRITES_A != 0
+    }
+
+    /// Side B has finite mass.
+    #[inline(always)]
+    pub fn writes_b(&self) -> bool {
+        self.key & WRITES_B != 0
     }
 
     /// Point-count class and whether side B is dynamic: a batch holds one kind only, so a
     /// constraint is solved the same way whatever its batch-mates (and the lane width).
     #[inline(always)]
     pub fn kind(&self) -> u8 {
-        self.key >> 1
+        (self.key & 0b111) >> 1
     }
 
     /// Like with like: the kinds, then whether the constraint carried load last step (batches
     /// of idle constraints end their sweep early). Three bits.
     #[inline(always)]
     pub fn order_key(&self) -> usize {
-        self.key as usize
+        (self.key & 0b111) as usize
     }
 
     /// Index in `World::generated_contacts` of a generated contact.
@@ -110,8 +131,7 @@ pub fn prepare(world: &mut World) {
     let mut bounces = false;
     for &ci in &world.awake_contacts {
         let c = world.contacts.at(ci);
-        let count = c.manifold.count;
-        if count == 0 {
+        if !c.touching {
             continue;
         }
         let (a, b) = (
@@ -122,9 +142,16 @@ pub fn prepare(world: &mut World) {
         if ma == 0.0 && mb == 0.0 {
             continue;
         }
-        let loaded = c.impulses[..count].iter().any(|p| p.normal > 0.0);
         bounces |= c.restitution > 0.0;
-        refs.push(ContactRef::new(ci, a, b, ma, mb, count, loaded));
+        for k in 0..c.manifold_count() {
+            let (m, impulses, _) = c.child(k);
+            let count = m.count;
+            if count == 0 {
+                continue;
+            }
+            let loaded = impulses[..count].iter().any(|p| p.normal > 0.0);
+            refs.push(ContactRef::new(ci, k as u16, a, b, ma, mb, count, loaded));
+        }
     }
     for (gi, g) in world.generated_contacts.iter().enumerate() {
         let (a, b) = (
@@ -136,7 +163,7 @@ pub fn prepare(world: &mut World) {
             continue;
         }
         bounces |= g.restitution > 0.0;
-        refs.push(ContactRef::new(GENERATED | gi as u32, a, b, ma, mb, 1, false));
+        refs.push(ContactRef::new(GENERATED | gi as u32, 0, a, b, ma, mb, 1, false));
     }
     scratch.bounces = bounces;
 }
@@ -156,12 +183,14 @@ pub fn store(r: &ContactRef, out: &LaneImpulses, contacts: &mut Pool<Contact>) {
     let Some(ci) = r.contact() else {
         return;
     };
-    let contact = contacts.at_mut(ci);
-    let count = contact.manifold.count;
-    for (imp, &n) in contact.impulses[..count].iter_mut().zip(&out.normal) {
+    let (count, impulses, friction) = contacts.at_mut(ci).child_impulses_mut(r.child as usize);
+    for (imp, &n) in impulses[..count].iter_mut().zip(&out.normal) {
         imp.normal = n;
     }
-    contact.friction.tangent = if r.swapped { -out.tangent } else { out.tangent };
-    contact.friction.twist = out.twist;
-    contact.friction.sliding = out.sliding;
+    friction.tangent = if r.swapped { -out.tangent } else { out.tangent };
+    friction.twist = out.twist;
+    friction.sliding = out.sliding;
 }
+
+// The solver walks refs in colour order; they stay 16 bytes.
+const _: () = assert!(std::mem::size_of::<ContactRef>() == 16);

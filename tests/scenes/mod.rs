@@ -196,3 +196,175 @@ pub fn world(sleep: bool) -> World {
     })
     .unwrap()
 }
+
+// ---------------------------------------------------------------- terrain (meshes, heightfields)
+
+/// Heights of a `(cells + 1)²` grid of samples, row-major: smooth hills (a few metres) from
+/// sums of sines, with phases from `seed`.
+pub fn terrain_heights(cells: u32, seed: u32) -> Vec<f32> {
+    let n = cells + 1;
+    let mut s = seed.wrapping_mul(2654435761).wrapping_add(1);
+    let mut rnd = || {
+        s = s.wrapping_mul(1664525).wrapping_add(1013904223);
+        (s >> 8) as f32 / (1u32 << 24) as f32
+    };
+    let waves: Vec<(f32, f32, f32, f32)> = (0..4)
+        .map(|k| {
+            let f = 0.05 * (k + 1) as f32;
+            (f * (0.5 + rnd()), f * (0.5 + rnd()), 6.28 * rnd(), 1.5 / (k + 1) as f32)
+        })
+        .collect();
+    (0..n * n)
+        .map(|i| {
+            let (r, c) = ((i / n) as f32, (i % n) as f32);
+            waves
+                .iter()
+                .map(|&(fx, fz, ph, a)| a * (fx * c + ph).sin() * (fz * r + 0.5 * ph).cos())
+                .sum()
+        })
+        .collect()
+}
+
+/// The triangles of a heightfield grid as a mesh (same vertices and split as
+/// `collision/heightfield.rs`), sample spacing `spacing`, centred on the origin in x and z.
+pub fn grid_mesh(cells: u32, spacing: f32, heights: &[f32]) -> (Vec<Vec3>, Vec<[u32; 3]>) {
+    let n = cells + 1;
+    let half = 0.5 * cells as f32 * spacing;
+    let vertices = (0..n * n)
+        .map(|i| {
+            let (r, c) = (i / n, i % n);
+            Vec3::new(
+                c as f32 * spacing - half,
+                heights[i as usize],
+                r as f32 * spacing - half,
+            )
+        })
+        .collect();
+    let mut triangles = Vec::with_capacity(2 * (cells * cells) as usize);
+    let id = |r: u32, c: u32| r * n + c;
+    for r in 0..cells {
+        for c in 0..cells {
+            triangles.push([id(r, c), id(r + 1, c), id(r + 1, c + 1)]);
+            triangles.push([id(r, c), id(r + 1, c + 1), id(r, c + 1)]);
+        }
+    }
+    (vertices, triangles)
+}
+
+/// A static triangle-mesh terrain of `cells × cells` 1 m cells (2·cells² triangles) centred
+/// on the origin; `flat` gives a plane at y = 0.
+pub fn terrain_mesh(world: &mut World, cells: u32, flat: bool, seed: u32) -> BodyHandle {
+    let heights = if flat {
+        vec![0.0; ((cells + 1) * (cells + 1)) as usize]
+    } else {
+        terrain_heights(cells, seed)
+    };
+    let (v, t) = grid_mesh(cells, 1.0, &heights);
+    let mesh = world.create_mesh(&v, &t).unwrap();
+    let g = world.create_body(&BodyDef::default()).unwrap();
+    world
+        .create_shape(
+            g,
+            &material(),
+            &Geometry::Mesh {
+                mesh,
+                local: Transform::IDENTITY,
+                scale: Vec3::ONE,
+            },
+        )
+        .unwrap();
+    g
+}
+
+/// The same terrain as `terrain_mesh`, as a heightfield.
+pub fn terrain_heightfield(world: &mut World, cells: u32, flat: bool, seed: u32) -> BodyHandle {
+    let n = cells + 1;
+    let heights = if flat {
+        vec![0.0; (n * n) as usize]
+    } else {
+        terrain_heights(cells, seed)
+    };
+    let hf = world.create_heightfield(n, n, &heights, None).unwrap();
+    let half = 0.5 * cells as f32;
+    let g = world.create_body(&BodyDef::default()).unwrap();
+    world
+        .create_shape(
+            g,
+            &material(),
+            &Geometry::Heightfield {
+                heightfield: hf,
+                local: Transform::new(Vec3::new(-half, 0.0, -half), Quat::IDENTITY),
+                scale: Vec3::ONE,
+            },
+        )
+        .unwrap();
+    g
+}
+
+/// `count` mixed bodies — spheres, boxes, capsules and convex hulls in turn, sizes 0.2 to
+/// 0.6 m — on a square lattice above `height` (2 m apart), over the terrain's middle.
+pub fn terrain_drop(world: &mut World, count: usize, height: f32, seed: u32) -> Vec<BodyHandle> {
+    let hull = world
+        .create_convex_hull(
+            &[
+                Vec3::new(0.4, 0.0, 0.0),
+                Vec3::new(-0.4, 0.0, 0.1),
+                Vec3::new(0.0, 0.35, 0.0),
+                Vec3::new(0.0, -0.35, -0.1),
+                Vec3::new(0.1, 0.1, 0.4),
+                Vec3::new(-0.1, -0.1, -0.4),
+                Vec3::new(0.25, 0.2, -0.25),
+                Vec3::new(-0.25, -0.2, 0.25),
+            ],
+            &Default::default(),
+        )
+        .unwrap();
+    let side = (count as f32).sqrt().ceil() as usize;
+    let mut s = seed.wrapping_mul(747796405).wrapping_add(7);
+    let mut rnd = move || {
+        s = s.wrapping_mul(1664525).wrapping_add(1013904223);
+        (s >> 8) as f32 / (1u32 << 24) as f32
+    };
+    (0..count)
+        .map(|i| {
+            let (x, z) = ((i % side) as f32, (i / side) as f32);
+            let p = Vec3::new(
+                2.0 * (x - 0.5 * side as f32),
+                height + 0.5 * rnd(),
+                2.0 * (z - 0.5 * side as f32),
+            );
+            let q = Quat::from_euler(glam::EulerRot::XYZ, 6.28 * rnd(), 6.28 * rnd(), 6.28 * rnd());
+            let b = world
+                .create_body(&BodyDef {
+                    body_type: BodyType::Dynamic,
+                    transform: Transform::new(p, q),
+                    ..Default::default()
+                })
+                .unwrap();
+            let size = 0.2 + 0.4 * rnd();
+            let geometry = match i % 4 {
+                0 => Geometry::Sphere {
+                    center: Vec3::ZERO,
+                    radius: size,
+                },
+                1 => Geometry::Box {
+                    center: Vec3::ZERO,
+                    rotation: Quat::IDENTITY,
+                    half_extents: Vec3::new(size, 0.7 * size, 0.85 * size),
+                },
+                2 => Geometry::Capsule {
+                    a: Vec3::new(-size, 0.0, 0.0),
+                    b: Vec3::new(size, 0.0, 0.0),
+                    radius: 0.5 * size,
+                },
+                _ => Geometry::Hull {
+                    hull,
+                    local: Transform::IDENTITY,
+                    scale: 0.5 + size,
+                },
+            };
+            world.create_shape(b, &material(), &geometry).unwrap();
+            b
+        })
+        .collect()
+}

@@ -51,7 +51,9 @@ fn sdf(g: &Geometry, xf: &Transform, p: Vec3) -> f32 {
             d.max(Vec3::ZERO).length() + d.max_element().min(0.0)
         }
         Geometry::Plane { normal, offset } => (normal.dot(l) - offset) / normal.length(),
-        Geometry::Hull { .. } => unreachable!("the primitive fuzz tests make no hulls"),
+        Geometry::Hull { .. } | Geometry::Mesh { .. } | Geometry::Heightfield { .. } => {
+            unreachable!("the primitive fuzz tests make no shared geometry")
+        }
     }
 }
 

@@ -11,13 +11,20 @@
 //!
 //! One file per family: `sphere` (sphere against everything), `capsule` (capsule against
 //! capsule, box, plane), `box_box`, `plane` (box against plane); `geom` holds the shared
-//! helpers.
+//! helpers. Triangle meshes and heightfields: `triangle` (a convex shape against one
+//! triangle, with active edges), `mesh` (the triangles under a shape, folded into several
+//! manifolds by normal: [`collide_triangles`]), `hull_view` (a hull as a polytope).
 
 mod box_box;
 mod capsule;
 mod geom;
+mod hull_view;
+pub mod mesh;
 mod plane;
 mod sphere;
+pub mod triangle;
+
+pub use mesh::{collide_triangles, MeshManifolds, MAX_MESH_MANIFOLDS};
 
 use crate::collision::geometry_store::GeometryStore;
 use crate::collision::shape::Geometry;
@@ -109,8 +116,14 @@ fn collide_ordered(
     xf_b: &Transform,
     speculative: f32,
 ) -> Manifold {
-    let _ = store;
     use Geometry as G;
+    if b.is_triangles() {
+        // A convex shape against a mesh or heightfield: the deepest of its manifolds (the
+        // contact stage takes them all, through `collide_triangles`).
+        let mut out = MeshManifolds::EMPTY;
+        collide_triangles(store, a, xf_a, b, xf_b, speculative, &mut out);
+        return mesh::deepest(&out);
+    }
     match (*a, *b) {
         (G::Sphere { center: ca, radius: ra }, G::Sphere { center: cb, radius: rb }) => {
             sphere::sphere_sphere(xf_a.apply(ca), ra, xf_b.apply(cb), rb, speculative)
