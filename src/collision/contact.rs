@@ -3,7 +3,7 @@
 //! matched by feature id.
 
 use crate::collision::geometry_store::GeometryStore;
-use crate::collision::narrow_phase::{collide, Manifold, MAX_MANIFOLD_POINTS};
+use crate::collision::narrow_phase::{collide_cached, Manifold, SatCache, MAX_MANIFOLD_POINTS};
 use crate::collision::shape::{Shape, ShapeDef};
 use crate::math::{Quat, Transform, Vec3};
 use glam::{Mat3A, Vec3A};
@@ -47,6 +47,8 @@ pub struct Contact {
     /// The manifold in the bodies' own frames, for reuse while they barely move relative to
     /// each other.
     pub cache: ManifoldCache,
+    /// The separating-axis feature that decided the last hull test (hull pairs only).
+    pub sat: SatCache,
 }
 
 /// Body-pair cache (after Jolt's): the relative pose of B in A's frame when the manifold was
@@ -156,6 +158,7 @@ impl Contact {
             radius_a: a.geometry.rounding_radius(store),
             radius_b: b.geometry.rounding_radius(store),
             cache: ManifoldCache::default(),
+            sat: SatCache::None,
         }
     }
 
@@ -185,7 +188,7 @@ impl Contact {
         let old = self.manifold;
         let old_impulses = self.impulses;
         let was_touching = self.touching;
-        self.manifold = collide(store, &a.geometry, xf_a, &b.geometry, xf_b, speculative);
+        self.manifold = collide_cached(store, &a.geometry, xf_a, &b.geometry, xf_b, speculative, &mut self.sat);
         self.cache.store(&self.manifold, xf_a, xf_b);
         self.touching = self.manifold.count > 0;
         for (point, impulse) in self.manifold.points[..self.manifold.count]

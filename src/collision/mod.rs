@@ -8,12 +8,14 @@
 //! * `contact` — a touching (or nearly touching) pair with its persistent manifold.
 //! * `geometry_store` — shared geometry (convex hulls) built once, used by many shapes.
 //! * `hull` — convex hulls: quickhull builder, polyhedral mass properties.
+//! * `gjk` — distance and closest points between convex cores given by support functions.
 
 pub mod aabb;
 pub mod broad_phase;
 pub mod contact;
 pub mod dynamic_tree;
 pub mod geometry_store;
+pub mod gjk;
 pub mod hull;
 pub mod narrow_phase;
 pub mod shape;
