@@ -11,7 +11,7 @@
 
 use crate::collision::geometry_store::GeometryStore;
 use crate::collision::narrow_phase::{
-    collide, collide_triangles, Manifold, MeshManifolds, MAX_MANIFOLD_POINTS, MAX_MESH_MANIFOLDS,
+    collide_cached, collide_triangles, Manifold, MeshManifolds, SatCache, MAX_MANIFOLD_POINTS, MAX_MESH_MANIFOLDS,
 };
 use crate::collision::shape::{Shape, ShapeDef};
 use crate::math::{Quat, Transform, Vec3};
@@ -60,6 +60,8 @@ pub struct Contact {
     pub multi: bool,
     /// Manifolds after the first (`multi` only; the storage is kept between steps).
     pub more: Vec<ChildManifold>,
+    /// The separating-axis feature that decided the last hull test (hull pairs only).
+    pub sat: SatCache,
 }
 
 /// A manifold after the first of a `multi` contact, with its impulses and cached frames.
@@ -202,6 +204,7 @@ impl Contact {
             cache: ManifoldCache::default(),
             multi: a.geometry.is_triangles() || b.geometry.is_triangles(),
             more: Vec::new(),
+            sat: SatCache::None,
         }
     }
 
@@ -270,7 +273,7 @@ impl Contact {
         let old = self.manifold;
         let old_impulses = self.impulses;
         let was_touching = self.touching;
-        self.manifold = collide(store, &a.geometry, xf_a, &b.geometry, xf_b, speculative);
+        self.manifold = collide_cached(store, &a.geometry, xf_a, &b.geometry, xf_b, speculative, &mut self.sat);
         self.cache.store(&self.manifold, xf_a, xf_b);
         self.touching = self.manifold.count > 0;
         for (point, impulse) in self.manifold.points[..self.manifold.count]

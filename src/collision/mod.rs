@@ -10,12 +10,14 @@
 //! * `hull` — convex hulls: quickhull builder, polyhedral mass properties.
 //! * `mesh` — triangle meshes: BVH, active edges.
 //! * `heightfield` — terrain grids with holes and a min/max pyramid.
+//! * `gjk` — distance and closest points between convex cores given by support functions.
 
 pub mod aabb;
 pub mod broad_phase;
 pub mod contact;
 pub mod dynamic_tree;
 pub mod geometry_store;
+pub mod gjk;
 pub mod heightfield;
 pub mod hull;
 pub mod mesh;

@@ -58,6 +58,18 @@ pub struct HalfEdge {
     pub face: u16,
 }
 
+/// An edge for the separating-axis test: its end points (vertex indices) and the normals of
+/// its two faces, which bound the edge's arc on the Gauss map, with their cross product
+/// `n2 × n1` (parallel to the edge).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct EdgeGauss {
+    pub n1: Vec3,
+    pub n2: Vec3,
+    pub n2_x_n1: Vec3,
+    pub v0: u16,
+    pub v1: u16,
+}
+
 /// A convex polyhedron (optionally rounded), immutable once built.
 #[derive(Clone, Debug)]
 pub struct ConvexHull {
@@ -67,6 +79,8 @@ pub struct ConvexHull {
     pub(crate) half_edges: Vec<HalfEdge>,
     pub(crate) edges: Vec<u16>,
     pub(crate) edge_directions: Vec<Vec3>,
+    /// Per entry of `edges`: end points and face normals (`EdgeGauss`).
+    pub(crate) edge_gauss: Vec<EdgeGauss>,
     pub(crate) radius: f32,
     /// Mass properties at density 1 about the hull's own origin frame (centre in that frame).
     pub(crate) unit_mass: MassProperties,
@@ -140,6 +154,7 @@ impl ConvexHull {
             half_edges,
             edges,
             edge_directions: Vec::new(),
+            edge_gauss: Vec::new(),
             radius,
             unit_mass: MassProperties::ZERO,
             area: 0.0,
@@ -149,6 +164,23 @@ impl ConvexHull {
         };
         hull.planes = (0..hull.faces.len()).map(|f| hull.fit_plane(f)).collect();
         hull.edge_directions = hull.distinct_edge_directions();
+        hull.edge_gauss = hull
+            .edges
+            .iter()
+            .map(|&e| {
+                let he = hull.half_edges[e as usize];
+                let twin = hull.half_edges[he.twin as usize];
+                let n1 = hull.planes[he.face as usize].normal;
+                let n2 = hull.planes[twin.face as usize].normal;
+                EdgeGauss {
+                    n1,
+                    n2,
+                    n2_x_n1: n2.cross(n1),
+                    v0: he.origin,
+                    v1: twin.origin,
+                }
+            })
+            .collect();
         let (mp, area) = mass::polyhedron_mass(&hull.vertices, &hull.face_loops_iter());
         hull.area = area;
         hull.unit_mass = if radius > 0.0 {
@@ -177,7 +209,8 @@ impl ConvexHull {
             .map(|e| e.origin)
     }
 
-    /// Newell's normal of face `f`, offset from the support of all vertices, so every
+    /// Newell's normal of face `f` (the sum of `v_i × v_(i+1)`: twice the area vector),
+    /// offset from the support of all vertices, so every
     /// vertex lies on or under every plane.
     fn fit_plane(&self, f: usize) -> Plane {
         let idx: Vec<u16> = self.face_vertices(f).collect();
@@ -185,7 +218,7 @@ impl ConvexHull {
         for k in 0..idx.len() {
             let a = self.vertices[idx[k] as usize].as_dvec3();
             let b = self.vertices[idx[(k + 1) % idx.len()] as usize].as_dvec3();
-            n += (a - b).cross(a + b) * -0.5;
+            n += a.cross(b);
         }
         let normal = n.normalize_or_zero().as_vec3();
         let offset = self.vertices.iter().map(|v| normal.dot(*v)).fold(f32::MIN, f32::max);
@@ -234,6 +267,10 @@ impl ConvexHull {
     /// One half-edge per undirected edge.
     pub fn edges(&self) -> &[u16] {
         &self.edges
+    }
+
+    pub fn edge_gauss(&self) -> &[EdgeGauss] {
+        &self.edge_gauss
     }
 
     pub fn edge_directions(&self) -> &[Vec3] {
