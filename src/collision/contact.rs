@@ -185,6 +185,7 @@ pub fn mix_materials(a: &ShapeDef, b: &ShapeDef) -> (f32, f32, f32) {
 impl Contact {
     pub fn new(store: &GeometryStore, shape_a: u32, shape_b: u32, a: &Shape, b: &Shape, key: u64) -> Contact {
         let (fs, fd, e) = mix_materials(&a.def, &b.def);
+        let multi = a.geometry.is_triangles() || b.geometry.is_triangles();
         Contact {
             shape_a,
             shape_b,
@@ -202,8 +203,10 @@ impl Contact {
             radius_a: a.geometry.rounding_radius(store),
             radius_b: b.geometry.rounding_radius(store),
             cache: ManifoldCache::default(),
-            multi: a.geometry.is_triangles() || b.geometry.is_triangles(),
-            more: Vec::new(),
+            multi,
+            // Room for every manifold up front: a pair that first touches along a second
+            // normal mid-game must not allocate in the step.
+            more: Vec::with_capacity(if multi { MAX_MESH_MANIFOLDS - 1 } else { 0 }),
             sat: SatCache::None,
         }
     }
