@@ -101,3 +101,324 @@ fn ten_hull_cubes_stand_as_the_box_tower_does() {
     assert_eq!(hulls.awake_body_count(), 0, "the hull tower did not sleep");
     assert_eq!(boxes.awake_body_count(), 0);
 }
+
+// ------------------------------------------------------------------ builder
+
+/// Signed distance of `p` to the core (exact inside and on faces; a lower bound outside).
+fn plane_distance(h: &hearth::ConvexHull, p: Vec3) -> f32 {
+    h.planes().iter().map(|pl| pl.distance(p)).fold(f32::MIN, f32::max)
+}
+
+/// Euclidean distance of `p` outside the core (0 inside), by GJK against the vertices.
+fn outside_distance(h: &hearth::ConvexHull, p: Vec3) -> f32 {
+    use hearth::collision::gjk;
+    if plane_distance(h, p) <= 0.0 {
+        return 0.0;
+    }
+    gjk::distance(&gjk::Points(h.vertices()), &gjk::Point(p)).distance
+}
+
+/// Checks the structure of a hull: Euler's formula, planar convex faces, every vertex
+/// under every plane, twins consistent.
+fn check_hull(h: &hearth::ConvexHull, tol: f32) {
+    let v = h.vertices().len();
+    let f = h.faces().len();
+    let e = h.edges().len();
+    assert_eq!(v + f, e + 2, "Euler: V {v} E {e} F {f}");
+    assert_eq!(h.half_edges().len(), 2 * e);
+    assert!(v <= hearth::collision::hull::MAX_HULL_VERTICES);
+    for (k, he) in h.half_edges().iter().enumerate() {
+        assert_eq!(h.half_edges()[he.twin as usize].twin as usize, k);
+        assert_ne!(h.half_edges()[he.twin as usize].face, he.face);
+    }
+    for (fi, pl) in h.planes().iter().enumerate() {
+        assert!((pl.normal.length() - 1.0).abs() < 1e-5);
+        let idx: Vec<u16> = h.face_vertices(fi).collect();
+        assert!(idx.len() >= 3);
+        // Planar within the tolerance.
+        for &i in &idx {
+            assert!(
+                pl.distance(h.vertices()[i as usize]).abs() <= tol,
+                "face {fi} not planar"
+            );
+        }
+        // Convex, counter-clockwise about the normal.
+        for k in 0..idx.len() {
+            let a = h.vertices()[idx[k] as usize];
+            let b = h.vertices()[idx[(k + 1) % idx.len()] as usize];
+            let c = h.vertices()[idx[(k + 2) % idx.len()] as usize];
+            let turn = (b - a).cross(c - b).dot(pl.normal);
+            assert!(
+                turn >= -tol * (b - a).length(),
+                "face {fi} not convex: turn {turn} at |ab| {} |bc| {} tol {tol}, {} vertices",
+                (b - a).length(),
+                (c - b).length(),
+                idx.len()
+            );
+        }
+        for p in h.vertices() {
+            assert!(pl.distance(*p) <= 1e-5, "a vertex is above face {fi}");
+        }
+    }
+}
+
+#[test]
+fn hull_of_random_clouds_contains_every_point() {
+    let mut rng = Rng(12345);
+    for trial in 0..200 {
+        let n = 4 + (rng.next_u32() % 120) as usize;
+        let axes = Vec3::new(rng.range(0.05, 3.0), rng.range(0.05, 3.0), rng.range(0.05, 3.0));
+        let mut pts: Vec<Vec3> = if trial % 2 == 0 {
+            scenes::random_cloud(&mut rng, n, axes)
+        } else {
+            (0..n).map(|_| rng.vec(1.0) * axes).collect()
+        };
+        // Duplicates and near-duplicates.
+        let dup: Vec<Vec3> = pts.iter().take(n / 3).map(|p| *p + rng.vec(1e-7)).collect();
+        pts.extend(dup);
+        let offset = rng.vec(100.0);
+        for p in &mut pts {
+            *p += offset;
+        }
+        let settings = HullSettings::default();
+        let Ok(h) = hearth::collision::hull::builder::build(&pts, &settings) else {
+            panic!("trial {trial}: no hull");
+        };
+        let diag = (axes * 2.0).length();
+        let tol = settings.weld_tolerance * diag + 1e-4 * offset.length() / 100.0;
+        check_hull(&h, tol);
+        for p in &pts {
+            let d = outside_distance(&h, *p);
+            assert!(d <= tol, "trial {trial}: a point is {d} outside (tol {tol})");
+        }
+    }
+}
+
+#[test]
+fn coplanar_points_merge_into_polygons() {
+    // A cube sampled on a grid: 6 quads and 8 vertices, whatever the inner points.
+    let mut pts = Vec::new();
+    for i in 0..5 {
+        for j in 0..5 {
+            for k in 0..5 {
+                pts.push(Vec3::new(i as f32, j as f32, k as f32) * 0.25 - Vec3::splat(0.5));
+            }
+        }
+    }
+    let h = hearth::collision::hull::builder::build(&pts, &HullSettings::default()).unwrap();
+    assert_eq!(h.vertices().len(), 8);
+    assert_eq!(h.faces().len(), 6);
+    check_hull(&h, 1e-5);
+    // A cylinder: two 16-gons and 16 quads.
+    let mut pts = Vec::new();
+    for k in 0..16 {
+        let a = k as f32 / 16.0 * std::f32::consts::TAU;
+        for y in [-0.5, 0.0, 0.5] {
+            pts.push(Vec3::new(a.cos(), y, a.sin()));
+        }
+    }
+    let h = hearth::collision::hull::builder::build(&pts, &HullSettings::default()).unwrap();
+    assert_eq!(h.faces().len(), 18);
+    assert_eq!(h.vertices().len(), 32);
+    check_hull(&h, 1e-4);
+    // Nearly coplanar: a cube whose top face points are jittered by 1e-5 of its size.
+    let mut rng = Rng(99);
+    let mut pts = scenes::cube_points(0.5);
+    for p in &mut pts {
+        if p.y > 0.0 {
+            p.y += rng.range(-1e-5, 1e-5);
+        }
+    }
+    let h = hearth::collision::hull::builder::build(&pts, &HullSettings::default()).unwrap();
+    assert_eq!(h.faces().len(), 6);
+}
+
+#[test]
+fn degenerate_clouds_are_rejected() {
+    let build = |p: &[Vec3]| hearth::collision::hull::builder::build(p, &HullSettings::default());
+    let err = |p: &[Vec3]| match build(p) {
+        Err(hearth::Error::InvalidArgument(m)) => m,
+        other => panic!("expected an error, got {:?}", other.map(|h| h.vertices().len())),
+    };
+    assert!(err(&scenes::cube_points(0.5)[..3]).contains("at least 4 points"));
+    // Coplanar, collinear, one point repeated.
+    let flat: Vec<Vec3> = (0..20)
+        .map(|i| Vec3::new(i as f32 % 5.0, 0.0, (i / 5) as f32))
+        .collect();
+    assert!(err(&flat).contains("coplanar"));
+    let line: Vec<Vec3> = (0..10).map(|i| Vec3::X * i as f32).collect();
+    assert!(err(&line).contains("coplanar"));
+    assert!(err(&[Vec3::ONE; 10]).contains("span"));
+    // Nearly flat within the weld tolerance (1e-3 of the size).
+    let mut thin = flat.clone();
+    thin.push(Vec3::new(2.0, 1e-4, 2.0));
+    assert!(err(&thin).contains("coplanar"));
+    let mut bad = scenes::cube_points(0.5);
+    bad[3].y = f32::NAN;
+    assert!(err(&bad).contains("point 3"));
+    bad[3].y = f32::INFINITY;
+    assert!(err(&bad).contains("point 3"));
+    let tiny: Vec<Vec3> = scenes::cube_points(1e-4);
+    assert!(err(&tiny).contains("span"));
+    for (r, w) in [(-1.0, 1e-3), (f32::NAN, 1e-3), (0.0, -1.0), (0.0, 0.5), (0.0, f32::NAN)] {
+        let s = HullSettings {
+            convex_radius: r,
+            weld_tolerance: w,
+        };
+        assert!(hearth::collision::hull::builder::build(&scenes::cube_points(0.5), &s).is_err());
+    }
+}
+
+#[test]
+fn more_than_255_points_are_simplified_to_255_vertices() {
+    // Points on a sphere: every one is a vertex of the exact hull.
+    let mut rng = Rng(4242);
+    for n in [300usize, 1000, 5000] {
+        let pts = scenes::random_cloud(&mut rng, n, Vec3::ONE);
+        let h = hearth::collision::hull::builder::build(&pts, &HullSettings::default()).unwrap();
+        let v = h.vertices().len();
+        check_hull(&h, 1e-3 * 2.0 * 3f32.sqrt());
+        // Every vertex is an input point; every input point is within a small distance.
+        for p in h.vertices() {
+            assert!(pts.iter().any(|q| (*q - *p).length() < 1e-6));
+        }
+        let worst = pts.iter().map(|p| outside_distance(&h, *p)).fold(0.0, f32::max);
+        println!("{n} points on a unit sphere: {v} vertices, farthest point left out {worst:.4} m");
+        assert!(v <= 255 && v >= 240, "{v} vertices");
+        assert!(worst < 0.03, "{worst}");
+    }
+}
+
+// ------------------------------------------------------------------ mass
+
+fn rel(a: f32, b: f32) -> f32 {
+    (a - b).abs() / b.abs().max(1e-12)
+}
+
+#[test]
+fn mass_of_box_and_tetrahedron_match_analytic_values() {
+    let (a, b, c) = (0.4f32, 1.0f32, 2.5f32);
+    let pts: Vec<Vec3> = scenes::cube_points(1.0)
+        .iter()
+        .map(|p| *p * Vec3::new(a, b, c))
+        .collect();
+    let h = hearth::collision::hull::builder::build(&pts, &HullSettings::default()).unwrap();
+    let mp = h.mass_properties(700.0);
+    let m = 700.0 * 8.0 * a * b * c;
+    assert!(rel(mp.mass, m) < 1e-5);
+    assert!(mp.center.length() < 1e-5);
+    let i = |x: f32, y: f32| m / 3.0 * (x * x + y * y);
+    assert!(rel(mp.inertia.x_axis.x, i(b, c)) < 1e-5);
+    assert!(rel(mp.inertia.y_axis.y, i(a, c)) < 1e-5);
+    assert!(rel(mp.inertia.z_axis.z, i(a, b)) < 1e-5);
+    // The tetrahedron (0,0,0), (a,0,0), (0,b,0), (0,0,c): V = abc/6, centroid (a,b,c)/4,
+    // inertia about the centroid (Tonon 2004): Ixx = 3m/80 (b² + c²), Ixy = -m ab / 80.
+    let tet = [Vec3::ZERO, Vec3::X * a, Vec3::Y * b, Vec3::Z * c];
+    let h = hearth::collision::hull::builder::build(&tet, &HullSettings::default()).unwrap();
+    let mp = h.mass_properties(1.0);
+    let m = a * b * c / 6.0;
+    assert!(rel(mp.mass, m) < 1e-5, "{} vs {m}", mp.mass);
+    assert!((mp.center - Vec3::new(a, b, c) / 4.0).length() < 1e-6);
+    let it = mp.inertia;
+    assert!(rel(it.x_axis.x, 3.0 * m / 80.0 * (b * b + c * c)) < 1e-5);
+    assert!(rel(it.y_axis.y, 3.0 * m / 80.0 * (a * a + c * c)) < 1e-5);
+    assert!(rel(it.z_axis.z, 3.0 * m / 80.0 * (a * a + b * b)) < 1e-5);
+    assert!(rel(it.y_axis.x, m * a * b / 80.0) < 1e-5, "{}", it.y_axis.x);
+    assert!(rel(it.z_axis.x, m * a * c / 80.0) < 1e-5);
+    assert!(rel(it.z_axis.y, m * b * c / 80.0) < 1e-5);
+}
+
+#[test]
+fn mass_of_random_hulls_matches_sampling() {
+    // Stratified sampling of the bounding box (64³ cell centres): the sampled volume,
+    // centre and inertia agree with the exact integration within 1 % (the sampling error
+    // at this resolution is about 0.3 %).
+    let mut rng = Rng(777);
+    for _ in 0..4 {
+        let n = 8 + (rng.next_u32() % 20) as usize;
+        let pts = scenes::random_cloud(&mut rng, n, Vec3::new(0.6, 1.0, 0.4));
+        let h = hearth::collision::hull::builder::build(&pts, &HullSettings::default()).unwrap();
+        let (lo, hi) = h.local_bounds();
+        let k = 64;
+        let cell = (hi - lo) / k as f32;
+        let dv = (cell.x * cell.y * cell.z) as f64;
+        let (mut vol, mut first, mut second) = (0.0f64, glam::DVec3::ZERO, glam::DMat3::ZERO);
+        for i in 0..k {
+            for j in 0..k {
+                for l in 0..k {
+                    let p = lo + cell * Vec3::new(i as f32 + 0.5, j as f32 + 0.5, l as f32 + 0.5);
+                    if plane_distance(&h, p) <= 0.0 {
+                        let d = p.as_dvec3();
+                        vol += dv;
+                        first += d * dv;
+                        second += glam::DMat3::from_cols(d * d.x, d * d.y, d * d.z) * dv;
+                    }
+                }
+            }
+        }
+        let c = first / vol;
+        let cov = second - glam::DMat3::from_cols(c * c.x, c * c.y, c * c.z) * vol;
+        let tr = cov.x_axis.x + cov.y_axis.y + cov.z_axis.z;
+        let inertia = glam::DMat3::from_diagonal(glam::DVec3::splat(tr)) - cov;
+        let mp = h.mass_properties(1.0);
+        assert!(rel(mp.mass, vol as f32) < 0.01, "{} vs {vol}", mp.mass);
+        assert!((mp.center - c.as_vec3()).length() < 0.01 * (hi - lo).length());
+        let scale = inertia.x_axis.x.max(inertia.y_axis.y).max(inertia.z_axis.z) as f32;
+        for col in 0..3 {
+            let d = (mp.inertia.col(col) - inertia.col(col).as_vec3()).abs().max_element();
+            assert!(d < 0.01 * scale, "inertia col {col}: {d} of {scale}");
+        }
+    }
+}
+
+#[test]
+fn rounded_box_mass_is_exact_and_inertia_close() {
+    // A box 2a × 2b × 2c rounded by r: V = 8abc + 8r(ab + bc + ca) + 2πr²(a + b + c) + 4/3πr³.
+    let (a, b, c, r) = (0.5f32, 0.3f32, 0.2f32, 0.1f32);
+    let pts: Vec<Vec3> = scenes::cube_points(1.0)
+        .iter()
+        .map(|p| *p * Vec3::new(a, b, c))
+        .collect();
+    let s = HullSettings {
+        convex_radius: r,
+        ..Default::default()
+    };
+    let h = hearth::collision::hull::builder::build(&pts, &s).unwrap();
+    let pi = std::f32::consts::PI;
+    let v = 8.0 * a * b * c
+        + 8.0 * r * (a * b + b * c + c * a)
+        + 2.0 * pi * r * r * (a + b + c)
+        + 4.0 / 3.0 * pi * r * r * r;
+    let mp = h.mass_properties(1.0);
+    assert!(rel(mp.mass, v) < 1e-5, "{} vs {v}", mp.mass);
+    assert!(mp.center.length() < 1e-5);
+    // Inertia about x by sampling the rounded box (distance to the core box <= r).
+    let k = 96;
+    let ext = Vec3::new(a, b, c) + Vec3::splat(r);
+    let cell = 2.0 * ext / k as f32;
+    let (mut ix, mut iy, mut iz, mut vol) = (0.0f64, 0.0f64, 0.0f64, 0.0f64);
+    for i in 0..k {
+        for j in 0..k {
+            for l in 0..k {
+                let p = -ext + cell * Vec3::new(i as f32 + 0.5, j as f32 + 0.5, l as f32 + 0.5);
+                let q = p.abs() - Vec3::new(a, b, c);
+                if q.max(Vec3::ZERO).length() <= r {
+                    let d = p.as_dvec3();
+                    vol += 1.0;
+                    ix += d.y * d.y + d.z * d.z;
+                    iy += d.x * d.x + d.z * d.z;
+                    iz += d.x * d.x + d.y * d.y;
+                }
+            }
+        }
+    }
+    let m = mp.mass as f64;
+    let (ix, iy, iz) = ((ix / vol * m) as f32, (iy / vol * m) as f32, (iz / vol * m) as f32);
+    println!(
+        "rounded box inertia: {:.6} {:.6} {:.6} vs sampled {ix:.6} {iy:.6} {iz:.6}",
+        mp.inertia.x_axis.x, mp.inertia.y_axis.y, mp.inertia.z_axis.z
+    );
+    assert!(rel(mp.inertia.x_axis.x, ix) < 0.01);
+    assert!(rel(mp.inertia.y_axis.y, iy) < 0.01);
+    assert!(rel(mp.inertia.z_axis.z, iz) < 0.01);
+}
