@@ -5,7 +5,7 @@
 #[allow(dead_code)]
 mod scenes;
 use hearth::math::{Quat, Transform, Vec3};
-use hearth::{BodyDef, BodyType, Geometry, HullSettings, ShapeDef, World};
+use hearth::{Geometry, HullSettings, ShapeDef, World};
 use scenes::Rng;
 
 const DT: f32 = 1.0 / 60.0;
@@ -284,7 +284,7 @@ fn more_than_255_points_are_simplified_to_255_vertices() {
         }
         let worst = pts.iter().map(|p| outside_distance(&h, *p)).fold(0.0, f32::max);
         println!("{n} points on a unit sphere: {v} vertices, farthest point left out {worst:.4} m");
-        assert!(v <= 255 && v >= 240, "{v} vertices");
+        assert!((240..=255).contains(&v), "{v} vertices");
         assert!(worst < 0.03, "{worst}");
     }
 }
@@ -421,4 +421,457 @@ fn rounded_box_mass_is_exact_and_inertia_close() {
     assert!(rel(mp.inertia.x_axis.x, ix) < 0.01);
     assert!(rel(mp.inertia.y_axis.y, iy) < 0.01);
     assert!(rel(mp.inertia.z_axis.z, iz) < 0.01);
+}
+
+// ------------------------------------------------------------------ contacts
+
+use hearth::collision::gjk;
+use hearth::collision::narrow_phase::collide;
+
+/// World vertices and (normal, offset) planes of a hull shape.
+fn placed(h: &hearth::ConvexHull, xf: &Transform) -> (Vec<Vec3>, Vec<(Vec3, f32)>, Vec<(Vec3, Vec3)>) {
+    let v: Vec<Vec3> = h.vertices().iter().map(|p| xf.apply(*p)).collect();
+    let planes = h
+        .planes()
+        .iter()
+        .map(|pl| {
+            let n = xf.q * pl.normal;
+            (n, pl.offset + n.dot(xf.p))
+        })
+        .collect();
+    let edges = h
+        .edges()
+        .iter()
+        .map(|&e| {
+            let (a, b) = h.edge_points(e as usize);
+            (xf.apply(a), xf.apply(b))
+        })
+        .collect();
+    (v, planes, edges)
+}
+
+/// Brute-force signed separation of two convex polyhedra: the largest gap over every face
+/// normal and every cross product of edge directions (negative: penetration depth).
+fn brute_sat(
+    va: &[Vec3],
+    pa: &[(Vec3, f32)],
+    ea: &[(Vec3, Vec3)],
+    vb: &[Vec3],
+    pb: &[(Vec3, f32)],
+    eb: &[(Vec3, Vec3)],
+) -> f32 {
+    let gap = |u: Vec3| {
+        let max_a = va.iter().map(|p| p.dot(u)).fold(f32::MIN, f32::max);
+        let min_b = vb.iter().map(|p| p.dot(u)).fold(f32::MAX, f32::min);
+        let max_b = vb.iter().map(|p| p.dot(u)).fold(f32::MIN, f32::max);
+        let min_a = va.iter().map(|p| p.dot(u)).fold(f32::MAX, f32::min);
+        (min_b - max_a).max(min_a - max_b)
+    };
+    let mut best = f32::MIN;
+    for (n, _) in pa.iter().chain(pb) {
+        best = best.max(gap(*n));
+    }
+    for (a0, a1) in ea {
+        for (b0, b1) in eb {
+            let c = (*a1 - *a0).cross(*b1 - *b0);
+            if c.length_squared() > 1e-10 {
+                best = best.max(gap(c.normalize()));
+            }
+        }
+    }
+    best
+}
+
+fn closest_on_triangle(p: Vec3, a: Vec3, b: Vec3, c: Vec3) -> Vec3 {
+    // Ericson 5.1.5.
+    let (ab, ac, ap) = (b - a, c - a, p - a);
+    let (d1, d2) = (ab.dot(ap), ac.dot(ap));
+    if d1 <= 0.0 && d2 <= 0.0 {
+        return a;
+    }
+    let bp = p - b;
+    let (d3, d4) = (ab.dot(bp), ac.dot(bp));
+    if d3 >= 0.0 && d4 <= d3 {
+        return b;
+    }
+    let vc = d1 * d4 - d3 * d2;
+    if vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0 {
+        return a + ab * (d1 / (d1 - d3));
+    }
+    let cp = p - c;
+    let (d5, d6) = (ab.dot(cp), ac.dot(cp));
+    if d6 >= 0.0 && d5 <= d6 {
+        return c;
+    }
+    let vb = d5 * d2 - d1 * d6;
+    if vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0 {
+        return a + ac * (d2 / (d2 - d6));
+    }
+    let va = d3 * d6 - d5 * d4;
+    if va <= 0.0 && (d4 - d3) >= 0.0 && (d5 - d6) >= 0.0 {
+        return b + (c - b) * ((d4 - d3) / ((d4 - d3) + (d5 - d6)));
+    }
+    let d = 1.0 / (va + vb + vc);
+    a + ab * (vb * d) + ac * (vc * d)
+}
+
+fn segment_distance(p1: Vec3, q1: Vec3, p2: Vec3, q2: Vec3) -> f32 {
+    // Dense sampling of one segment against the exact point–segment distance.
+    let mut best = f32::MAX;
+    for k in 0..=2000 {
+        let x = p1 + (q1 - p1) * (k as f32 / 2000.0);
+        let d = q2 - p2;
+        let t = if d.length_squared() > 0.0 {
+            ((x - p2).dot(d) / d.length_squared()).clamp(0.0, 1.0)
+        } else {
+            0.0
+        };
+        best = best.min((x - (p2 + d * t)).length());
+    }
+    best
+}
+
+/// Brute-force distance between separated polyhedra: vertices against fan triangles of the
+/// faces, both ways, and edges against edges.
+fn brute_distance(ha: &hearth::ConvexHull, xa: &Transform, hb: &hearth::ConvexHull, xb: &Transform) -> f32 {
+    let tris = |h: &hearth::ConvexHull, xf: &Transform| {
+        let mut out = Vec::new();
+        for f in 0..h.faces().len() {
+            let idx: Vec<Vec3> = h.face_vertices(f).map(|i| xf.apply(h.vertices()[i as usize])).collect();
+            for k in 1..idx.len() - 1 {
+                out.push((idx[0], idx[k], idx[k + 1]));
+            }
+        }
+        out
+    };
+    let (va, _, ea) = placed(ha, xa);
+    let (vb, _, eb) = placed(hb, xb);
+    let mut best = f32::MAX;
+    for (a, b, c) in tris(hb, xb) {
+        for p in &va {
+            best = best.min((closest_on_triangle(*p, a, b, c) - *p).length());
+        }
+    }
+    for (a, b, c) in tris(ha, xa) {
+        for p in &vb {
+            best = best.min((closest_on_triangle(*p, a, b, c) - *p).length());
+        }
+    }
+    for (a0, a1) in &ea {
+        for (b0, b1) in &eb {
+            best = best.min(segment_distance(*a0, *a1, *b0, *b1));
+        }
+    }
+    best
+}
+
+fn hull_geometry(h: hearth::ConvexHullHandle) -> Geometry {
+    Geometry::Hull {
+        hull: h,
+        local: Transform::IDENTITY,
+        scale: 1.0,
+    }
+}
+
+/// How far the chosen axis may fall short of the best one: the engine keeps a face of the
+/// first hull unless the second's is better by 2 % + 1 mm, and a face unless an edge pair is
+/// better by 5 % + 2 mm, so the two slacks add (rounded up: 7.5 % + 3 mm).
+fn axis_slack(sat: f32) -> f32 {
+    0.003 + 0.075 * sat.abs()
+}
+
+#[test]
+fn hull_pairs_match_brute_force() {
+    let mut rng = Rng(2024);
+    let mut w = World::new(Default::default()).unwrap();
+    let (mut overlapping, mut separated, mut gjk_points, mut mirrored_ties) = (0, 0, 0, 0);
+    for trial in 0..300 {
+        let (na, nb) = (6 + (rng.next_u32() % 20) as usize, 6 + (rng.next_u32() % 20) as usize);
+        let ca = scenes::random_cloud(&mut rng, na, Vec3::new(0.5, 0.4, 0.3));
+        let cb = scenes::random_cloud(&mut rng, nb, Vec3::new(0.3, 0.5, 0.4));
+        let (ha, hb) = (
+            w.create_convex_hull(&ca, &HullSettings::default()).unwrap(),
+            w.create_convex_hull(&cb, &HullSettings::default()).unwrap(),
+        );
+        let xa = Transform::new(rng.vec(0.2), rng.quat());
+        let dir = rng.vec(1.0).normalize();
+        let xb = Transform::new(xa.p + dir * rng.range(0.2, 1.0), rng.quat());
+        let (a, b) = (w.convex_hull(ha).unwrap(), w.convex_hull(hb).unwrap());
+        let (va, pa, ea) = placed(a, &xa);
+        let (vb, pb, eb) = placed(b, &xb);
+        let sat = brute_sat(&va, &pa, &ea, &vb, &pb, &eb);
+        let spec = 0.05;
+        let m = collide(&w.geometry, &hull_geometry(ha), &xa, &hull_geometry(hb), &xb, spec);
+        if sat < 0.0 {
+            overlapping += 1;
+            assert!(m.count > 0, "trial {trial}: overlap {sat} but no contact");
+            // The manifold normal is (up to the face bias) the least penetrating axis.
+            let gap = {
+                let max_a = va.iter().map(|p| p.dot(m.normal)).fold(f32::MIN, f32::max);
+                let min_b = vb.iter().map(|p| p.dot(m.normal)).fold(f32::MAX, f32::min);
+                min_b - max_a
+            };
+            assert!(
+                gap <= sat + 1e-4 && gap >= sat - axis_slack(sat),
+                "trial {trial}: normal gap {gap}, SAT {sat}"
+            );
+            // No point deeper than the penetration; for shallow overlap (resting contact) the
+            // deepest point comes within 2 mm of it. Not closer: the vertex of B that is
+            // deepest along the axis may lie beyond the reference face, where the surfaces
+            // cross less deep (measured worst 1.2 mm over these 300 pairs).
+            let deepest = m.points().iter().map(|p| p.separation).fold(f32::MAX, f32::min);
+            assert!(deepest >= gap - 1e-3, "trial {trial}: deepest {deepest}, gap {gap}");
+            if sat > -0.02 {
+                assert!(
+                    (deepest - gap).abs() < 2e-3,
+                    "trial {trial}: deepest {deepest}, gap {gap}"
+                );
+            }
+        } else {
+            separated += 1;
+            let d = brute_distance(a, &xa, b, &xb);
+            let g = gjk::distance(&gjk::Points(&va), &gjk::Points(&vb));
+            assert!(
+                (g.distance - d).abs() < 2e-4,
+                "trial {trial}: GJK {} brute {d}",
+                g.distance
+            );
+            assert!(sat <= d + 1e-4, "trial {trial}: SAT {sat} > distance {d}");
+            if d <= spec - 1e-3 {
+                assert!(m.count > 0, "trial {trial}: {d} apart, within {spec}, no point");
+                let least = m.points().iter().map(|p| p.separation).fold(f32::MAX, f32::min);
+                // Never more than the distance; at most the face bias less.
+                assert!(
+                    least <= d + 2e-4 && least >= d - axis_slack(d),
+                    "trial {trial}: {least} vs {d}"
+                );
+                gjk_points += (m.count == 1) as usize;
+            } else if d > spec + 1e-3 {
+                assert_eq!(m.count, 0, "trial {trial}: {d} apart but {} points", m.count);
+            }
+        }
+        // Every point lies midway between the surfaces: its ends are on both hulls (unless
+        // the overlap is deep: then the deepest vertex may push alone, off the other face).
+        let plane_dist =
+            |planes: &[(Vec3, f32)], x: Vec3| planes.iter().map(|(n, o)| n.dot(x) - o).fold(f32::MIN, f32::max);
+        for p in m.points().iter().filter(|_| sat > -0.1) {
+            let on_a = p.point - m.normal * (0.5 * p.separation);
+            let on_b = p.point + m.normal * (0.5 * p.separation);
+            assert!(
+                plane_dist(&pa, on_a).abs() < 2e-3,
+                "trial {trial}: {} off A",
+                plane_dist(&pa, on_a)
+            );
+            assert!(
+                plane_dist(&pb, on_b).abs() < 2e-3,
+                "trial {trial}: {} off B",
+                plane_dist(&pb, on_b)
+            );
+        }
+        // The reverse order finds contact exactly when the forward order does. Its normal
+        // mirrors the forward one, except in near ties between a face of each hull, where the
+        // bias toward the first shape's faces picks the other face: then the reversed normal
+        // must be as good an axis (within the same slack of the SAT answer as the forward one).
+        let r = collide(&w.geometry, &hull_geometry(hb), &xb, &hull_geometry(ha), &xa, spec);
+        assert_eq!(
+            r.count > 0,
+            m.count > 0,
+            "trial {trial}: {} vs {} points",
+            r.count,
+            m.count
+        );
+        if m.count > 0 && (r.normal + m.normal).length() >= 1e-5 {
+            let gap_along = |n: Vec3| {
+                let max_a = va.iter().map(|p| p.dot(n)).fold(f32::MIN, f32::max);
+                let min_b = vb.iter().map(|p| p.dot(n)).fold(f32::MAX, f32::min);
+                min_b - max_a
+            };
+            let rev = gap_along(-r.normal);
+            assert!(
+                rev <= sat.max(0.0) + 1e-4 && rev >= sat - axis_slack(sat),
+                "trial {trial}: reversed gap {rev}, SAT {sat}"
+            );
+            mirrored_ties += 1;
+        }
+        w.destroy_convex_hull(ha).unwrap();
+        w.destroy_convex_hull(hb).unwrap();
+    }
+    println!("{overlapping} overlapping, {separated} separated ({gjk_points} one-point), {mirrored_ties} near ties");
+    assert!(overlapping > 50 && separated > 50);
+}
+
+#[test]
+fn gjk_distance_matches_brute_force_for_every_kind() {
+    let mut rng = Rng(31337);
+    for trial in 0..300 {
+        let n = 5 + (rng.next_u32() % 20) as usize;
+        let cloud = scenes::random_cloud(&mut rng, n, Vec3::new(0.5, 0.3, 0.4));
+        let h = hearth::collision::hull::builder::build(&cloud, &HullSettings::default()).unwrap();
+        let xf = Transform::new(Vec3::ZERO, rng.quat());
+        let (v, planes, edges) = placed(&h, &xf);
+        let tris: Vec<(Vec3, Vec3, Vec3)> = (0..h.faces().len())
+            .flat_map(|f| {
+                let idx: Vec<Vec3> = h.face_vertices(f).map(|i| xf.apply(h.vertices()[i as usize])).collect();
+                (1..idx.len() - 1)
+                    .map(move |k| (idx[0], idx[k], idx[k + 1]))
+                    .collect::<Vec<_>>()
+            })
+            .collect();
+        let point_dist = |p: Vec3| {
+            tris.iter()
+                .map(|(a, b, c)| (closest_on_triangle(p, *a, *b, *c) - p).length())
+                .fold(f32::MAX, f32::min)
+        };
+        let inside = |p: Vec3| planes.iter().all(|(n, o)| n.dot(p) <= *o);
+        let far = rng.vec(1.0).normalize() * rng.range(0.6, 2.0);
+        match trial % 3 {
+            0 => {
+                // Sphere core (a point).
+                if inside(far) {
+                    continue;
+                }
+                let g = gjk::distance(&gjk::Points(&v), &gjk::Point(far));
+                let d = point_dist(far);
+                assert!((g.distance - d).abs() < 1e-4, "point: {} vs {d}", g.distance);
+                assert!((point_dist(g.point_a)).abs() < 1e-4);
+            }
+            1 => {
+                // Capsule core (a segment).
+                let q = far + rng.vec(0.5);
+                if inside(far) || inside(q) {
+                    continue;
+                }
+                let g = gjk::distance(&gjk::Points(&v), &gjk::Segment(far, q));
+                let mut d = point_dist(far).min(point_dist(q));
+                for (a, b) in &edges {
+                    d = d.min(segment_distance(far, q, *a, *b));
+                }
+                if g.overlap {
+                    // The segment passes through the hull between its outside ends.
+                    assert!(d > 0.0);
+                    continue;
+                }
+                assert!((g.distance - d).abs() < 5e-4, "segment: {} vs {d}", g.distance);
+            }
+            _ => {
+                // A box (its eight corners).
+                let hb = Vec3::new(rng.range(0.05, 0.3), rng.range(0.05, 0.3), rng.range(0.05, 0.3));
+                let bx = Transform::new(far * 1.5, rng.quat());
+                let corners: Vec<Vec3> = scenes::cube_points(1.0).iter().map(|p| bx.apply(*p * hb)).collect();
+                let boxh = hearth::collision::hull::builder::build(&corners, &HullSettings::default()).unwrap();
+                let (vb, pb, eb) = placed(&boxh, &Transform::IDENTITY);
+                if brute_sat(&v, &planes, &edges, &vb, &pb, &eb) <= 0.0 {
+                    continue;
+                }
+                let g = gjk::distance(&gjk::Points(&v), &gjk::Points(&corners));
+                let d = brute_distance(&h, &xf, &boxh, &Transform::IDENTITY);
+                assert!((g.distance - d).abs() < 2e-4, "box: {} vs {d}", g.distance);
+            }
+        }
+    }
+}
+
+// ------------------------------------------------------------------ dynamics
+
+#[test]
+fn random_hull_drops_come_to_rest_without_gaining_energy() {
+    for seed in 1..=4u64 {
+        let mut w = scenes::world(true);
+        let ids = scenes::hull_pile(&mut w, 60, seed);
+        let energy = |w: &World| -> f32 {
+            ids.iter()
+                .map(|&b| {
+                    let body = w.body(b).unwrap();
+                    let v = body.v;
+                    let iw = body.inertia_local;
+                    let wl = body.xf.q.conjugate() * body.w;
+                    0.5 * body.mass * v.length_squared() + 0.5 * wl.dot(iw * wl) + body.mass * 9.81 * body.center.y
+                })
+                .sum()
+        };
+        let e0 = energy(&w);
+        let mut max_e = e0;
+        for step in 0..900 {
+            w.step(DT).unwrap();
+            let e = energy(&w);
+            max_e = max_e.max(e);
+            for &b in &ids {
+                let body = w.body(b).unwrap();
+                assert!(
+                    body.xf.p.is_finite() && body.v.length() < 30.0,
+                    "seed {seed} step {step}: {}",
+                    body.v
+                );
+                assert!(body.xf.p.y > -0.1, "seed {seed}: a hull fell through the floor");
+            }
+        }
+        println!(
+            "seed {seed}: energy {e0:.1} -> {:.1} (max {max_e:.1}), awake {}",
+            energy(&w),
+            w.awake_body_count()
+        );
+        assert!(
+            max_e <= e0 * 1.001 + 1.0,
+            "seed {seed}: energy grew to {max_e} from {e0}"
+        );
+        assert_eq!(
+            w.awake_body_count(),
+            0,
+            "seed {seed}: the pile did not come to rest in 15 s"
+        );
+    }
+}
+
+#[test]
+fn hulls_on_a_large_box_match_their_lowest_vertex() {
+    let mut rng = Rng(555);
+    let mut w = World::new(Default::default()).unwrap();
+    let ground = Geometry::Box {
+        center: Vec3::ZERO,
+        rotation: Quat::IDENTITY,
+        half_extents: Vec3::new(10.0, 1.0, 10.0),
+    };
+    let gx = Transform::new(Vec3::new(0.0, -1.0, 0.0), Quat::IDENTITY);
+    for trial in 0..500 {
+        let n = 12 + (rng.next_u32() % 13) as usize;
+        let axes = Vec3::new(rng.range(0.25, 0.5), rng.range(0.25, 0.5), rng.range(0.25, 0.5));
+        let cloud = scenes::random_cloud(&mut rng, n, axes);
+        let h = w.create_convex_hull(&cloud, &HullSettings::default()).unwrap();
+        let q = rng.quat();
+        let hull = w.convex_hull(h).unwrap();
+        let low = hull.vertices().iter().map(|v| (q * *v).y).fold(f32::MAX, f32::min);
+        let gap = rng.range(-0.03, 0.03);
+        let p = Vec3::new(rng.range(-9.0, 9.0), gap - low, rng.range(-9.0, 9.0));
+        let xf = Transform::new(p, q);
+        let mut cache = hearth::collision::narrow_phase::SatCache::None;
+        for pass in 0..2 {
+            let m = hearth::collision::narrow_phase::collide_cached(
+                &w.geometry,
+                &ground,
+                &gx,
+                &hull_geometry(h),
+                &xf,
+                0.02,
+                &mut cache,
+            );
+            if gap <= 0.02 - 1e-4 {
+                assert!(
+                    m.count > 0,
+                    "trial {trial} pass {pass}: gap {gap}, no contact ({cache:?})"
+                );
+                let least = m.points().iter().map(|p| p.separation).fold(f32::MAX, f32::min);
+                assert!(
+                    (least - gap).abs() < 1e-4,
+                    "trial {trial} pass {pass}: {least} vs {gap} ({:?})",
+                    cache
+                );
+                assert!(
+                    (m.normal - Vec3::Y).length() < 1e-4,
+                    "trial {trial}: normal {}",
+                    m.normal
+                );
+            }
+        }
+        w.destroy_convex_hull(h).unwrap();
+    }
 }
