@@ -5,9 +5,12 @@
 //!    axis extremes, the point farthest from their line, the point farthest from that
 //!    plane. A cloud whose extent, line distance or plane distance is within the tolerance
 //!    has no volume: rejected.
-//! 2. **Conflict lists.** Every other point goes to the face it is farthest above, if that
-//!    is more than the tolerance `tol`; points within `tol` of the hull are on it (this is
-//!    what welds duplicates and near-duplicates: no two hull vertices end up within `tol`).
+//! 2. **Conflict lists.** Every other point goes to the face it is farthest above; only a
+//!    point more than the tolerance `tol` above becomes a vertex, so points within `tol` of
+//!    the hull are on it (this welds duplicates and near-duplicates: no two hull vertices
+//!    end up within `tol`). Points kept within `tol` are measured again against all faces
+//!    when the expansion ends, and it goes on if one now lies farther out (a point barely
+//!    above a sharp corner's planes can end up outside a face built later).
 //! 3. **Expansion.** The point farthest above any face is added: the faces it sees
 //!    (distance above a tiny numerical `eps`, so the triangle hull is a true convex hull of
 //!    the points taken) are removed, the horizon is walked and a cone of new faces joins
@@ -19,8 +22,9 @@
 //!    it on dense spheres).
 //! 4. **Merging.** Adjacent triangles are grown into polygons (largest triangle first)
 //!    while all the polygon's vertices stay within `tol` of one plane and the polygon stays
-//!    a disk; vertices left between fewer than three polygons (on a merged edge, or inside
-//!    a merged face) are removed.
+//!    a disk; a polygon that came out not convex (small steep triangles fit in the
+//!    tolerance slab) goes back to its triangles. Vertices left between fewer than three
+//!    polygons (on a merged edge, or inside a merged face) are removed.
 //!
 //! The tolerance is relative to the cloud: `tol = max(weld, 1e-5) · diagonal` of the
 //! cloud's bounding box (and at least a few f32 ulps of its largest coordinate).
@@ -228,20 +232,45 @@ impl<'a> Quickhull<'a> {
         }
     }
 
-    /// Puts point `i` on the face (among `faces`) it is farthest above, if more than `tol`.
-    fn assign(&mut self, i: u32, faces: std::ops::Range<usize>) {
+    /// The live face among `faces` that point `i` is farthest above (by more than `eps`).
+    fn farthest(&self, i: u32, faces: std::ops::Range<usize>) -> (u32, f64) {
         let p = self.pts[i as usize];
-        let (mut best, mut best_d) = (NONE, self.tol);
+        let (mut best, mut best_d) = (NONE, self.eps);
         for f in faces {
-            if !self.tris[f].alive {
-                continue;
-            }
-            let d = self.tris[f].dist(p);
-            if d > best_d {
-                best_d = d;
-                best = f as u32;
+            let t = &self.tris[f];
+            if t.alive {
+                let d = t.dist(p);
+                if d > best_d {
+                    best_d = d;
+                    best = f as u32;
+                }
             }
         }
+        (best, best_d)
+    }
+
+    /// Reassigns every kept point to the face it is farthest above now; true when one is
+    /// more than `tol` above it (the expansion must go on).
+    fn remeasure(&mut self) -> bool {
+        let mut kept = Vec::new();
+        for t in self.tris.iter_mut().filter(|t| t.alive) {
+            kept.append(&mut t.outside);
+            t.far = NONE;
+            t.far_d = 0.0;
+        }
+        let all = self.tris.len();
+        for i in kept {
+            self.assign(i, 0..all);
+        }
+        self.tris.iter().any(|t| t.alive && t.far != NONE && t.far_d > self.tol)
+    }
+
+    /// Puts point `i` on the face (among `faces`) it is farthest above, if above any by more
+    /// than `eps`. Only points more than `tol` above become vertices; the others stay in
+    /// the lists so that, should their face go, they are measured against the new faces
+    /// (a point barely above a sharp corner's planes may lie far outside the final hull).
+    fn assign(&mut self, i: u32, faces: std::ops::Range<usize>) {
+        let (best, best_d) = self.farthest(i, faces);
         if best != NONE {
             self.tris[best as usize].push_outside(i, best_d);
         }
@@ -340,9 +369,26 @@ impl<'a> Quickhull<'a> {
             t.alive = false;
             orphans.append(&mut t.outside);
         }
+        let all = self.tris.len();
         for i in orphans {
-            if i != eye {
-                self.assign(i, first..self.tris.len());
+            if i == eye {
+                continue;
+            }
+            // The new faces first; a point not clearly outside them may still be farther
+            // above a face the eye did not see.
+            let (f, d) = self.farthest(i, first..all);
+            let (f, d) = if d > self.tol {
+                (f, d)
+            } else {
+                let (g, e) = self.farthest(i, 0..first);
+                if e > d {
+                    (g, e)
+                } else {
+                    (f, d)
+                }
+            };
+            if f != NONE {
+                self.tris[f as usize].push_outside(i, d);
             }
         }
         true
@@ -388,7 +434,15 @@ pub(crate) fn build_polyhedron(points: &[Vec3], weld: f32, max_vertices: usize) 
     };
     qh.initial()?;
     let (mut visible, mut horizon) = (Vec::new(), Vec::new());
-    while qh.vertex_count < max_vertices.max(4) && qh.expand(&mut visible, &mut horizon) {}
+    loop {
+        while qh.vertex_count < max_vertices.max(4) && qh.expand(&mut visible, &mut horizon) {}
+        // A point kept on a face within `tol` may have come to lie farther above a face
+        // built later elsewhere: measure the kept points against every face again and go
+        // on while one is clearly outside.
+        if qh.vertex_count >= max_vertices.max(4) || !qh.remeasure() {
+            break;
+        }
+    }
     let tris: Vec<Tri> = qh.tris.into_iter().filter(|t| t.alive).collect();
     merge(&pts, tris, tol)
 }
@@ -511,7 +565,7 @@ fn merge(pts: &[DVec3], mut tris: Vec<Tri>, tol: f64) -> Option<(Vec<Vec3>, Vec<
                 }
             }
         }
-        if ok && lp.len() == boundary.len() {
+        if ok && lp.len() == boundary.len() && convex(pts, &lp, normal_of(pts, members, &tris)) {
             loops.push(lp);
         } else {
             for &f in members {
@@ -530,7 +584,7 @@ fn merge(pts: &[DVec3], mut tris: Vec<Tri>, tol: f64) -> Option<(Vec<Vec3>, Vec<
         .iter()
         .map(|lp| lp.iter().copied().filter(|&v| faces_at[v as usize] >= 3).collect())
         .collect();
-    let loops = if trimmed.iter().all(|l: &Vec<u32>| l.len() >= 3) {
+    let loops = if std::env::var("NOTRIM").is_err() && trimmed.iter().all(|l: &Vec<u32>| l.len() >= 3) {
         trimmed
     } else {
         loops
@@ -559,6 +613,32 @@ fn merge(pts: &[DVec3], mut tris: Vec<Tri>, tol: f64) -> Option<(Vec<Vec3>, Vec<
         return None;
     }
     Some((vertices, out))
+}
+
+/// Area-weighted normal of a group of triangles.
+fn normal_of(pts: &[DVec3], members: &[usize], tris: &[Tri]) -> DVec3 {
+    members
+        .iter()
+        .map(|&f| {
+            let v = tris[f].v;
+            let (a, b, c) = (pts[v[0] as usize], pts[v[1] as usize], pts[v[2] as usize]);
+            (b - a).cross(c - a)
+        })
+        .sum::<DVec3>()
+        .normalize()
+}
+
+/// True when the loop turns left (about `n`) at every vertex, allowing 0.6° of reflex
+/// bend: a merge of nearly coplanar triangles that made a notch is undone.
+fn convex(pts: &[DVec3], lp: &[u32], n: DVec3) -> bool {
+    let k = lp.len();
+    (0..k).all(|i| {
+        let a = pts[lp[i] as usize];
+        let b = pts[lp[(i + 1) % k] as usize];
+        let c = pts[lp[(i + 2) % k] as usize];
+        let (ab, bc) = (b - a, c - b);
+        ab.cross(bc).dot(n) >= -0.01 * ab.length() * bc.length()
+    })
 }
 
 /// Builds a hull from a point cloud (see the module doc). Errors (nothing is built): fewer

@@ -14,8 +14,8 @@
 //! the volume is exact by Steiner's formula `V + A r + M r² + 4/3 π r³` (`A` the area, `M`
 //! half the sum over edges of length × the angle between the two face normals). The centre
 //! of mass and inertia are integrated exactly on a polyhedral stand-in, the convex hull of
-//! every vertex plus 42 directions of a subdivided icosahedron of radius `r` (scaled to the
-//! ball's volume), then scaled to the exact mass. `tests/hull.rs` measures the error on a
+//! every vertex plus 162 evenly spread directions of length `r` (scaled to the ball's
+//! volume), then scaled to the exact mass. `tests/hull.rs` measures the error on a
 //! rounded box against its analytic inertia.
 
 use crate::collision::shape::MassProperties;
@@ -109,39 +109,25 @@ pub fn rounded_volume(hull: &super::ConvexHull, core_volume: f64, area: f32) -> 
     core_volume + area as f64 * r + mean_curvature * r * r + 4.0 / 3.0 * std::f64::consts::PI * r * r * r
 }
 
-/// Unit vectors of an icosahedron subdivided once (42 directions).
+/// Directions spread evenly over the sphere (a Fibonacci lattice of 162 points, symmetric).
 fn sphere_directions() -> Vec<DVec3> {
-    let t = (1.0 + 5.0f64.sqrt()) / 2.0;
-    let mut v: Vec<DVec3> = [
-        (-1.0, t, 0.0),
-        (1.0, t, 0.0),
-        (-1.0, -t, 0.0),
-        (1.0, -t, 0.0),
-        (0.0, -1.0, t),
-        (0.0, 1.0, t),
-        (0.0, -1.0, -t),
-        (0.0, 1.0, -t),
-        (t, 0.0, -1.0),
-        (t, 0.0, 1.0),
-        (-t, 0.0, -1.0),
-        (-t, 0.0, 1.0),
-    ]
-    .iter()
-    .map(|&(x, y, z)| DVec3::new(x, y, z).normalize())
-    .collect();
-    // Midpoints of the 30 edges (pairs at the icosahedron's edge length).
-    let edge = (v[0] - v[1]).length();
-    let n = v.len();
-    for i in 0..n {
-        for j in i + 1..n {
-            if ((v[i] - v[j]).length() - edge).abs() < 1.0e-9 {
-                let m = (v[i] + v[j]).normalize();
-                v.push(m);
-            }
-        }
-    }
-    v
+    // Half a lattice on the upper hemisphere and its mirror image through the centre, so
+    // a centrally symmetric core keeps its centre.
+    let n = SPHERE_DIRECTIONS;
+    let golden = std::f64::consts::PI * (3.0 - 5.0f64.sqrt());
+    let half: Vec<DVec3> = (0..n / 2)
+        .map(|i| {
+            let y = 1.0 - 2.0 * (i as f64 + 0.5) / n as f64;
+            let r = (1.0 - y * y).sqrt();
+            let a = golden * i as f64;
+            DVec3::new(r * a.cos(), y, r * a.sin())
+        })
+        .collect();
+    half.iter().copied().chain(half.iter().map(|d| -*d)).collect()
 }
+
+/// Directions of the polyhedral ball in the rounded stand-in.
+const SPHERE_DIRECTIONS: usize = 162;
 
 /// Mass properties of the rounded hull at unit density (see the module doc).
 pub fn rounded_mass(hull: &super::ConvexHull, core: MassProperties, area: f32) -> MassProperties {

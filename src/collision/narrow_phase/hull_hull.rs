@@ -19,7 +19,8 @@
 //! * a face: the incident face of the other hull (most anti-parallel) is clipped against
 //!   the reference face's side planes (each incident edge by Cyrus–Beck, which is
 //!   Sutherland–Hodgman one edge at a time, plus the reference corners that lie over the
-//!   incident face) and the points reduced to four by area;
+//!   incident face, plus the incident hull's deepest vertex when it is off the incident
+//!   face) and the points reduced to four by area;
 //! * an edge pair: one point between the closest points of the two edges.
 //!
 //! When the cores are apart, the best axis gives the true distance only if a face or an
@@ -185,6 +186,14 @@ pub(crate) fn hull_hull(a: &Poly, b: &Poly, speculative: f32, cache: &mut SatCac
             let Some((axis, s)) = edge_axis(pa0, pa1, ga.n1 + ga.n2, pb0, pb1) else {
                 continue;
             };
+            if s <= sep_e {
+                continue;
+            }
+            // The edge-to-edge gap is the gap along the axis only when the pair really
+            // builds a face of the Minkowski difference; welded hulls with very short edges
+            // can pass the arc test with normals that do not quite fit, so a gap that would
+            // decide is measured again by the support functions (rarely: only new maxima).
+            let s = s.min(support_separation(a, b, &rel, axis));
             if s > limit {
                 *cache = SatCache::Edges(ka as u16, kb as u16);
                 return Manifold::EMPTY;
@@ -285,7 +294,7 @@ fn face_contact(refp: &Poly, inc: &Poly, rel: &Relative, face: usize, speculativ
     let (side, kind) = if flipped { (1u32, KIND_FACE_B) } else { (0, KIND_FACE_A) };
     let base = [face as u32 | side << 16, inc_face as u32];
     let mut cands = Candidates::new(n);
-    let mut add = |x: Vec3, key: u32| {
+    let add = |cands: &mut Candidates, x: Vec3, key: u32| {
         let s = n.dot(x) - pl.offset;
         let sep = s - r_total;
         if sep > speculative {
@@ -332,12 +341,25 @@ fn face_contact(refp: &Poly, inc: &Poly, rel: &Relative, face: usize, speculativ
             continue;
         }
         if enter == u32::MAX {
-            add(p, he.origin as u32);
+            add(&mut cands, p, he.origin as u32);
         } else {
-            add(p + (q - p) * t0, 0x1_0000 | (k as u32) << 8 | enter);
+            add(&mut cands, p + (q - p) * t0, 0x1_0000 | (k as u32) << 8 | enter);
         }
         if exit != u32::MAX {
-            add(p + (q - p) * t1, 0x2_0000 | (k as u32) << 8 | exit);
+            add(&mut cands, p + (q - p) * t1, 0x2_0000 | (k as u32) << 8 | exit);
+        }
+    }
+    // The incident hull's deepest vertex when it is not on the incident face (the face most
+    // anti-parallel to n need not hold it) and lies over the reference face.
+    let deepest = inc.support_index(-n_inc_local);
+    if !inc_he.iter().any(|he| he.origin as usize == deepest) {
+        let x = rel.r * inc.vertex(deepest) + rel.t;
+        let over = (0..nr).all(|j| {
+            let a0 = ref_vertex(j);
+            (ref_vertex(j + 1) - a0).cross(n).dot(x - a0) <= 0.0
+        });
+        if over {
+            add(&mut cands, x, 0x8_0000 | deepest as u32);
         }
     }
     // Reference corners over the incident face, projected onto it along n.
@@ -345,16 +367,27 @@ fn face_contact(refp: &Poly, inc: &Poly, rel: &Relative, face: usize, speculativ
     let denom = n_inc.dot(n);
     if denom < -0.1 {
         for j in 0..nr {
+            // Projected first, then tested on the incident plane: a tilted incident face
+            // would otherwise accept corners whose projection along n falls off it.
             let c = ref_vertex(j);
+            let x = c + n * ((d_inc - n_inc.dot(c)) / denom);
             let inside = (0..ni).all(|k| {
                 let p = inc_vertex(k);
-                (inc_vertex(k + 1) - p).cross(n_inc).dot(c - p) <= 0.0
+                (inc_vertex(k + 1) - p).cross(n_inc).dot(x - p) <= 0.0
             });
             if inside {
-                let t = (d_inc - n_inc.dot(c)) / denom;
-                add(c + n * t, 0x4_0000 | j as u32);
+                add(&mut cands, x, 0x4_0000 | j as u32);
             }
         }
+    }
+    // Deep overlaps of tilted faces can leave nothing over both faces; the deepest vertex
+    // then pushes alone (at the gap of the axis, so the solver still separates the pair).
+    if cands.n == 0 {
+        add(
+            &mut cands,
+            rel.r * inc.vertex(deepest) + rel.t,
+            0x8_0000 | deepest as u32,
+        );
     }
     let normal = refp.rot * if flipped { -n } else { n };
     cands.finish(normal, |x| refp.world_point(x))
