@@ -53,6 +53,7 @@ const PROGRAMS: &[&str] = &[
     "test_particles.c",
     "test_joints.c",
     "test_soft.c",
+    "test_geometry.c",
 ];
 
 #[test]

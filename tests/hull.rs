@@ -429,7 +429,10 @@ use hearth::collision::gjk;
 use hearth::collision::narrow_phase::collide;
 
 /// World vertices and (normal, offset) planes of a hull shape.
-fn placed(h: &hearth::ConvexHull, xf: &Transform) -> (Vec<Vec3>, Vec<(Vec3, f32)>, Vec<(Vec3, Vec3)>) {
+/// Vertices, (normal, offset) planes and edges of a placed hull, in world space.
+type Placed = (Vec<Vec3>, Vec<(Vec3, f32)>, Vec<(Vec3, Vec3)>);
+
+fn placed(h: &hearth::ConvexHull, xf: &Transform) -> Placed {
     let v: Vec<Vec3> = h.vertices().iter().map(|p| xf.apply(*p)).collect();
     let planes = h
         .planes()

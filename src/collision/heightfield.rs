@@ -26,6 +26,10 @@ use crate::collision::mesh::edges::{edge_active, ALL_EDGES};
 use crate::error::{invalid, Result};
 use crate::math::Vec3;
 
+/// The neighbouring cell across a triangle edge and the sample opposite the edge in it:
+/// `(cell row, cell column, sample row, sample column)`.
+type Across = (i64, i64, i64, i64);
+
 /// Cells per side of a level-0 block of the min/max pyramid.
 pub const BLOCK: u32 = 8;
 /// Most samples along either side.
@@ -315,7 +319,7 @@ impl Heightfield {
         let d = self.vertex(row + 1, column + 1, s);
         let (r, col) = (row as i64, column as i64);
         // For each edge: the neighbouring cell and the sample opposite the edge in it.
-        let (v, across): ([Vec3; 3], [(i64, i64, i64, i64); 3]) = if k == 0 {
+        let (v, across): ([Vec3; 3], [Across; 3]) = if k == 0 {
             // (a, c, d): a→c borders cell (r, c−1), c→d cell (r+1, c), d→a this cell's (a, d, b).
             (
                 [a, c, d],

@@ -23,7 +23,8 @@ pub const ALL_EDGES: u8 = 0b111;
 pub fn edge_active(n: Vec3, a: Vec3, b: Vec3, opp: Vec3) -> bool {
     let n2 = (a - b).cross(opp - b);
     let len = n2.length();
-    if !(len > 0.0) {
+    // Also true for a NaN length (a degenerate neighbour): such an edge stays active.
+    if len.partial_cmp(&0.0) != Some(std::cmp::Ordering::Greater) {
         return true;
     }
     // Convex when the neighbour bends away below this triangle's plane.

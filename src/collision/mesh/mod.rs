@@ -188,7 +188,8 @@ fn is_degenerate(v: &[Vec3], t: &[u32; 3]) -> bool {
         .length_squared()
         .max((c - b).length_squared())
         .max((a - c).length_squared());
-    !(twice_area.is_finite() && longest.is_finite()) || !(twice_area > DEGENERATE_RATIO * longest)
+    let kept = twice_area.is_finite() && longest.is_finite() && twice_area > DEGENERATE_RATIO * longest;
+    !kept
 }
 
 pub(crate) fn triangle_bounds(v: &[Vec3], t: &[u32; 3]) -> Aabb {
