@@ -284,11 +284,10 @@ pub unsafe extern "C" fn hearth_heightfield_create(
         } else {
             let cells = (rows as usize - 1) * (columns as usize - 1);
             let flags = std::slice::from_raw_parts(holes, cells);
-            let mut out = Vec::with_capacity(cells);
-            for (i, &f) in flags.iter().enumerate() {
-                out.push(validate::flag(f, &format!("holes[{i}]"))?);
+            if let Some(i) = flags.iter().position(|&f| f > 1) {
+                validate::flag(flags[i], &format!("holes[{i}]"))?;
             }
-            Some(out)
+            Some(flags.iter().map(|&f| f == 1).collect::<Vec<bool>>())
         };
         let out = validate::output(out_heightfield, "out_heightfield")?;
         *out = w.create_heightfield(rows, columns, h, holes.as_deref())?.into();
