@@ -33,6 +33,9 @@ RULES = [
                   r"|hearth_contact_sink_\w+|HearthContactSink|HearthGeneratedContact|Hearth(Force|Contact)Callback"
                   r"|HearthLinkEnd|HEARTH_LINK_\w+)$"),
     ("recording", r"^(hearth_record_\w+|hearth_world_record_\w+|HearthRecord\w*)$"),
+    ("geometry", r"^(hearth_hull_\w+|hearth_mesh_\w+|hearth_heightfield_\w+|HearthHull\w*|HearthMesh\w*"
+                 r"|HearthHeightfield\w*|HEARTH_MAX_(HULL|MESH|HEIGHTFIELD)_\w+"
+                 r"|hearth_shape_create_(hull|mesh|heightfield))$"),
     ("shape", r"^(hearth_shape_\w+|HearthShape\w*|HearthSphere|HearthBox|HearthCapsule|HearthPlane)$"),
     ("body", r"^(hearth_body_\w+|HearthBody\w*|HEARTH_BODY_\w+)$"),
     ("world", r"^(hearth_world_\w+|HearthWorld\w*|HEARTH_INTEGRATOR_\w+)$"),

@@ -113,6 +113,26 @@
 #define HEARTH_GENERATOR_USER_CONTACT 10
 
 /**
+ * Most points accepted by `hearth_hull_create` (the hull keeps at most 255 vertices).
+ */
+#define HEARTH_MAX_HULL_POINTS 1048576
+
+/**
+ * Most vertices accepted by `hearth_mesh_create`.
+ */
+#define HEARTH_MAX_MESH_VERTICES 67108864
+
+/**
+ * Most indices (three per triangle) accepted by `hearth_mesh_create`.
+ */
+#define HEARTH_MAX_MESH_INDICES 201326592
+
+/**
+ * Most samples along either side of a heightfield.
+ */
+#define HEARTH_MAX_HEIGHTFIELD_SAMPLES 32768
+
+/**
  * Ball-and-socket joint (`hearth_joint_get_type`).
  */
 #define HEARTH_JOINT_BALL 0
@@ -771,6 +791,70 @@ typedef struct HearthCableGeneratorDef {
 } HearthCableGeneratorDef;
 
 /**
+ * How a convex hull is built. Get one from `hearth_hull_def_default()`, then edit it.
+ */
+typedef struct HearthHullDef {
+    /**
+     * Convex radius (m, >= 0): the shape is the hull of the points grown by this much
+     * (rounded edges and corners). Default 0.
+     */
+    float convex_radius;
+    /**
+     * Points within this fraction of the cloud's bounding-box diagonal of the hull are
+     * welded onto it, and faces within it of one plane are merged (0 ..= 0.1).
+     * Default 0.001.
+     */
+    float weld_tolerance;
+    /**
+     * Set by `hearth_hull_def_default()`; do not change.
+     */
+    uint32_t internal_value;
+} HearthHullDef;
+
+/**
+ * Id of a convex hull (shared geometry) inside its world. All-zero is the null id. Ids of
+ * destroyed hulls and of other worlds are rejected with `HEARTH_ERROR_INVALID_ID`.
+ */
+typedef struct HearthHullId {
+    /**
+     * Slot of the hull.
+     */
+    uint32_t index;
+    /**
+     * Generation of the slot (0 only in the null id).
+     */
+    uint32_t generation;
+} HearthHullId;
+
+/**
+ * Id of a triangle mesh (shared geometry) inside its world. All-zero is the null id.
+ */
+typedef struct HearthMeshId {
+    /**
+     * Slot of the mesh.
+     */
+    uint32_t index;
+    /**
+     * Generation of the slot (0 only in the null id).
+     */
+    uint32_t generation;
+} HearthMeshId;
+
+/**
+ * Id of a heightfield (shared geometry) inside its world. All-zero is the null id.
+ */
+typedef struct HearthHeightfieldId {
+    /**
+     * Slot of the heightfield.
+     */
+    uint32_t index;
+    /**
+     * Generation of the slot (0 only in the null id).
+     */
+    uint32_t generation;
+} HearthHeightfieldId;
+
+/**
  * The fields every joint def starts with. The frames may be any poses: frames that do not
  * meet where the bodies are (anchors apart, axes turned) are pulled together in the first
  * steps; that pull does work, after it the joint adds no energy.
@@ -1325,6 +1409,64 @@ typedef struct HearthPlane {
      */
     float offset;
 } HearthPlane;
+
+/**
+ * A convex hull instanced by a shape: the hull's points are scaled uniformly by `scale`
+ * (> 0; also the convex radius), then placed by `local` in the body frame.
+ */
+typedef struct HearthHullShape {
+    /**
+     * The hull, from `hearth_hull_create`.
+     */
+    struct HearthHullId hull;
+    /**
+     * Placement of the hull's frame in the body frame.
+     */
+    struct HearthTransform local;
+    /**
+     * Uniform scale (> 0; the scaled hull must span at least 1 mm).
+     */
+    float scale;
+} HearthHullShape;
+
+/**
+ * A triangle mesh instanced by a shape: scaled per axis by `scale` (each >= 1e-4) in the
+ * mesh's own frame, then placed by `local` in the body frame.
+ */
+typedef struct HearthMeshShape {
+    /**
+     * The mesh, from `hearth_mesh_create`.
+     */
+    struct HearthMeshId mesh;
+    /**
+     * Placement of the mesh's frame in the body frame.
+     */
+    struct HearthTransform local;
+    /**
+     * Per-axis scale (each >= 1e-4; negative scales, mirroring, are not supported).
+     */
+    struct HearthVec3 scale;
+} HearthMeshShape;
+
+/**
+ * A heightfield instanced by a shape: `scale.x` and `scale.z` are the sample spacing (m)
+ * along columns and rows, `scale.y` multiplies the heights (each >= 1e-4); then placed by
+ * `local` in the body frame.
+ */
+typedef struct HearthHeightfieldShape {
+    /**
+     * The heightfield, from `hearth_heightfield_create`.
+     */
+    struct HearthHeightfieldId heightfield;
+    /**
+     * Placement of the heightfield's frame in the body frame.
+     */
+    struct HearthTransform local;
+    /**
+     * Spacing in x and z (m) and height scale in y (each >= 1e-4).
+     */
+    struct HearthVec3 scale;
+} HearthHeightfieldShape;
 
 /**
  * How to create a soft body (everything except its mesh). Get one from
@@ -2267,6 +2409,157 @@ HearthResult hearth_generator_get_type(const struct HearthWorld *world,
                                        uint32_t *out_type);
 
 /**
+ * Defaults: no convex radius, weld tolerance 0.1 % of the cloud's size.
+ */
+struct HearthHullDef hearth_hull_def_default(void);
+
+/**
+ * Builds a convex hull of `point_count` points (m, in the hull's own frame; copied) and
+ * stores it in the world for shapes to use (`hearth_shape_create_hull`). Points inside
+ * the hull are dropped; more than 255 hull vertices are simplified to 255; coplanar faces
+ * are merged into polygons. Mass, centre of mass and inertia of shapes using it are exact
+ * for the polyhedron (and for the rounded shape's volume when `def.convex_radius > 0`).
+ *
+ * Errors (nothing is stored): `HEARTH_ERROR_NULL_POINTER` (world, def, points,
+ * out_hull), `HEARTH_ERROR_INVALID_ARGUMENT` (def not from `hearth_hull_def_default()`,
+ * convex_radius negative or not finite, weld_tolerance outside 0..=0.1, `point_count` under
+ * 4 or above `HEARTH_MAX_HULL_POINTS`, a NaN or infinite point, points spanning under
+ * 1 mm, or collinear or coplanar points), `HEARTH_ERROR_WORLD_LOCKED`.
+ *
+ * # Safety
+ * `points` must hold `point_count` vectors; other pointers NULL or valid.
+ */
+HearthResult hearth_hull_create(struct HearthWorld *world,
+                                const struct HearthHullDef *def,
+                                const struct HearthVec3 *points,
+                                size_t point_count,
+                                struct HearthHullId *out_hull);
+
+/**
+ * Frees a convex hull. Refused while shapes use it: `HEARTH_ERROR_INVALID_ARGUMENT`, the
+ * message giving the number of shapes (destroy them, or their bodies, first).
+ *
+ * Errors: `HEARTH_ERROR_NULL_POINTER`, `HEARTH_ERROR_INVALID_ID` (null, destroyed or
+ * another world's hull), `HEARTH_ERROR_INVALID_ARGUMENT` (in use),
+ * `HEARTH_ERROR_WORLD_LOCKED`.
+ *
+ * # Safety
+ * `world` must be NULL or a live world.
+ */
+HearthResult hearth_hull_destroy(struct HearthWorld *world, struct HearthHullId hull);
+
+/**
+ * Reads the number of vertices of a convex hull (at most 255).
+ *
+ * Errors: `HEARTH_ERROR_NULL_POINTER`, `HEARTH_ERROR_INVALID_ID`.
+ *
+ * # Safety
+ * `world` must be NULL or a live world; `out_count` NULL or writable.
+ */
+HearthResult hearth_hull_get_vertex_count(const struct HearthWorld *world,
+                                          struct HearthHullId hull,
+                                          uint32_t *out_count);
+
+/**
+ * Builds a triangle mesh from `vertex_count` vertices (m, in the mesh's own frame) and
+ * `index_count` vertex indices, three per triangle, counter-clockwise seen from the front
+ * (triangles are one-sided). Both arrays are copied. Degenerate triangles (a repeated
+ * index, or no area) are skipped and counted (`hearth_mesh_get_degenerate_count`). A mesh
+ * is level geometry: shapes using it go on static or kinematic bodies only.
+ *
+ * Errors (nothing is stored): `HEARTH_ERROR_NULL_POINTER` (world, vertices, indices,
+ * out_mesh), `HEARTH_ERROR_INVALID_ARGUMENT` (`vertex_count` 0 or above
+ * `HEARTH_MAX_MESH_VERTICES`, `index_count` 0, not a multiple of 3 or above
+ * `HEARTH_MAX_MESH_INDICES`, an index >= `vertex_count`, a NaN or infinite vertex, every
+ * triangle degenerate), `HEARTH_ERROR_WORLD_LOCKED`.
+ *
+ * # Safety
+ * `vertices` must hold `vertex_count` vectors and `indices` `index_count` indices; other
+ * pointers NULL or valid.
+ */
+HearthResult hearth_mesh_create(struct HearthWorld *world,
+                                const struct HearthVec3 *vertices,
+                                size_t vertex_count,
+                                const uint32_t *indices,
+                                size_t index_count,
+                                struct HearthMeshId *out_mesh);
+
+/**
+ * Frees a triangle mesh. Refused while shapes use it (`HEARTH_ERROR_INVALID_ARGUMENT`,
+ * the message giving the number of shapes).
+ *
+ * Errors: `HEARTH_ERROR_NULL_POINTER`, `HEARTH_ERROR_INVALID_ID`,
+ * `HEARTH_ERROR_INVALID_ARGUMENT` (in use), `HEARTH_ERROR_WORLD_LOCKED`.
+ *
+ * # Safety
+ * `world` must be NULL or a live world.
+ */
+HearthResult hearth_mesh_destroy(struct HearthWorld *world, struct HearthMeshId mesh);
+
+/**
+ * Reads the number of triangles a mesh kept (those given minus the degenerate ones).
+ *
+ * Errors: `HEARTH_ERROR_NULL_POINTER`, `HEARTH_ERROR_INVALID_ID`.
+ *
+ * # Safety
+ * `world` must be NULL or a live world; `out_count` NULL or writable.
+ */
+HearthResult hearth_mesh_get_triangle_count(const struct HearthWorld *world,
+                                            struct HearthMeshId mesh,
+                                            uint32_t *out_count);
+
+/**
+ * Reads the number of triangles skipped at creation as degenerate (a repeated index, or
+ * twice the area under 1e-5 of the longest edge squared).
+ *
+ * Errors: `HEARTH_ERROR_NULL_POINTER`, `HEARTH_ERROR_INVALID_ID`.
+ *
+ * # Safety
+ * `world` must be NULL or a live world; `out_count` NULL or writable.
+ */
+HearthResult hearth_mesh_get_degenerate_count(const struct HearthWorld *world,
+                                              struct HearthMeshId mesh,
+                                              uint32_t *out_count);
+
+/**
+ * Builds a heightfield of `rows × columns` samples (each 2..=
+ * `HEARTH_MAX_HEIGHTFIELD_SAMPLES`) from row-major `heights` (`rows · columns` finite
+ * values; copied): sample `(row, column)` is `heights[row · columns + column]` at
+ * `(column, height, row)` in the heightfield's own frame, so samples are one unit apart;
+ * the shape's scale gives the spacing (`scale.x`, `scale.z`, m) and multiplies the heights
+ * (`scale.y`). `holes` is NULL (no holes) or `(rows − 1) · (columns − 1)` row-major cell
+ * flags, 1 for a hole (no ground), 0 for ground; copied. Level geometry: shapes using it
+ * go on static or kinematic bodies only.
+ *
+ * Errors (nothing is stored): `HEARTH_ERROR_NULL_POINTER` (world, heights, out_heightfield),
+ * `HEARTH_ERROR_INVALID_ARGUMENT` (rows or columns out of range, a NaN or infinite height,
+ * a hole flag other than 0 or 1), `HEARTH_ERROR_WORLD_LOCKED`.
+ *
+ * # Safety
+ * `heights` must hold `rows · columns` floats and `holes` (if not NULL)
+ * `(rows − 1) · (columns − 1)` bytes; other pointers NULL or valid.
+ */
+HearthResult hearth_heightfield_create(struct HearthWorld *world,
+                                       uint32_t rows,
+                                       uint32_t columns,
+                                       const float *heights,
+                                       const uint8_t *holes,
+                                       struct HearthHeightfieldId *out_heightfield);
+
+/**
+ * Frees a heightfield. Refused while shapes use it (`HEARTH_ERROR_INVALID_ARGUMENT`, the
+ * message giving the number of shapes).
+ *
+ * Errors: `HEARTH_ERROR_NULL_POINTER`, `HEARTH_ERROR_INVALID_ID`,
+ * `HEARTH_ERROR_INVALID_ARGUMENT` (in use), `HEARTH_ERROR_WORLD_LOCKED`.
+ *
+ * # Safety
+ * `world` must be NULL or a live world.
+ */
+HearthResult hearth_heightfield_destroy(struct HearthWorld *world,
+                                        struct HearthHeightfieldId heightfield);
+
+/**
  * Defaults: identity frames, no limits, unbreakable, no collision between the bodies.
  */
 struct HearthBallJointDef hearth_ball_joint_def_default(void);
@@ -2934,6 +3227,57 @@ HearthResult hearth_shape_create_plane(struct HearthWorld *world,
                                        const struct HearthShapeDef *def,
                                        const struct HearthPlane *plane,
                                        struct HearthShapeId *out_shape);
+
+/**
+ * Adds a shape instancing a convex hull (any body type); the body's mass, centre of mass
+ * and inertia are recomputed (exact for the polyhedron). Any number of shapes may use one
+ * hull; the hull cannot be destroyed while they exist.
+ *
+ * Errors: as `hearth_shape_create_sphere`, plus `HEARTH_ERROR_INVALID_ID` (hull null,
+ * destroyed or from another world), `HEARTH_ERROR_INVALID_ARGUMENT` (scale not finite or
+ * <= 0, or making the hull under 1 mm across; NaN/infinite or zero-quaternion `local`).
+ *
+ * # Safety
+ * Pointers must be NULL or valid.
+ */
+HearthResult hearth_shape_create_hull(struct HearthWorld *world,
+                                      struct HearthBodyId body,
+                                      const struct HearthShapeDef *def,
+                                      const struct HearthHullShape *hull,
+                                      struct HearthShapeId *out_shape);
+
+/**
+ * Adds a shape instancing a triangle mesh to a static or kinematic body. A mesh is a
+ * surface without volume, so it gives no mass: on a dynamic body it is refused with
+ * `HEARTH_ERROR_INVALID_ARGUMENT` (use hulls or primitives for moving bodies).
+ *
+ * Errors: as `hearth_shape_create_sphere`, plus `HEARTH_ERROR_INVALID_ID` (mesh null,
+ * destroyed or from another world), `HEARTH_ERROR_INVALID_ARGUMENT` (dynamic body, a scale
+ * component under 1e-4 or not finite, NaN/infinite or zero-quaternion `local`).
+ *
+ * # Safety
+ * Pointers must be NULL or valid.
+ */
+HearthResult hearth_shape_create_mesh(struct HearthWorld *world,
+                                      struct HearthBodyId body,
+                                      const struct HearthShapeDef *def,
+                                      const struct HearthMeshShape *mesh,
+                                      struct HearthShapeId *out_shape);
+
+/**
+ * Adds a shape instancing a heightfield to a static or kinematic body; refused on a
+ * dynamic body as for `hearth_shape_create_mesh`.
+ *
+ * Errors: as `hearth_shape_create_mesh`, with the heightfield's id.
+ *
+ * # Safety
+ * Pointers must be NULL or valid.
+ */
+HearthResult hearth_shape_create_heightfield(struct HearthWorld *world,
+                                             struct HearthBodyId body,
+                                             const struct HearthShapeDef *def,
+                                             const struct HearthHeightfieldShape *heightfield,
+                                             struct HearthShapeId *out_shape);
 
 /**
  * Removes a shape from its body; the body's mass is recomputed and touching bodies woken.

@@ -18,6 +18,9 @@ pub mod soft;
 pub mod step;
 pub mod world;
 
+pub use collision::geometry_store::ConvexHullHandle;
+pub use collision::hull::builder::HullSettings;
+pub use collision::hull::ConvexHull;
 pub use collision::shape::{Geometry, ShapeDef};
 pub use dynamics::body::{BodyDef, BodyHandle, BodyType, ShapeHandle};
 pub use dynamics::joints;

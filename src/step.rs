@@ -148,6 +148,7 @@ impl World {
                 contacts,
                 shapes,
                 bodies,
+                geometry,
                 ..
             } = self;
             let c = contacts.at_mut(ci);
@@ -173,7 +174,7 @@ impl World {
                 // narrow phase is skipped.
                 c.clear();
             } else {
-                c.update(sa, &ba.xf, sb, &bb.xf, speculative);
+                c.update(geometry, sa, &ba.xf, sb, &bb.xf, speculative);
             }
             touching += c.touching as usize;
             if c.touching && (!ba.awake || !bb.awake) {

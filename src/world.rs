@@ -3,6 +3,11 @@
 
 use crate::collision::broad_phase::BroadPhase;
 use crate::collision::contact::Contact;
+use crate::collision::geometry_store::{ConvexHullHandle, GeometryStore, HeightfieldHandle, MeshHandle};
+use crate::collision::heightfield::Heightfield;
+use crate::collision::hull::builder::HullSettings;
+use crate::collision::hull::ConvexHull;
+use crate::collision::mesh::TriangleMesh;
 use crate::collision::shape::{Geometry, MassProperties, Shape, ShapeDef};
 use crate::dynamics::body::{Body, BodyDef, BodyHandle, BodyType, ShapeHandle, NONE};
 use crate::dynamics::contact_wide::Batches;
@@ -189,6 +194,8 @@ pub struct World {
     /// The tag in every id of this world, leased from the process-wide registry (`pool.rs`)
     /// and returned when the world is dropped.
     tag: WorldTag,
+    /// Shared geometry used by shapes: convex hulls (issue 13, `collision/geometry_store.rs`).
+    pub geometry: GeometryStore,
 }
 
 impl World {
@@ -225,6 +232,7 @@ impl World {
             joints: crate::dynamics::joints::Joints::new(tag),
             soft_bodies: crate::soft::SoftBodies::new(tag),
             tag: lease,
+            geometry: GeometryStore::new(tag),
         })
     }
 
@@ -272,7 +280,9 @@ impl World {
         let shapes = std::mem::take(&mut self.bodies.at_mut(index).shapes);
         for s in shapes {
             self.remove_shape_proxy(s.index);
-            self.shapes.remove(s);
+            if let Some(shape) = self.shapes.remove(s) {
+                self.geometry.release(&shape.geometry);
+            }
         }
         self.remove_awake_body(index);
         self.bodies.remove(h);
@@ -488,6 +498,30 @@ impl World {
         if geometry.is_unbounded() && !self.bodies.at(bi).is_static() {
             return Err(invalid("a plane can only be attached to a static body"));
         }
+        if geometry.is_triangles() && self.bodies.at(bi).is_dynamic() {
+            let what = if matches!(geometry, Geometry::Mesh { .. }) {
+                "a triangle mesh"
+            } else {
+                "a heightfield"
+            };
+            return Err(invalid(format!(
+                "{what} can only be attached to a static or kinematic body: it is a surface \
+                 without volume, so it gives a dynamic body no mass or inertia (use convex \
+                 hulls or primitives for moving bodies)"
+            )));
+        }
+        self.geometry.check(&geometry)?;
+        if let Geometry::Hull { hull, scale, .. } = geometry {
+            let (lo, hi) = self.geometry.hull(hull)?.local_bounds();
+            let extent = (hi - lo).length() * scale;
+            if extent < crate::collision::hull::builder::MIN_HULL_EXTENT {
+                return Err(invalid(format!(
+                    "hull scale {scale} makes the hull {extent} m across; at least {} m is needed",
+                    crate::collision::hull::builder::MIN_HULL_EXTENT
+                )));
+            }
+        }
+        self.geometry.retain(&geometry);
         let shape = Shape {
             body: bi,
             geometry,
@@ -504,7 +538,7 @@ impl World {
             self.broad.planes.push(h.index);
         } else {
             let xf = self.bodies.at(bi).xf;
-            let tight = geometry.aabb(&xf);
+            let tight = geometry.aabb(&self.geometry, &xf);
             let fat = tight.expanded(AABB_MARGIN);
             let proxy = self.broad.tree.create_proxy(fat, h.index);
             let s = self.shapes.at_mut(h.index);
@@ -540,7 +574,9 @@ impl World {
             self.destroy_contact(c);
         }
         self.remove_shape_proxy(h.index);
-        self.shapes.remove(h);
+        if let Some(shape) = self.shapes.remove(h) {
+            self.geometry.release(&shape.geometry);
+        }
         self.bodies.at_mut(bi).shapes.retain(|&x| x != h);
         self.update_mass(bi);
         self.wake_body(bi);
@@ -571,7 +607,7 @@ impl World {
             body.shapes
                 .iter()
                 .map(|s| self.shapes.get(*s).unwrap())
-                .map(|s| s.geometry.mass_properties(s.def.density)),
+                .map(|s| s.geometry.mass_properties(&self.geometry, s.def.density)),
         );
         self.bodies.at_mut(bi).set_mass_properties(mp);
         // Shape extents are measured from the centre of mass, which may have moved.
@@ -579,7 +615,7 @@ impl World {
         for k in 0..self.bodies.at(bi).shapes.len() {
             let h = self.bodies.at(bi).shapes[k];
             let shape = self.shapes.get_mut(h).unwrap();
-            shape.extent = shape.geometry.extent_from(center);
+            shape.extent = shape.geometry.extent_from(&self.geometry, center);
         }
     }
 
@@ -591,7 +627,7 @@ impl World {
             return;
         }
         let xf = self.bodies.at(shape.body).xf;
-        let tight = shape.geometry.aabb(&xf);
+        let tight = shape.geometry.aabb(&self.geometry, &xf);
         let bb = tight.swept(displacement);
         let proxy = shape.proxy;
         let refit = force || !shape.fat_aabb.contains(&bb);
@@ -614,6 +650,64 @@ impl World {
         }
     }
 
+    // ---------------------------------------------------------------- shared geometry
+
+    /// Builds a convex hull from a point cloud (`collision/hull/builder.rs`) and stores it
+    /// for shapes to use. Nothing is stored on error.
+    pub fn create_convex_hull(&mut self, points: &[Vec3], settings: &HullSettings) -> Result<ConvexHullHandle> {
+        let hull = crate::collision::hull::builder::build(points, settings)?;
+        Ok(self.geometry.add_hull(hull))
+    }
+
+    /// Frees a convex hull; refused (`InvalidArgument`, naming the number of users) while
+    /// shapes use it.
+    pub fn destroy_convex_hull(&mut self, h: ConvexHullHandle) -> Result<()> {
+        self.geometry.remove_hull(h)
+    }
+
+    pub fn convex_hull(&self, h: ConvexHullHandle) -> Result<&ConvexHull> {
+        self.geometry.hull(h)
+    }
+
+    /// Builds a triangle mesh (`collision/mesh/`) from vertices and triangles (copied) and
+    /// stores it for shapes to use. Nothing is stored on error.
+    pub fn create_mesh(&mut self, vertices: &[Vec3], triangles: &[[u32; 3]]) -> Result<MeshHandle> {
+        let mesh = TriangleMesh::new(vertices, triangles)?;
+        Ok(self.geometry.add_mesh(mesh))
+    }
+
+    /// Frees a triangle mesh; refused (`InvalidArgument`, naming the number of users) while
+    /// shapes use it.
+    pub fn destroy_mesh(&mut self, h: MeshHandle) -> Result<()> {
+        self.geometry.remove_mesh(h)
+    }
+
+    pub fn mesh(&self, h: MeshHandle) -> Result<&TriangleMesh> {
+        self.geometry.mesh(h)
+    }
+
+    /// Builds a heightfield (`collision/heightfield.rs`) of `rows × columns` row-major
+    /// heights with optional per-cell holes (copied) and stores it for shapes to use.
+    pub fn create_heightfield(
+        &mut self,
+        rows: u32,
+        columns: u32,
+        heights: &[f32],
+        holes: Option<&[bool]>,
+    ) -> Result<HeightfieldHandle> {
+        let hf = Heightfield::new(rows, columns, heights, holes)?;
+        Ok(self.geometry.add_heightfield(hf))
+    }
+
+    /// Frees a heightfield; refused while shapes use it.
+    pub fn destroy_heightfield(&mut self, h: HeightfieldHandle) -> Result<()> {
+        self.geometry.remove_heightfield(h)
+    }
+
+    pub fn heightfield(&self, h: HeightfieldHandle) -> Result<&Heightfield> {
+        self.geometry.heightfield(h)
+    }
+
     // ---------------------------------------------------------------- contacts
 
     pub(crate) fn create_contact(&mut self, sa: u32, sb: u32) {
@@ -623,7 +717,7 @@ impl World {
             return;
         }
         let (a, b) = (self.shapes.at(sa), self.shapes.at(sb));
-        let contact = Contact::new(sa, sb, a, b, key);
+        let contact = Contact::new(&self.geometry, sa, sb, a, b, key);
         let (ba, bb) = (contact.body_a, contact.body_b);
         let h = self.contacts.insert(contact);
         self.broad.pairs.insert(key, h.index);

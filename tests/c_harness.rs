@@ -55,6 +55,7 @@ const PROGRAMS: &[&str] = &[
     "test_soft.c",
     "test_record.c",
     "test_ranges.c",
+    "test_geometry.c",
 ];
 
 #[test]

@@ -278,7 +278,7 @@ fn every_overlapping_pair_has_a_contact_like_brute_force() {
             .map(|&b| {
                 let body = w.body(b).unwrap();
                 let s = w.shape(body.shapes[0]).unwrap();
-                (body.shapes[0].index, s.geometry.aabb(&body.xf))
+                (body.shapes[0].index, s.geometry.aabb(&w.geometry, &body.xf))
             })
             .collect();
         let mut missing = 0;

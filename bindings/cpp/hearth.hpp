@@ -67,6 +67,9 @@ using JointId = HearthJointId;
 using ParticleId = HearthParticleId;
 using SoftBodyId = HearthSoftBodyId;
 using GeneratorId = HearthGeneratorId;
+using HullId = HearthHullId;
+using MeshId = HearthMeshId;
+using HeightfieldId = HearthHeightfieldId;
 
 using WorldDef = HearthWorldDef;
 using WorldCounters = HearthWorldCounters;
@@ -77,6 +80,10 @@ using Sphere = HearthSphere;
 using Box = HearthBox;
 using Capsule = HearthCapsule;
 using Plane = HearthPlane;
+using HullDef = HearthHullDef;
+using HullShape = HearthHullShape;
+using MeshShape = HearthMeshShape;
+using HeightfieldShape = HearthHeightfieldShape;
 using ParticleDef = HearthParticleDef;
 using BurstDef = HearthBurstDef;
 using ExpiredParticle = HearthExpiredParticle;
@@ -121,6 +128,20 @@ inline Box box(Vec3 half_extents, Vec3 center = Vec3{0, 0, 0}, Quat rotation = q
 inline Capsule capsule(Vec3 a, Vec3 b, float radius) noexcept { return Capsule{a, b, radius}; }
 /** The half-space dot(normal, p) <= offset (static bodies only). */
 inline Plane plane(Vec3 normal, float offset) noexcept { return Plane{normal, offset}; }
+/** A shape instancing a convex hull, scaled uniformly, then placed by `local`. */
+inline HullShape hull_shape(HullId hull, float scale = 1.0f, Transform local = Transform{Vec3{0, 0, 0}, quat_identity()}) noexcept {
+    return HullShape{hull, local, scale};
+}
+/** A shape instancing a triangle mesh (static and kinematic bodies), scaled per axis, then placed. */
+inline MeshShape mesh_shape(MeshId mesh, Vec3 scale = Vec3{1, 1, 1}, Transform local = Transform{Vec3{0, 0, 0}, quat_identity()}) noexcept {
+    return MeshShape{mesh, local, scale};
+}
+/** A shape instancing a heightfield (static and kinematic bodies): scale.x, scale.z the sample
+ * spacing, scale.y the height scale. */
+inline HeightfieldShape heightfield_shape(HeightfieldId heightfield, Vec3 scale = Vec3{1, 1, 1},
+                                          Transform local = Transform{Vec3{0, 0, 0}, quat_identity()}) noexcept {
+    return HeightfieldShape{heightfield, local, scale};
+}
 
 // Link ends of springs, rods and cables.
 inline LinkEnd link_world(Vec3 point) noexcept { return LinkEnd{BodyId{0, 0}, ParticleId{0, 0}, point}; }
@@ -170,6 +191,7 @@ inline BodyDef body_def(BodyType type, Vec3 position = Vec3{0, 0, 0}) noexcept {
     return d;
 }
 inline ShapeDef shape_def() noexcept { return hearth_shape_def_default(); }
+inline HullDef hull_def() noexcept { return hearth_hull_def_default(); }
 inline ParticleDef particle_def() noexcept { return hearth_particle_def_default(); }
 inline BurstDef burst_def() noexcept { return hearth_burst_def_default(); }
 inline SoftBodyDef soft_body_def() noexcept { return hearth_soft_body_def_default(); }
@@ -423,6 +445,9 @@ template <class P> class BasicShape;
 template <class P> class BasicJoint;
 template <class P> class BasicParticle;
 template <class P> class BasicSoftBody;
+template <class P> class BasicHull;
+template <class P> class BasicMesh;
+template <class P> class BasicHeightfield;
 template <class P> class BasicGenerator;
 
 /** A hinge or slider motor. */
@@ -545,6 +570,23 @@ public:
     Ret<BasicShape<P>> add(const Plane &p, const ShapeDef &def = shape_def()) const {
         ShapeId id{};
         const HearthResult r = hearth_shape_create_plane(world_, id_, &def, &p, &id);
+        return P::template value<BasicShape<P>>(r, BasicShape<P>(world_, id));
+    }
+    Ret<BasicShape<P>> add(const HullShape &h, const ShapeDef &def = shape_def()) const {
+        ShapeId id{};
+        const HearthResult r = hearth_shape_create_hull(world_, id_, &def, &h, &id);
+        return P::template value<BasicShape<P>>(r, BasicShape<P>(world_, id));
+    }
+    /** Static and kinematic bodies only (InvalidArgument on a dynamic body). */
+    Ret<BasicShape<P>> add(const MeshShape &m, const ShapeDef &def = shape_def()) const {
+        ShapeId id{};
+        const HearthResult r = hearth_shape_create_mesh(world_, id_, &def, &m, &id);
+        return P::template value<BasicShape<P>>(r, BasicShape<P>(world_, id));
+    }
+    /** Static and kinematic bodies only (InvalidArgument on a dynamic body). */
+    Ret<BasicShape<P>> add(const HeightfieldShape &h, const ShapeDef &def = shape_def()) const {
+        ShapeId id{};
+        const HearthResult r = hearth_shape_create_heightfield(world_, id_, &def, &h, &id);
         return P::template value<BasicShape<P>>(r, BasicShape<P>(world_, id));
     }
 
@@ -790,6 +832,84 @@ private:
     SoftBodyId id_{0, 0};
 };
 
+/**
+ * Shared geometry (a convex hull, triangle mesh or heightfield): world pointer and id. Shapes
+ * instance it (Body::add(hull_shape(...))); destroy() is refused while shapes use it.
+ */
+template <class P, class Id> class BasicGeometry {
+protected:
+    template <class T> using Ret = typename P::template Ret<T>;
+
+public:
+    BasicGeometry() noexcept = default;
+    BasicGeometry(HearthWorld *world, Id id) noexcept : world_(world), id_(id) {}
+    Id id() const noexcept { return id_; }
+    HearthWorld *world() const noexcept { return world_; }
+    bool is_null() const noexcept { return hearth::is_null(id_); }
+    friend bool operator==(const BasicGeometry &a, const BasicGeometry &b) noexcept {
+        return a.world_ == b.world_ && same_id(a.id_, b.id_);
+    }
+    friend bool operator!=(const BasicGeometry &a, const BasicGeometry &b) noexcept { return !(a == b); }
+
+protected:
+    HearthWorld *world_ = nullptr;
+    Id id_{0, 0};
+};
+
+/** A convex hull (hearth_hull_create). */
+template <class P> class BasicHull : public BasicGeometry<P, HullId> {
+    using Base = BasicGeometry<P, HullId>;
+    template <class T> using Ret = typename P::template Ret<T>;
+    using Base::id_;
+    using Base::world_;
+
+public:
+    using Base::Base;
+    /** A shape description instancing this hull. */
+    HullShape shape(float scale = 1.0f, Transform local = Transform{Vec3{0, 0, 0}, quat_identity()}) const noexcept {
+        return hull_shape(id_, scale, local);
+    }
+    Ret<uint32_t> vertex_count() const { HEARTH_CPP_READ(uint32_t, hearth_hull_get_vertex_count(world_, id_, &out)); }
+    Ret<void> destroy() const { return P::check(hearth_hull_destroy(world_, id_)); }
+};
+
+/** A triangle mesh (hearth_mesh_create). */
+template <class P> class BasicMesh : public BasicGeometry<P, MeshId> {
+    using Base = BasicGeometry<P, MeshId>;
+    template <class T> using Ret = typename P::template Ret<T>;
+    using Base::id_;
+    using Base::world_;
+
+public:
+    using Base::Base;
+    MeshShape shape(Vec3 scale = Vec3{1, 1, 1}, Transform local = Transform{Vec3{0, 0, 0}, quat_identity()}) const noexcept {
+        return mesh_shape(id_, scale, local);
+    }
+    Ret<uint32_t> triangle_count() const {
+        HEARTH_CPP_READ(uint32_t, hearth_mesh_get_triangle_count(world_, id_, &out));
+    }
+    Ret<uint32_t> degenerate_count() const {
+        HEARTH_CPP_READ(uint32_t, hearth_mesh_get_degenerate_count(world_, id_, &out));
+    }
+    Ret<void> destroy() const { return P::check(hearth_mesh_destroy(world_, id_)); }
+};
+
+/** A heightfield (hearth_heightfield_create). */
+template <class P> class BasicHeightfield : public BasicGeometry<P, HeightfieldId> {
+    using Base = BasicGeometry<P, HeightfieldId>;
+    template <class T> using Ret = typename P::template Ret<T>;
+    using Base::id_;
+    using Base::world_;
+
+public:
+    using Base::Base;
+    HeightfieldShape shape(Vec3 scale = Vec3{1, 1, 1},
+                           Transform local = Transform{Vec3{0, 0, 0}, quat_identity()}) const noexcept {
+        return heightfield_shape(id_, scale, local);
+    }
+    Ret<void> destroy() const { return P::check(hearth_heightfield_destroy(world_, id_)); }
+};
+
 /** A force or contact generator (built-in or user). Destroy through the World. */
 template <class P> class BasicGenerator {
     template <class T> using Ret = typename P::template Ret<T>;
@@ -884,6 +1004,9 @@ public:
     using Particle = BasicParticle<P>;
     using SoftBody = BasicSoftBody<P>;
     using Generator = BasicGenerator<P>;
+    using Hull = BasicHull<P>;
+    using Mesh = BasicMesh<P>;
+    using Heightfield = BasicHeightfield<P>;
 
     BasicWorldRef() noexcept = default;
     explicit BasicWorldRef(HearthWorld *world) noexcept : world_(world) {}
@@ -1091,6 +1214,40 @@ public:
         return P::template value<SoftBody>(r, SoftBody(world_, id));
     }
     Ret<size_t> soft_body_count() const { HEARTH_CPP_READ(size_t, hearth_world_get_soft_body_count(world_, &out)); }
+
+    // Shared geometry (the arrays are copied).
+    Hull hull(HullId id) const noexcept { return Hull(world_, id); }
+    Mesh mesh(MeshId id) const noexcept { return Mesh(world_, id); }
+    Heightfield heightfield(HeightfieldId id) const noexcept { return Heightfield(world_, id); }
+    /** A convex hull of the points (in its own frame). */
+    Ret<Hull> create_hull(Span<const Vec3> points, const HullDef &def = hull_def()) const {
+        HullId id{};
+        const HearthResult r = hearth_hull_create(world_, &def, points.data(), points.size(), &id);
+        return P::template value<Hull>(r, Hull(world_, id));
+    }
+    /** A triangle mesh: three indices per triangle, counter-clockwise seen from the front. */
+    Ret<Mesh> create_mesh(Span<const Vec3> vertices, Span<const uint32_t> indices) const {
+        MeshId id{};
+        const HearthResult r =
+            hearth_mesh_create(world_, vertices.data(), vertices.size(), indices.data(), indices.size(), &id);
+        return P::template value<Mesh>(r, Mesh(world_, id));
+    }
+    /** A heightfield of rows × columns row-major heights; `holes` empty or one 0/1 flag per cell. */
+    Ret<Heightfield> create_heightfield(uint32_t rows, uint32_t columns, Span<const float> heights,
+                                        Span<const uint8_t> holes = {}) const {
+        if (heights.size() != static_cast<size_t>(rows) * columns) {
+            return P::template fail_value<Heightfield>(Code::InvalidArgument,
+                                                       "hearth.hpp: create_heightfield: heights must hold rows * columns values");
+        }
+        if (!holes.empty() && rows >= 2 && columns >= 2 && holes.size() != static_cast<size_t>(rows - 1) * (columns - 1)) {
+            return P::template fail_value<Heightfield>(
+                Code::InvalidArgument, "hearth.hpp: create_heightfield: holes must hold (rows - 1) * (columns - 1) flags");
+        }
+        HeightfieldId id{};
+        const HearthResult r = hearth_heightfield_create(world_, rows, columns, heights.data(),
+                                                         holes.empty() ? nullptr : holes.data(), &id);
+        return P::template value<Heightfield>(r, Heightfield(world_, id));
+    }
 
 protected:
     template <class Fn, class Def> Ret<Joint> joint_from(Fn fn, const Def &def) const {
@@ -1500,6 +1657,9 @@ using Shape = BasicShape<detail::NoThrow>;
 using Joint = BasicJoint<detail::NoThrow>;
 using Particle = BasicParticle<detail::NoThrow>;
 using SoftBody = BasicSoftBody<detail::NoThrow>;
+using Hull = BasicHull<detail::NoThrow>;
+using Mesh = BasicMesh<detail::NoThrow>;
+using Heightfield = BasicHeightfield<detail::NoThrow>;
 using Generator = BasicGenerator<detail::NoThrow>;
 using ForceContext = BasicForceContext<detail::NoThrow>;
 using ContactContext = BasicContactContext<detail::NoThrow>;
@@ -1514,6 +1674,9 @@ using Shape = BasicShape<detail::Throwing>;
 using Joint = BasicJoint<detail::Throwing>;
 using Particle = BasicParticle<detail::Throwing>;
 using SoftBody = BasicSoftBody<detail::Throwing>;
+using Hull = BasicHull<detail::Throwing>;
+using Mesh = BasicMesh<detail::Throwing>;
+using Heightfield = BasicHeightfield<detail::Throwing>;
 using Generator = BasicGenerator<detail::Throwing>;
 using ForceContext = BasicForceContext<detail::Throwing>;
 using ContactContext = BasicContactContext<detail::Throwing>;

@@ -916,6 +916,130 @@ namespace Hearth
         public Plane(Vec3 normal, float offset) { Normal = normal; Offset = offset; }
     }
 
+    /// <summary>Id of a convex hull (shared geometry) inside its world. All-zero is the null id. Ids of destroyed objects and of other worlds are rejected with <c>HEARTH_ERROR_INVALID_ID</c>.</summary>
+    [StructLayout(LayoutKind.Sequential)]
+    public struct HullId : IEquatable<HullId>
+    {
+        /// <summary>Slot of the convex hull.</summary>
+        public uint Index;
+        /// <summary>Generation of the slot (0 only in the null id).</summary>
+        public uint Generation;
+
+        public HullId(uint index, uint generation) { Index = index; Generation = generation; }
+
+        /// <summary>The null id (all zero).</summary>
+        public static readonly HullId Null = default(HullId);
+
+        /// <summary>True for the null id.</summary>
+        public bool IsNull { get { return Index == 0 && Generation == 0; } }
+
+        public bool Equals(HullId other) { return Index == other.Index && Generation == other.Generation; }
+        public override bool Equals(object obj) { return obj is HullId && Equals((HullId)obj); }
+        public override int GetHashCode() { return (int)(Index * 397u ^ Generation); }
+        public static bool operator ==(HullId a, HullId b) { return a.Equals(b); }
+        public static bool operator !=(HullId a, HullId b) { return !a.Equals(b); }
+        public override string ToString() { return "HullId(" + Index + ", " + Generation + ")"; }
+    }
+
+    /// <summary>Id of a triangle mesh (shared geometry) inside its world. All-zero is the null id. Ids of destroyed objects and of other worlds are rejected with <c>HEARTH_ERROR_INVALID_ID</c>.</summary>
+    [StructLayout(LayoutKind.Sequential)]
+    public struct MeshId : IEquatable<MeshId>
+    {
+        /// <summary>Slot of the triangle mesh.</summary>
+        public uint Index;
+        /// <summary>Generation of the slot (0 only in the null id).</summary>
+        public uint Generation;
+
+        public MeshId(uint index, uint generation) { Index = index; Generation = generation; }
+
+        /// <summary>The null id (all zero).</summary>
+        public static readonly MeshId Null = default(MeshId);
+
+        /// <summary>True for the null id.</summary>
+        public bool IsNull { get { return Index == 0 && Generation == 0; } }
+
+        public bool Equals(MeshId other) { return Index == other.Index && Generation == other.Generation; }
+        public override bool Equals(object obj) { return obj is MeshId && Equals((MeshId)obj); }
+        public override int GetHashCode() { return (int)(Index * 397u ^ Generation); }
+        public static bool operator ==(MeshId a, MeshId b) { return a.Equals(b); }
+        public static bool operator !=(MeshId a, MeshId b) { return !a.Equals(b); }
+        public override string ToString() { return "MeshId(" + Index + ", " + Generation + ")"; }
+    }
+
+    /// <summary>Id of a heightfield (shared geometry) inside its world. All-zero is the null id. Ids of destroyed objects and of other worlds are rejected with <c>HEARTH_ERROR_INVALID_ID</c>.</summary>
+    [StructLayout(LayoutKind.Sequential)]
+    public struct HeightfieldId : IEquatable<HeightfieldId>
+    {
+        /// <summary>Slot of the heightfield.</summary>
+        public uint Index;
+        /// <summary>Generation of the slot (0 only in the null id).</summary>
+        public uint Generation;
+
+        public HeightfieldId(uint index, uint generation) { Index = index; Generation = generation; }
+
+        /// <summary>The null id (all zero).</summary>
+        public static readonly HeightfieldId Null = default(HeightfieldId);
+
+        /// <summary>True for the null id.</summary>
+        public bool IsNull { get { return Index == 0 && Generation == 0; } }
+
+        public bool Equals(HeightfieldId other) { return Index == other.Index && Generation == other.Generation; }
+        public override bool Equals(object obj) { return obj is HeightfieldId && Equals((HeightfieldId)obj); }
+        public override int GetHashCode() { return (int)(Index * 397u ^ Generation); }
+        public static bool operator ==(HeightfieldId a, HeightfieldId b) { return a.Equals(b); }
+        public static bool operator !=(HeightfieldId a, HeightfieldId b) { return !a.Equals(b); }
+        public override string ToString() { return "HeightfieldId(" + Index + ", " + Generation + ")"; }
+    }
+
+    /// <summary>How a convex hull is built. Get one from <c>hearth_hull_def_default()</c>, then edit it.</summary>
+    [StructLayout(LayoutKind.Sequential)]
+    public struct HullDef
+    {
+
+        /// <summary>The defaults of <c>hearth_hull_def_default()</c>; start every def from here.</summary>
+        public static HullDef Default() { return Native.hearth_hull_def_default(); }
+
+        /// <summary>Convex radius (m, &gt;= 0): the shape is the hull of the points grown by this much. Default 0.</summary>
+        public float ConvexRadius;
+        /// <summary>Weld and merge tolerance as a fraction of the cloud's size (0 ..= 0.1). Default 0.001.</summary>
+        public float WeldTolerance;
+        /// <summary>Set by <c>hearth_hull_def_default()</c>; do not change.</summary>
+        public uint InternalValue;
+    }
+
+    /// <summary>A convex hull instanced by a shape: scaled uniformly by <c>Scale</c> (&gt; 0), then placed by <c>Local</c> in the body frame.</summary>
+    [StructLayout(LayoutKind.Sequential)]
+    public struct HullShape
+    {
+        public HullId Hull;
+        public Transform Local;
+        public float Scale;
+
+        public HullShape(HullId hull, Transform local, float scale) { Hull = hull; Local = local; Scale = scale; }
+    }
+
+    /// <summary>A triangle mesh instanced by a shape (static and kinematic bodies): scaled per axis (each &gt;= 1e-4), then placed by <c>Local</c>.</summary>
+    [StructLayout(LayoutKind.Sequential)]
+    public struct MeshShape
+    {
+        public MeshId Mesh;
+        public Transform Local;
+        public Vec3 Scale;
+
+        public MeshShape(MeshId mesh, Transform local, Vec3 scale) { Mesh = mesh; Local = local; Scale = scale; }
+    }
+
+    /// <summary>A heightfield instanced by a shape (static and kinematic bodies): <c>Scale.X</c>, <c>Scale.Z</c> the sample spacing (m), <c>Scale.Y</c> the height scale.</summary>
+    [StructLayout(LayoutKind.Sequential)]
+    public struct HeightfieldShape
+    {
+        public HeightfieldId Heightfield;
+        public Transform Local;
+        public Vec3 Scale;
+
+        public HeightfieldShape(HeightfieldId heightfield, Transform local, Vec3 scale) { Heightfield = heightfield; Local = local; Scale = scale; }
+    }
+
     /// <summary>How to create a soft body (everything except its mesh). Get one from <c>hearth_soft_body_def_default()</c>, then edit it. The solver is XPBD with sub-steps: stiffness is given as compliance (the inverse of stiffness), does not depend on the time step, and any value is stable.</summary>
     [StructLayout(LayoutKind.Sequential)]
     public struct SoftBodyDef
@@ -1129,6 +1253,14 @@ namespace Hearth
         public const uint VersionPatch = 0;
         /// <summary>HEARTH_VERSION: compare with hearth_version() to detect a mismatched library.</summary>
         public const uint Version = (VersionMajor << 16) | (VersionMinor << 8) | VersionPatch;
+        /// <summary>HEARTH_MAX_HULL_POINTS: most points hearth_hull_create accepts.</summary>
+        public const uint MaxHullPoints = 1048576;
+        /// <summary>HEARTH_MAX_MESH_VERTICES: most vertices hearth_mesh_create accepts.</summary>
+        public const uint MaxMeshVertices = 67108864;
+        /// <summary>HEARTH_MAX_MESH_INDICES: most indices hearth_mesh_create accepts.</summary>
+        public const uint MaxMeshIndices = 201326592;
+        /// <summary>HEARTH_MAX_HEIGHTFIELD_SAMPLES: most samples along either side of a heightfield.</summary>
+        public const uint MaxHeightfieldSamples = 32768;
 
         /// <summary>
         /// Whether a library of version <paramref name="library"/> (hearth_version()) has this
@@ -1511,6 +1643,45 @@ namespace Hearth
 
         [DllImport(Lib, CallingConvention = CallingConvention.Cdecl)]
         public static extern Result hearth_shape_create_plane(WorldHandle world, BodyId body, [In] ref ShapeDef def, [In] ref Plane plane, out ShapeId outShape);
+
+        [DllImport(Lib, CallingConvention = CallingConvention.Cdecl)]
+        public static extern Result hearth_shape_create_hull(WorldHandle world, BodyId body, [In] ref ShapeDef def, [In] ref HullShape hull, out ShapeId outShape);
+
+        [DllImport(Lib, CallingConvention = CallingConvention.Cdecl)]
+        public static extern Result hearth_shape_create_mesh(WorldHandle world, BodyId body, [In] ref ShapeDef def, [In] ref MeshShape mesh, out ShapeId outShape);
+
+        [DllImport(Lib, CallingConvention = CallingConvention.Cdecl)]
+        public static extern Result hearth_shape_create_heightfield(WorldHandle world, BodyId body, [In] ref ShapeDef def, [In] ref HeightfieldShape heightfield, out ShapeId outShape);
+
+        [DllImport(Lib, CallingConvention = CallingConvention.Cdecl)]
+        public static extern HullDef hearth_hull_def_default();
+
+        [DllImport(Lib, CallingConvention = CallingConvention.Cdecl)]
+        public static extern Result hearth_hull_create(WorldHandle world, [In] ref HullDef def, [In] Vec3[] points, UIntPtr pointCount, out HullId outHull);
+
+        [DllImport(Lib, CallingConvention = CallingConvention.Cdecl)]
+        public static extern Result hearth_hull_destroy(WorldHandle world, HullId hull);
+
+        [DllImport(Lib, CallingConvention = CallingConvention.Cdecl)]
+        public static extern Result hearth_hull_get_vertex_count(WorldHandle world, HullId hull, out uint outCount);
+
+        [DllImport(Lib, CallingConvention = CallingConvention.Cdecl)]
+        public static extern Result hearth_mesh_create(WorldHandle world, [In] Vec3[] vertices, UIntPtr vertexCount, [In] uint[] indices, UIntPtr indexCount, out MeshId outMesh);
+
+        [DllImport(Lib, CallingConvention = CallingConvention.Cdecl)]
+        public static extern Result hearth_mesh_destroy(WorldHandle world, MeshId mesh);
+
+        [DllImport(Lib, CallingConvention = CallingConvention.Cdecl)]
+        public static extern Result hearth_mesh_get_triangle_count(WorldHandle world, MeshId mesh, out uint outCount);
+
+        [DllImport(Lib, CallingConvention = CallingConvention.Cdecl)]
+        public static extern Result hearth_mesh_get_degenerate_count(WorldHandle world, MeshId mesh, out uint outCount);
+
+        [DllImport(Lib, CallingConvention = CallingConvention.Cdecl)]
+        public static extern Result hearth_heightfield_create(WorldHandle world, uint rows, uint columns, [In] float[] heights, [In] byte[] holes, out HeightfieldId outHeightfield);
+
+        [DllImport(Lib, CallingConvention = CallingConvention.Cdecl)]
+        public static extern Result hearth_heightfield_destroy(WorldHandle world, HeightfieldId heightfield);
 
         [DllImport(Lib, CallingConvention = CallingConvention.Cdecl)]
         public static extern Result hearth_shape_destroy(WorldHandle world, ShapeId shape);

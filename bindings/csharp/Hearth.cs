@@ -1058,6 +1058,47 @@ namespace Hearth
             return new SoftBody(this, id);
         }
 
+        // ---- shared geometry (the arrays are copied) --------------------------------------
+
+        /// <summary>hearth_hull_create with HullDef.Default().</summary>
+        public Hull CreateHull(Vec3[] points) { return CreateHull(HullDef.Default(), points); }
+
+        /// <summary>hearth_hull_create: a convex hull of the points (in its own frame).</summary>
+        public Hull CreateHull(HullDef def, Vec3[] points)
+        {
+            if (points == null) throw new ArgumentNullException("points");
+            HullId id;
+            Check(Native.hearth_hull_create(Handle, ref def, points, (UIntPtr)(uint)points.Length, out id), "hearth_hull_create");
+            return new Hull(this, id);
+        }
+
+        /// <summary>hearth_mesh_create: three indices per triangle, counter-clockwise seen from the front.</summary>
+        public Mesh CreateMesh(Vec3[] vertices, uint[] indices)
+        {
+            if (vertices == null) throw new ArgumentNullException("vertices");
+            if (indices == null) throw new ArgumentNullException("indices");
+            MeshId id;
+            Check(Native.hearth_mesh_create(Handle, vertices, (UIntPtr)(uint)vertices.Length, indices, (UIntPtr)(uint)indices.Length, out id), "hearth_mesh_create");
+            return new Mesh(this, id);
+        }
+
+        /// <summary>hearth_heightfield_create: rows × columns row-major heights; holes null or one 0/1 flag per cell.</summary>
+        public Heightfield CreateHeightfield(uint rows, uint columns, float[] heights, byte[] holes)
+        {
+            if (heights == null) throw new ArgumentNullException("heights");
+            if ((ulong)heights.Length != (ulong)rows * columns)
+            {
+                throw new ArgumentException("heights must hold rows * columns values", "heights");
+            }
+            if (holes != null && rows >= 2 && columns >= 2 && (ulong)holes.Length != (ulong)(rows - 1) * (columns - 1))
+            {
+                throw new ArgumentException("holes must hold (rows - 1) * (columns - 1) flags", "holes");
+            }
+            HeightfieldId id;
+            Check(Native.hearth_heightfield_create(Handle, rows, columns, heights, holes, out id), "hearth_heightfield_create");
+            return new Heightfield(this, id);
+        }
+
         /// <summary>The wrapper of an existing soft body id.</summary>
         public SoftBody GetSoftBody(SoftBodyId id) { return new SoftBody(this, id); }
 
@@ -1277,6 +1318,39 @@ namespace Hearth
         {
             ShapeId id;
             HearthException.Check(Native.hearth_shape_create_plane(H, Id, ref def, ref plane, out id), "hearth_shape_create_plane");
+            return new Shape(World, id);
+        }
+
+        /// <summary>hearth_shape_create_hull with ShapeDef.Default().</summary>
+        public Shape CreateHull(HullShape hull) { return CreateHull(ShapeDef.Default(), hull); }
+
+        /// <summary>hearth_shape_create_hull.</summary>
+        public Shape CreateHull(ShapeDef def, HullShape hull)
+        {
+            ShapeId id;
+            HearthException.Check(Native.hearth_shape_create_hull(H, Id, ref def, ref hull, out id), "hearth_shape_create_hull");
+            return new Shape(World, id);
+        }
+
+        /// <summary>hearth_shape_create_mesh with ShapeDef.Default() (static and kinematic bodies only).</summary>
+        public Shape CreateMesh(MeshShape mesh) { return CreateMesh(ShapeDef.Default(), mesh); }
+
+        /// <summary>hearth_shape_create_mesh (static and kinematic bodies only).</summary>
+        public Shape CreateMesh(ShapeDef def, MeshShape mesh)
+        {
+            ShapeId id;
+            HearthException.Check(Native.hearth_shape_create_mesh(H, Id, ref def, ref mesh, out id), "hearth_shape_create_mesh");
+            return new Shape(World, id);
+        }
+
+        /// <summary>hearth_shape_create_heightfield with ShapeDef.Default() (static and kinematic bodies only).</summary>
+        public Shape CreateHeightfield(HeightfieldShape heightfield) { return CreateHeightfield(ShapeDef.Default(), heightfield); }
+
+        /// <summary>hearth_shape_create_heightfield (static and kinematic bodies only).</summary>
+        public Shape CreateHeightfield(ShapeDef def, HeightfieldShape heightfield)
+        {
+            ShapeId id;
+            HearthException.Check(Native.hearth_shape_create_heightfield(H, Id, ref def, ref heightfield, out id), "hearth_shape_create_heightfield");
             return new Shape(World, id);
         }
 
@@ -1601,6 +1675,111 @@ namespace Hearth
         public override bool Equals(object obj) { return obj is Particle && Equals((Particle)obj); }
         public override int GetHashCode() { return Id.GetHashCode(); }
         public override string ToString() { return "Particle(" + Id.Index + ", " + Id.Generation + ")"; }
+    }
+
+    /// <summary>A convex hull shared by shapes (its World and HullId). Destroy is refused while shapes use it.</summary>
+    public struct Hull : IEquatable<Hull>
+    {
+        public readonly World World;
+        public readonly HullId Id;
+
+        public Hull(World world, HullId id)
+        {
+            World = world;
+            Id = id;
+        }
+
+        /// <summary>A shape description instancing this hull at <c>local</c> with a uniform scale.</summary>
+        public HullShape Shape(Transform local, float scale) { return new HullShape(Id, local, scale); }
+
+        /// <summary>hearth_hull_get_vertex_count.</summary>
+        public int VertexCount
+        {
+            get
+            {
+                uint value;
+                HearthException.Check(Native.hearth_hull_get_vertex_count(World.Handle, Id, out value), "hearth_hull_get_vertex_count");
+                return (int)value;
+            }
+        }
+
+        /// <summary>hearth_hull_destroy.</summary>
+        public void Destroy() { HearthException.Check(Native.hearth_hull_destroy(World.Handle, Id), "hearth_hull_destroy"); }
+
+        public bool Equals(Hull other) { return ReferenceEquals(World, other.World) && Id == other.Id; }
+        public override bool Equals(object obj) { return obj is Hull && Equals((Hull)obj); }
+        public override int GetHashCode() { return Id.GetHashCode(); }
+        public override string ToString() { return "Hull(" + Id.Index + ", " + Id.Generation + ")"; }
+    }
+
+    /// <summary>A triangle mesh shared by shapes (its World and MeshId), for static and kinematic bodies.</summary>
+    public struct Mesh : IEquatable<Mesh>
+    {
+        public readonly World World;
+        public readonly MeshId Id;
+
+        public Mesh(World world, MeshId id)
+        {
+            World = world;
+            Id = id;
+        }
+
+        /// <summary>A shape description instancing this mesh at <c>local</c>, scaled per axis.</summary>
+        public MeshShape Shape(Transform local, Vec3 scale) { return new MeshShape(Id, local, scale); }
+
+        /// <summary>hearth_mesh_get_triangle_count: triangles kept.</summary>
+        public int TriangleCount
+        {
+            get
+            {
+                uint value;
+                HearthException.Check(Native.hearth_mesh_get_triangle_count(World.Handle, Id, out value), "hearth_mesh_get_triangle_count");
+                return (int)value;
+            }
+        }
+
+        /// <summary>hearth_mesh_get_degenerate_count: triangles skipped at creation.</summary>
+        public int DegenerateCount
+        {
+            get
+            {
+                uint value;
+                HearthException.Check(Native.hearth_mesh_get_degenerate_count(World.Handle, Id, out value), "hearth_mesh_get_degenerate_count");
+                return (int)value;
+            }
+        }
+
+        /// <summary>hearth_mesh_destroy.</summary>
+        public void Destroy() { HearthException.Check(Native.hearth_mesh_destroy(World.Handle, Id), "hearth_mesh_destroy"); }
+
+        public bool Equals(Mesh other) { return ReferenceEquals(World, other.World) && Id == other.Id; }
+        public override bool Equals(object obj) { return obj is Mesh && Equals((Mesh)obj); }
+        public override int GetHashCode() { return Id.GetHashCode(); }
+        public override string ToString() { return "Mesh(" + Id.Index + ", " + Id.Generation + ")"; }
+    }
+
+    /// <summary>A heightfield shared by shapes (its World and HeightfieldId), for static and kinematic bodies.</summary>
+    public struct Heightfield : IEquatable<Heightfield>
+    {
+        public readonly World World;
+        public readonly HeightfieldId Id;
+
+        public Heightfield(World world, HeightfieldId id)
+        {
+            World = world;
+            Id = id;
+        }
+
+        /// <summary>A shape description: <c>scale.X</c>, <c>scale.Z</c> the spacing (m), <c>scale.Y</c> the height scale.</summary>
+        public HeightfieldShape Shape(Transform local, Vec3 scale) { return new HeightfieldShape(Id, local, scale); }
+
+        /// <summary>hearth_heightfield_destroy.</summary>
+        public void Destroy() { HearthException.Check(Native.hearth_heightfield_destroy(World.Handle, Id), "hearth_heightfield_destroy"); }
+
+        public bool Equals(Heightfield other) { return ReferenceEquals(World, other.World) && Id == other.Id; }
+        public override bool Equals(object obj) { return obj is Heightfield && Equals((Heightfield)obj); }
+        public override int GetHashCode() { return Id.GetHashCode(); }
+        public override string ToString() { return "Heightfield(" + Id.Index + ", " + Id.Generation + ")"; }
     }
 
     /// <summary>A soft body (its World and SoftBodyId).</summary>

@@ -5,6 +5,7 @@ pub mod body;
 pub mod callback;
 pub mod error;
 pub mod generator;
+pub mod geometry;
 pub mod joint;
 pub mod particle;
 pub mod record;

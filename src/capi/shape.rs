@@ -183,6 +183,118 @@ pub unsafe extern "C" fn hearth_shape_create_plane(
     })
 }
 
+/// A convex hull instanced by a shape: the hull's points are scaled uniformly by `scale`
+/// (> 0; also the convex radius), then placed by `local` in the body frame.
+#[repr(C)]
+#[derive(Clone, Copy, Debug)]
+pub struct HearthHullShape {
+    /// The hull, from `hearth_hull_create`.
+    pub hull: HearthHullId,
+    /// Placement of the hull's frame in the body frame.
+    pub local: HearthTransform,
+    /// Uniform scale (> 0; the scaled hull must span at least 1 mm).
+    pub scale: f32,
+}
+
+/// A triangle mesh instanced by a shape: scaled per axis by `scale` (each >= 1e-4) in the
+/// mesh's own frame, then placed by `local` in the body frame.
+#[repr(C)]
+#[derive(Clone, Copy, Debug)]
+pub struct HearthMeshShape {
+    /// The mesh, from `hearth_mesh_create`.
+    pub mesh: HearthMeshId,
+    /// Placement of the mesh's frame in the body frame.
+    pub local: HearthTransform,
+    /// Per-axis scale (each >= 1e-4; negative scales, mirroring, are not supported).
+    pub scale: HearthVec3,
+}
+
+/// A heightfield instanced by a shape: `scale.x` and `scale.z` are the sample spacing (m)
+/// along columns and rows, `scale.y` multiplies the heights (each >= 1e-4); then placed by
+/// `local` in the body frame.
+#[repr(C)]
+#[derive(Clone, Copy, Debug)]
+pub struct HearthHeightfieldShape {
+    /// The heightfield, from `hearth_heightfield_create`.
+    pub heightfield: HearthHeightfieldId,
+    /// Placement of the heightfield's frame in the body frame.
+    pub local: HearthTransform,
+    /// Spacing in x and z (m) and height scale in y (each >= 1e-4).
+    pub scale: HearthVec3,
+}
+
+/// Adds a shape instancing a convex hull (any body type); the body's mass, centre of mass
+/// and inertia are recomputed (exact for the polyhedron). Any number of shapes may use one
+/// hull; the hull cannot be destroyed while they exist.
+///
+/// Errors: as `hearth_shape_create_sphere`, plus `HEARTH_ERROR_INVALID_ID` (hull null,
+/// destroyed or from another world), `HEARTH_ERROR_INVALID_ARGUMENT` (scale not finite or
+/// <= 0, or making the hull under 1 mm across; NaN/infinite or zero-quaternion `local`).
+///
+/// # Safety
+/// Pointers must be NULL or valid.
+#[no_mangle]
+pub unsafe extern "C" fn hearth_shape_create_hull(
+    world: *mut HearthWorld,
+    body: HearthBodyId,
+    def: *const HearthShapeDef,
+    hull: *const HearthHullShape,
+    out_shape: *mut HearthShapeId,
+) -> HearthResult {
+    create(world, body, def, hull, out_shape, |h| Geometry::Hull {
+        hull: h.hull.into(),
+        local: h.local.into(),
+        scale: h.scale,
+    })
+}
+
+/// Adds a shape instancing a triangle mesh to a static or kinematic body. A mesh is a
+/// surface without volume, so it gives no mass: on a dynamic body it is refused with
+/// `HEARTH_ERROR_INVALID_ARGUMENT` (use hulls or primitives for moving bodies).
+///
+/// Errors: as `hearth_shape_create_sphere`, plus `HEARTH_ERROR_INVALID_ID` (mesh null,
+/// destroyed or from another world), `HEARTH_ERROR_INVALID_ARGUMENT` (dynamic body, a scale
+/// component under 1e-4 or not finite, NaN/infinite or zero-quaternion `local`).
+///
+/// # Safety
+/// Pointers must be NULL or valid.
+#[no_mangle]
+pub unsafe extern "C" fn hearth_shape_create_mesh(
+    world: *mut HearthWorld,
+    body: HearthBodyId,
+    def: *const HearthShapeDef,
+    mesh: *const HearthMeshShape,
+    out_shape: *mut HearthShapeId,
+) -> HearthResult {
+    create(world, body, def, mesh, out_shape, |m| Geometry::Mesh {
+        mesh: m.mesh.into(),
+        local: m.local.into(),
+        scale: m.scale.into(),
+    })
+}
+
+/// Adds a shape instancing a heightfield to a static or kinematic body; refused on a
+/// dynamic body as for `hearth_shape_create_mesh`.
+///
+/// Errors: as `hearth_shape_create_mesh`, with the heightfield's id.
+///
+/// # Safety
+/// Pointers must be NULL or valid.
+#[no_mangle]
+pub unsafe extern "C" fn hearth_shape_create_heightfield(
+    world: *mut HearthWorld,
+    body: HearthBodyId,
+    def: *const HearthShapeDef,
+    heightfield: *const HearthHeightfieldShape,
+    out_shape: *mut HearthShapeId,
+) -> HearthResult {
+    create(world, body, def, heightfield, out_shape, |h| Geometry::Heightfield {
+        heightfield: h.heightfield.into(),
+        local: h.local.into(),
+        scale: h.scale.into(),
+    })
+}
+
 /// Removes a shape from its body; the body's mass is recomputed and touching bodies woken.
 ///
 /// Errors: `HEARTH_ERROR_NULL_POINTER`, `HEARTH_ERROR_INVALID_ID`, `HEARTH_ERROR_WORLD_LOCKED`.

@@ -113,7 +113,44 @@ macro_rules! id_conversions {
         }
     )*};
 }
-id_conversions!(HearthBodyId, HearthShapeId);
+/// Id of a convex hull (shared geometry) inside its world. All-zero is the null id. Ids of
+/// destroyed hulls and of other worlds are rejected with `HEARTH_ERROR_INVALID_ID`.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct HearthHullId {
+    /// Slot of the hull.
+    pub index: u32,
+    /// Generation of the slot (0 only in the null id).
+    pub generation: u32,
+}
+
+/// Id of a triangle mesh (shared geometry) inside its world. All-zero is the null id.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct HearthMeshId {
+    /// Slot of the mesh.
+    pub index: u32,
+    /// Generation of the slot (0 only in the null id).
+    pub generation: u32,
+}
+
+/// Id of a heightfield (shared geometry) inside its world. All-zero is the null id.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct HearthHeightfieldId {
+    /// Slot of the heightfield.
+    pub index: u32,
+    /// Generation of the slot (0 only in the null id).
+    pub generation: u32,
+}
+
+id_conversions!(
+    HearthBodyId,
+    HearthShapeId,
+    HearthHullId,
+    HearthMeshId,
+    HearthHeightfieldId
+);
 
 /// Sphere: centre in the body frame (m, each coordinate within ±1e5) and radius (m,
 /// 0.001..=1e4).

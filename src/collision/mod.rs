@@ -6,10 +6,20 @@
 //! * `broad_phase` — the tree plus static planes, the move buffer and the pair set.
 //! * `narrow_phase` — pure geometry: contact manifolds for every pair of shape kinds.
 //! * `contact` — a touching (or nearly touching) pair with its persistent manifold.
+//! * `geometry_store` — shared geometry (convex hulls) built once, used by many shapes.
+//! * `hull` — convex hulls: quickhull builder, polyhedral mass properties.
+//! * `mesh` — triangle meshes: BVH, active edges.
+//! * `heightfield` — terrain grids with holes and a min/max pyramid.
+//! * `gjk` — distance and closest points between convex cores given by support functions.
 
 pub mod aabb;
 pub mod broad_phase;
 pub mod contact;
 pub mod dynamic_tree;
+pub mod geometry_store;
+pub mod gjk;
+pub mod heightfield;
+pub mod hull;
+pub mod mesh;
 pub mod narrow_phase;
 pub mod shape;

@@ -1,6 +1,7 @@
 //! Shape geometry in the local frame of its body, its bounds and its mass.
 
 use crate::collision::aabb::Aabb;
+use crate::collision::geometry_store::{ConvexHullHandle, GeometryStore, HeightfieldHandle, MeshHandle};
 use crate::math::{Mat3, Quat, Transform, Vec3};
 
 /// Collision geometry, placed in the local frame of the body that owns it.
@@ -27,6 +28,27 @@ pub enum Geometry {
         normal: Vec3,
         offset: f32,
     },
+    /// A convex hull from the world's `GeometryStore`, placed by `local` (relative to the
+    /// body) and scaled uniformly by `scale` about the hull's origin.
+    Hull {
+        hull: ConvexHullHandle,
+        local: Transform,
+        scale: f32,
+    },
+    /// A triangle mesh from the world's `GeometryStore` (static and kinematic bodies only),
+    /// scaled per axis by `scale` (each > 0) in its own frame, then placed by `local`.
+    Mesh {
+        mesh: MeshHandle,
+        local: Transform,
+        scale: Vec3,
+    },
+    /// A heightfield from the world's `GeometryStore` (static and kinematic bodies only):
+    /// `scale.x` and `scale.z` are the sample spacing, `scale.y` multiplies the heights.
+    Heightfield {
+        heightfield: HeightfieldHandle,
+        local: Transform,
+        scale: Vec3,
+    },
 }
 
 /// Shape kinds in dispatch order; narrowphase pairs are ordered so `kind(a) <= kind(b)`.
@@ -35,7 +57,10 @@ pub enum ShapeKind {
     Sphere = 0,
     Capsule = 1,
     Box = 2,
-    Plane = 3,
+    Hull = 3,
+    Mesh = 4,
+    Heightfield = 5,
+    Plane = 6,
 }
 
 impl Geometry {
@@ -44,8 +69,43 @@ impl Geometry {
             Geometry::Sphere { .. } => ShapeKind::Sphere,
             Geometry::Capsule { .. } => ShapeKind::Capsule,
             Geometry::Box { .. } => ShapeKind::Box,
+            Geometry::Hull { .. } => ShapeKind::Hull,
+            Geometry::Mesh { .. } => ShapeKind::Mesh,
+            Geometry::Heightfield { .. } => ShapeKind::Heightfield,
             Geometry::Plane { .. } => ShapeKind::Plane,
         }
+    }
+
+    /// Triangle meshes and heightfields: static level geometry made of triangles, touching
+    /// a convex shape along several manifolds.
+    pub fn is_triangles(&self) -> bool {
+        matches!(self, Geometry::Mesh { .. } | Geometry::Heightfield { .. })
+    }
+
+    /// Bounds of a mesh or heightfield in its own unscaled frame, with its placement.
+    fn triangles_frame(&self, store: &GeometryStore) -> Option<(Aabb, Transform, Vec3)> {
+        match *self {
+            Geometry::Mesh { mesh, local, scale } => Some((store.mesh_at(mesh.index).bounds(), local, scale)),
+            Geometry::Heightfield {
+                heightfield,
+                local,
+                scale,
+            } => Some((store.heightfield_at(heightfield.index).bounds(), local, scale)),
+            _ => None,
+        }
+    }
+
+    /// A box around shared geometry (hull, mesh, heightfield) in the body's frame: centre,
+    /// rotation, half extents. `None` for the primitive shapes, which describe themselves.
+    pub fn local_box(&self, store: &GeometryStore) -> Option<(Vec3, Quat, Vec3)> {
+        if let Geometry::Hull { hull, local, scale } = *self {
+            let h = store.hull_at(hull.index);
+            let (lo, hi) = h.local_bounds();
+            let half = 0.5 * (hi - lo) * scale + Vec3::splat(h.radius() * scale);
+            return Some((local.apply(0.5 * (lo + hi) * scale), local.q, half));
+        }
+        let (b, local, scale) = self.triangles_frame(store)?;
+        Some((local.apply(b.center() * scale), local.q, b.extents() * scale))
     }
 
     /// True for geometry without finite extent (planes).
@@ -54,7 +114,7 @@ impl Geometry {
     }
 
     /// World-space bounds under the body transform `xf`. Planes get an enormous box.
-    pub fn aabb(&self, xf: &Transform) -> Aabb {
+    pub fn aabb(&self, store: &GeometryStore, xf: &Transform) -> Aabb {
         match *self {
             Geometry::Sphere { center, radius } => Aabb::from_center_extents(xf.apply(center), Vec3::splat(radius)),
             Geometry::Box {
@@ -76,11 +136,30 @@ impl Geometry {
                 Aabb::new(wa.min(wb), wa.max(wb)).expanded(radius)
             }
             Geometry::Plane { .. } => Aabb::new(Vec3::splat(-1.0e18), Vec3::splat(1.0e18)),
+            Geometry::Hull { hull, local, scale } => {
+                let h = store.hull_at(hull.index);
+                let m = Mat3::from_quat(xf.q * local.q) * scale;
+                let (mut lo, mut hi) = (Vec3::splat(f32::MAX), Vec3::splat(f32::MIN));
+                for v in h.vertices() {
+                    let w = m * *v;
+                    lo = lo.min(w);
+                    hi = hi.max(w);
+                }
+                let p = xf.apply(local.p);
+                Aabb::new(lo + p, hi + p).expanded(h.radius() * scale)
+            }
+            Geometry::Mesh { .. } | Geometry::Heightfield { .. } => {
+                let (b, local, scale) = self.triangles_frame(store).expect("a mesh or heightfield");
+                let m = Mat3::from_quat(xf.q * local.q);
+                let (c, e) = (b.center() * scale, b.extents() * scale);
+                let e = Vec3::new(m.row(0).abs().dot(e), m.row(1).abs().dot(e), m.row(2).abs().dot(e));
+                Aabb::from_center_extents(xf.apply(local.apply(c)), e)
+            }
         }
     }
 
     /// Volume in m³ (0 for a plane).
-    pub fn volume(&self) -> f32 {
+    pub fn volume(&self, store: &GeometryStore) -> f32 {
         match *self {
             Geometry::Sphere { radius, .. } => 4.0 / 3.0 * std::f32::consts::PI * radius.powi(3),
             Geometry::Box { half_extents: h, .. } => 8.0 * h.x * h.y * h.z,
@@ -88,16 +167,17 @@ impl Geometry {
                 let l = (b - a).length();
                 std::f32::consts::PI * radius * radius * (l + 4.0 / 3.0 * radius)
             }
-            Geometry::Plane { .. } => 0.0,
+            Geometry::Plane { .. } | Geometry::Mesh { .. } | Geometry::Heightfield { .. } => 0.0,
+            Geometry::Hull { hull, scale, .. } => store.hull_at(hull.index).volume() * scale * scale * scale,
         }
     }
 
     /// Mass properties at `density` (kg/m³), expressed in the body frame.
-    pub fn mass_properties(&self, density: f32) -> MassProperties {
+    pub fn mass_properties(&self, store: &GeometryStore, density: f32) -> MassProperties {
         use std::f32::consts::PI;
         match *self {
             Geometry::Sphere { center, radius } => {
-                let m = density * self.volume();
+                let m = density * self.volume(store);
                 let i = 0.4 * m * radius * radius;
                 MassProperties {
                     mass: m,
@@ -110,7 +190,7 @@ impl Geometry {
                 rotation,
                 half_extents: h,
             } => {
-                let m = density * self.volume();
+                let m = density * self.volume(store);
                 let s = h * h;
                 let d = Vec3::new(s.y + s.z, s.x + s.z, s.x + s.y) * (m / 3.0);
                 let r = Mat3::from_quat(rotation);
@@ -146,7 +226,17 @@ impl Geometry {
                     inertia: rot * local * rot.transpose(),
                 }
             }
-            Geometry::Plane { .. } => MassProperties::ZERO,
+            Geometry::Plane { .. } | Geometry::Mesh { .. } | Geometry::Heightfield { .. } => MassProperties::ZERO,
+            Geometry::Hull { hull, local, scale } => {
+                let mp = store.hull_at(hull.index).mass_properties(density);
+                let s3 = scale * scale * scale;
+                let r = Mat3::from_quat(local.q);
+                MassProperties {
+                    mass: mp.mass * s3,
+                    center: local.apply(mp.center * scale),
+                    inertia: r * (mp.inertia * (s3 * scale * scale)) * r.transpose(),
+                }
+            }
         }
     }
 }
@@ -197,6 +287,10 @@ fn outer(a: Vec3, b: Vec3) -> Mat3 {
 mod tests {
     use super::*;
 
+    fn store() -> GeometryStore {
+        GeometryStore::new(1)
+    }
+
     fn close(a: f32, b: f32, tol: f32) -> bool {
         (a - b).abs() <= tol * b.abs().max(1.0)
     }
@@ -208,7 +302,7 @@ mod tests {
             rotation: Quat::IDENTITY,
             half_extents: Vec3::new(1.0, 2.0, 3.0),
         };
-        let mp = g.mass_properties(2.0);
+        let mp = g.mass_properties(&store(), 2.0);
         assert!(close(mp.mass, 96.0, 1e-6));
         // I_x = m/12 (h² + d²) with full sizes 4 and 6
         assert!(close(mp.inertia.x_axis.x, 96.0 / 12.0 * (16.0 + 36.0), 1e-5));
@@ -234,8 +328,9 @@ mod tests {
             rotation: Quat::IDENTITY,
             half_extents: Vec3::new(1.0, 0.5, 0.5),
         };
-        let c = MassProperties::combine([a.mass_properties(3.0), b.mass_properties(3.0)].into_iter());
-        let w = whole.mass_properties(3.0);
+        let c =
+            MassProperties::combine([a.mass_properties(&store(), 3.0), b.mass_properties(&store(), 3.0)].into_iter());
+        let w = whole.mass_properties(&store(), 3.0);
         assert!(close(c.mass, w.mass, 1e-6));
         assert!(c.center.length() < 1e-6);
         for i in 0..3 {
@@ -257,8 +352,8 @@ mod tests {
             rotation: Quat::IDENTITY,
             half_extents: Vec3::new(0.25, 1.0, 0.5),
         };
-        let a = g.mass_properties(1.0).inertia;
-        let b = s.mass_properties(1.0).inertia;
+        let a = g.mass_properties(&store(), 1.0).inertia;
+        let b = s.mass_properties(&store(), 1.0).inertia;
         for i in 0..3 {
             assert!((a.col(i) - b.col(i)).length() < 1e-4);
         }
@@ -276,7 +371,7 @@ mod tests {
             center: Vec3::ZERO,
             radius: 0.5,
         };
-        let (mc, ms) = (c.mass_properties(1.0), s.mass_properties(1.0));
+        let (mc, ms) = (c.mass_properties(&store(), 1.0), s.mass_properties(&store(), 1.0));
         assert!(close(mc.mass, ms.mass, 1e-5));
         assert!(close(mc.inertia.x_axis.x, ms.inertia.x_axis.x, 1e-4));
         assert!(close(mc.inertia.y_axis.y, ms.inertia.y_axis.y, 1e-4));
@@ -293,7 +388,7 @@ mod tests {
             Vec3::new(0.0, 5.0, 0.0),
             Quat::from_rotation_y(std::f32::consts::FRAC_PI_4),
         );
-        let bb = g.aabb(&xf);
+        let bb = g.aabb(&store(), &xf);
         let r = 2.0f32.sqrt();
         assert!((bb.max.x - r).abs() < 1e-5 && (bb.max.y - 6.0).abs() < 1e-5);
     }
@@ -425,32 +520,67 @@ impl Geometry {
                     offset: offset / l,
                 }
             }
+            Geometry::Hull { hull, local, scale } => {
+                check_position("hull position", local.p)?;
+                let q = check_quat("hull rotation", local.q)?;
+                crate::error::check_positive("hull scale", scale)?;
+                Geometry::Hull {
+                    hull,
+                    local: Transform::new(local.p, q),
+                    scale,
+                }
+            }
+            Geometry::Mesh { mesh, local, scale } => {
+                let (local, scale) = triangles_placement("mesh", local, scale)?;
+                Geometry::Mesh { mesh, local, scale }
+            }
+            Geometry::Heightfield {
+                heightfield,
+                local,
+                scale,
+            } => {
+                let (local, scale) = triangles_placement("heightfield", local, scale)?;
+                Geometry::Heightfield {
+                    heightfield,
+                    local,
+                    scale,
+                }
+            }
         })
     }
 
     /// Radius by which the shape rounds its core (a point for a sphere, a segment for a
     /// capsule); 0 for boxes and planes. A contact point on a rounded surface does not turn
     /// with the body: rolling moves the contact over the surface.
-    pub fn rounding_radius(&self) -> f32 {
+    pub fn rounding_radius(&self, store: &GeometryStore) -> f32 {
         match *self {
             Geometry::Sphere { radius, .. } | Geometry::Capsule { radius, .. } => radius,
-            Geometry::Box { .. } | Geometry::Plane { .. } => 0.0,
+            Geometry::Box { .. } | Geometry::Plane { .. } | Geometry::Mesh { .. } | Geometry::Heightfield { .. } => 0.0,
+            Geometry::Hull { hull, scale, .. } => store.hull_at(hull.index).radius() * scale,
         }
     }
 
     /// The shape's smallest dimension (m): a sphere's or capsule's radius, a box's smallest
-    /// half extent; a plane has none (`f32::MAX`). Contacts scale their length tolerances
-    /// (allowed overlap, manifold reuse) down to it, so millimetre bodies rest like metre ones.
-    pub fn feature_size(&self) -> f32 {
+    /// half extent, a hull's inner radius (from its vertex centroid to the nearest face, plus
+    /// its convex radius); planes, meshes and heightfields have none (`f32::MAX`). Contacts
+    /// scale their length tolerances (allowed overlap, manifold reuse) down to it, so
+    /// millimetre bodies rest like metre ones.
+    pub fn feature_size(&self, store: &GeometryStore) -> f32 {
         match *self {
             Geometry::Sphere { radius, .. } | Geometry::Capsule { radius, .. } => radius,
             Geometry::Box { half_extents, .. } => half_extents.min_element(),
-            Geometry::Plane { .. } => f32::MAX,
+            Geometry::Plane { .. } | Geometry::Mesh { .. } | Geometry::Heightfield { .. } => f32::MAX,
+            Geometry::Hull { hull, scale, .. } => {
+                let h = store.hull_at(hull.index);
+                let c = h.vertices().iter().copied().sum::<Vec3>() / h.vertices().len().max(1) as f32;
+                let inner = h.planes().iter().map(|p| -p.distance(c)).fold(f32::MAX, f32::min);
+                (inner.max(0.0) + h.radius()) * scale
+            }
         }
     }
 
     /// Radius of a sphere about the body's centre of mass that bounds the shape (planes: 0).
-    pub fn extent_from(&self, local_center: Vec3) -> f32 {
+    pub fn extent_from(&self, store: &GeometryStore, local_center: Vec3) -> f32 {
         match *self {
             Geometry::Sphere { center, radius } => (center - local_center).length() + radius,
             Geometry::Box {
@@ -458,8 +588,36 @@ impl Geometry {
             } => (center - local_center).length() + half_extents.length(),
             Geometry::Capsule { a, b, radius } => (a - local_center).length().max((b - local_center).length()) + radius,
             Geometry::Plane { .. } => 0.0,
+            Geometry::Hull { hull, local, scale } => {
+                let h = store.hull_at(hull.index);
+                let c = local.apply(h.mass_properties(1.0).center * scale);
+                (c - local_center).length() + scale * (h.bound_radius() + h.radius())
+            }
+            Geometry::Mesh { .. } | Geometry::Heightfield { .. } => {
+                let (b, local, scale) = self.triangles_frame(store).expect("a mesh or heightfield");
+                let c = local.apply(b.center() * scale);
+                (c - local_center).length() + (b.extents() * scale).length()
+            }
         }
     }
+}
+
+/// Smallest per-axis scale of a mesh or heightfield shape.
+pub const MIN_TRIANGLES_SCALE: f32 = 1.0e-4;
+
+/// Checks the placement of a mesh or heightfield shape; returns it with a unit rotation.
+fn triangles_placement(what: &str, local: Transform, scale: Vec3) -> crate::error::Result<(Transform, Vec3)> {
+    use crate::error::{check_position, check_quat, check_vec, invalid};
+    check_position(&format!("{what} position"), local.p)?;
+    let q = check_quat(&format!("{what} rotation"), local.q)?;
+    check_vec(&format!("{what} scale"), scale)?;
+    if scale.min_element() < MIN_TRIANGLES_SCALE || scale.max_element() > crate::error::MAX_LENGTH {
+        return Err(invalid(format!(
+            "{what} scale must be within [{MIN_TRIANGLES_SCALE}, {}] on every axis, got {scale}",
+            crate::error::MAX_LENGTH
+        )));
+    }
+    Ok((Transform::new(local.p, q), scale))
 }
 
 /// A shape attached to a body.

@@ -1,5 +1,7 @@
 //! Contacts to solve, per step. `prepare` lists every touching manifold (and every contact a
 //! generator wrote) as a small `ContactRef`: its solver bodies, which way round, and its kind.
+//! A contact against a mesh or heightfield may have several manifolds (`Contact::child`);
+//! each is its own ref, naming the manifold by `child`, and so its own constraint.
 //! The batched solver (`contact_wide.rs`) colours the refs and builds the constraints in lanes
 //! straight from the contacts as it packs them, so no array of scalar constraints is written
 //! and read back; after the solve, `store` keeps each lane's impulses on its contact for warm
@@ -27,16 +29,30 @@ pub struct ContactRef {
     pub b: u32,
     /// A and B are the contact's B and A.
     pub swapped: bool,
-    /// Side A (resp. B) has finite mass: the colouring reserves its body.
-    pub writes_a: bool,
-    pub writes_b: bool,
-    /// Batch kind and load, see `ContactRef::order_key`.
+    /// Batch kind and load (bits 0..3, see `ContactRef::order_key`), and whether side A
+    /// (bit 4) and B (bit 5) have finite mass (`writes_a`, `writes_b`).
     key: u8,
+    /// Which of the contact's manifolds (`Contact::child`).
+    pub child: u16,
 }
+
+const SPINS: u8 = 1 << 3;
+const WRITES_A: u8 = 1 << 4;
+const WRITES_B: u8 = 1 << 5;
 
 impl ContactRef {
     #[allow(clippy::too_many_arguments)]
-    fn new(source: u32, a: u32, b: u32, ma: f32, mb: f32, count: usize, spins: bool, loaded: bool) -> ContactRef {
+    fn new(
+        source: u32,
+        child: u16,
+        a: u32,
+        b: u32,
+        ma: f32,
+        mb: f32,
+        count: usize,
+        spins: bool,
+        loaded: bool,
+    ) -> ContactRef {
         // A static (or sleeping) A goes to B.
         let swapped = a == 0 && b != 0;
         let (a, b, ma, mb) = if swapped { (b, a, mb, ma) } else { (a, b, ma, mb) };
@@ -45,10 +61,26 @@ impl ContactRef {
             a,
             b,
             swapped,
-            writes_a: ma > 0.0,
-            writes_b: mb > 0.0,
-            key: u8::from(spins) << 3 | u8::from(count > 1) << 2 | u8::from(b != 0) << 1 | u8::from(loaded),
+            key: if spins { SPINS } else { 0 }
+                | u8::from(count > 1) << 2
+                | u8::from(b != 0) << 1
+                | u8::from(loaded)
+                | if ma > 0.0 { WRITES_A } else { 0 }
+                | if mb > 0.0 { WRITES_B } else { 0 },
+            child,
         }
+    }
+
+    /// Side A has finite mass: the colouring reserves its body.
+    #[inline(always)]
+    pub fn writes_a(&self) -> bool {
+        self.key & WRITES_A != 0
+    }
+
+    /// Side B has finite mass.
+    #[inline(always)]
+    pub fn writes_b(&self) -> bool {
+        self.key & WRITES_B != 0
     }
 
     /// Whether it resists rolling and spin, point-count class and whether side B is dynamic:
@@ -56,14 +88,14 @@ impl ContactRef {
     /// batch-mates (and the lane width).
     #[inline(always)]
     pub fn kind(&self) -> u8 {
-        self.key >> 1
+        (self.key & 0b1111) >> 1
     }
 
     /// Like with like: the kinds, then whether the constraint carried load last step (batches
     /// of idle constraints end their sweep early). Four bits.
     #[inline(always)]
     pub fn order_key(&self) -> usize {
-        self.key as usize
+        (self.key & 0b1111) as usize
     }
 
     /// Number of distinct `order_key` values.
@@ -73,7 +105,7 @@ impl ContactRef {
     /// and a twist row even with one point).
     #[inline(always)]
     pub fn spins(&self) -> bool {
-        self.key & 8 != 0
+        self.key & SPINS != 0
     }
 
     /// Index in `World::generated_contacts` of a generated contact.
@@ -122,8 +154,7 @@ pub fn prepare(world: &mut World) {
     let mut bounces = false;
     for &ci in &world.awake_contacts {
         let c = world.contacts.at(ci);
-        let count = c.manifold.count;
-        if count == 0 {
+        if !c.touching {
             continue;
         }
         let (a, b) = (
@@ -134,10 +165,17 @@ pub fn prepare(world: &mut World) {
         if ma == 0.0 && mb == 0.0 {
             continue;
         }
-        let loaded = c.impulses[..count].iter().any(|p| p.normal > 0.0);
-        let spins = c.rolling_resistance > 0.0 || c.torsional_friction > 0.0;
         bounces |= c.restitution > 0.0;
-        refs.push(ContactRef::new(ci, a, b, ma, mb, count, spins, loaded));
+        let spins = c.rolling_resistance > 0.0 || c.torsional_friction > 0.0;
+        for k in 0..c.manifold_count() {
+            let (m, impulses, _) = c.child(k);
+            let count = m.count;
+            if count == 0 {
+                continue;
+            }
+            let loaded = impulses[..count].iter().any(|p| p.normal > 0.0);
+            refs.push(ContactRef::new(ci, k as u16, a, b, ma, mb, count, spins, loaded));
+        }
     }
     for (gi, g) in world.generated_contacts.iter().enumerate() {
         let (a, b) = (
@@ -149,7 +187,7 @@ pub fn prepare(world: &mut World) {
             continue;
         }
         bounces |= g.restitution > 0.0;
-        refs.push(ContactRef::new(GENERATED | gi as u32, a, b, ma, mb, 1, false, false));
+        refs.push(ContactRef::new(GENERATED | gi as u32, 0, a, b, ma, mb, 1, false, false));
     }
     scratch.bounces = bounces;
 }
@@ -167,7 +205,8 @@ pub struct LaneImpulses {
 #[inline]
 pub fn store_rolling(r: &ContactRef, rolling: Vec3, contacts: &mut Pool<Contact>) {
     if let Some(ci) = r.contact() {
-        contacts.at_mut(ci).friction.rolling = if r.swapped { -rolling } else { rolling };
+        let (_, _, friction) = contacts.at_mut(ci).child_impulses_mut(r.child as usize);
+        friction.rolling = if r.swapped { -rolling } else { rolling };
     }
 }
 
@@ -177,13 +216,14 @@ pub fn store(r: &ContactRef, out: &LaneImpulses, contacts: &mut Pool<Contact>) {
     let Some(ci) = r.contact() else {
         return;
     };
-    let contact = contacts.at_mut(ci);
-    let count = contact.manifold.count;
-    for (imp, &n) in contact.impulses[..count].iter_mut().zip(&out.normal) {
+    let (count, impulses, friction) = contacts.at_mut(ci).child_impulses_mut(r.child as usize);
+    for (imp, &n) in impulses[..count].iter_mut().zip(&out.normal) {
         imp.normal = n;
     }
-    contact.friction.tangent = if r.swapped { -out.tangent } else { out.tangent };
-    contact.friction.twist = out.twist;
-
-    contact.friction.sliding = out.sliding;
+    friction.tangent = if r.swapped { -out.tangent } else { out.tangent };
+    friction.twist = out.twist;
+    friction.sliding = out.sliding;
 }
+
+// The solver walks refs in colour order; they stay 16 bytes.
+const _: () = assert!(std::mem::size_of::<ContactRef>() == 16);

@@ -276,18 +276,18 @@ impl Batches {
         for (ri, r) in moving.chain(grounded) {
             // The first colour neither written body uses yet.
             let (a, b) = (r.a as usize, r.b as usize);
-            let used_a = if r.writes_a { colors[a] } else { 0 };
-            let used_b = if r.writes_b { colors[b] } else { 0 };
+            let used_a = if r.writes_a() { colors[a] } else { 0 };
+            let used_b = if r.writes_b() { colors[b] } else { 0 };
             let free = !(used_a | used_b) & ALL_COLORS;
             if free == 0 {
                 self.singles.push(ri as u32);
                 continue;
             }
             let color = free.trailing_zeros();
-            if r.writes_a {
+            if r.writes_a() {
                 colors[a] |= 1 << color;
             }
-            if r.writes_b {
+            if r.writes_b() {
                 colors[b] |= 1 << color;
             }
             self.color_members[color as usize].push(ri as u32);
@@ -410,17 +410,13 @@ impl<L: Lanes> Staging<L> {
         }
     }
 
-    /// Lane `i` from the persistent contact of `r`.
+    /// Lane `i` from the persistent contact of `r` (its manifold `r.child`).
     #[inline(always)]
     fn contact(&mut self, i: usize, r: &ContactRef, c: &Contact, s: &Sources) {
+        let (manifold, impulses, patch) = c.child(r.child as usize);
         let (mut ca, mut cb) = (s.bodies.at(c.body_a).center, s.bodies.at(c.body_b).center);
-        let (mut n, mut radius_a, mut radius_b, mut friction, mut rolling) = (
-            c.manifold.normal,
-            c.radius_a,
-            c.radius_b,
-            c.friction.tangent,
-            c.friction.rolling,
-        );
+        let (mut n, mut radius_a, mut radius_b, mut friction, mut rolling) =
+            (manifold.normal, c.radius_a, c.radius_b, patch.tangent, patch.rolling);
         if r.swapped {
             std::mem::swap(&mut ca, &mut cb);
             std::mem::swap(&mut radius_a, &mut radius_b);
@@ -429,7 +425,7 @@ impl<L: Lanes> Staging<L> {
             friction = -friction;
             rolling = -rolling;
         }
-        let count = c.manifold.count;
+        let count = manifold.count;
         self.lane(
             i,
             r,
@@ -437,7 +433,7 @@ impl<L: Lanes> Staging<L> {
             [radius_a, radius_b, c.static_friction, c.dynamic_friction],
             c.restitution,
         );
-        self.f[7].as_mut()[i] = c.friction.twist;
+        self.f[7].as_mut()[i] = patch.twist;
         self.f[8].as_mut()[i] = 1.0 / count as f32;
         self.f[10].as_mut()[i] = c.rolling_resistance;
         self.f[11].as_mut()[i] = c.torsional_friction;
@@ -445,7 +441,7 @@ impl<L: Lanes> Staging<L> {
         for (slot, x) in self.v.iter_mut().zip([n, ca, cb, friction, rolling]) {
             slot.set(i, x);
         }
-        for (p, (mp, imp)) in c.manifold.points().iter().zip(&c.impulses).enumerate() {
+        for (p, (mp, imp)) in manifold.points().iter().zip(impulses).enumerate() {
             for (slot, x) in self.pf[p].iter_mut().zip([mp.separation, imp.normal, on()]) {
                 slot.as_mut()[i] = x;
             }
@@ -545,7 +541,7 @@ fn pack<L: Lanes>(w: &mut WideContact<L>, lanes: &[u32], refs: &[ContactRef], so
         match r.contact() {
             Some(ci) => {
                 let c = sources.contacts.at(ci);
-                w.count = w.count.max(c.manifold.count);
+                w.count = w.count.max(c.child(r.child as usize).0.count);
                 w.has_restitution |= c.restitution > 0.0;
                 st.contact(i, r, c, sources);
             }

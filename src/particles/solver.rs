@@ -399,6 +399,7 @@ impl World {
             shapes,
             broad,
             settings,
+            geometry,
             ..
         } = self;
         let gravity = settings.gravity;
@@ -446,7 +447,7 @@ impl World {
                 broad.tree.query(&bb, |_, si| {
                     let shape = shapes.at(si);
                     let body = bodies.at(shape.body);
-                    let m = collide(&sphere, &xf, &shape.geometry, &body.xf, reach);
+                    let m = collide(geometry, &sphere, &xf, &shape.geometry, &body.xf, reach);
                     for mp in m.points() {
                         // `m.normal` points from the particle into the shape.
                         let surface = x + m.normal * (r + mp.separation);

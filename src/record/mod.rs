@@ -21,6 +21,7 @@
 pub mod format;
 pub mod read;
 
+use crate::collision::geometry_store::GeometryStore;
 use crate::collision::shape::Geometry;
 use crate::dynamics::body::BodyType;
 use crate::dynamics::joints::JointKind;
@@ -143,7 +144,16 @@ fn joint_kind_code(k: &JointKind) -> u8 {
     }
 }
 
-fn put_geometry(out: &mut Vec<u8>, g: &Geometry) {
+/// A shape's geometry. Shared geometry (hulls, meshes, heightfields) is recorded as the box
+/// around it in the body's frame (`Geometry::local_box`): the viewer draws that box.
+fn put_geometry(out: &mut Vec<u8>, g: &Geometry, store: &GeometryStore) {
+    if let Some((center, rotation, half_extents)) = g.local_box(store) {
+        put_u8(out, SHAPE_BOX);
+        put_vec3(out, center);
+        put_quat(out, rotation);
+        put_vec3(out, half_extents);
+        return;
+    }
     match *g {
         Geometry::Sphere { center, radius } => {
             put_u8(out, SHAPE_SPHERE);
@@ -170,6 +180,9 @@ fn put_geometry(out: &mut Vec<u8>, g: &Geometry) {
             put_u8(out, SHAPE_PLANE);
             put_vec3(out, normal);
             put_f32(out, offset);
+        }
+        Geometry::Hull { .. } | Geometry::Mesh { .. } | Geometry::Heightfield { .. } => {
+            unreachable!("shared geometry is recorded as its box above")
         }
     }
 }
@@ -399,7 +412,11 @@ impl Recorder {
             put_quat(&mut out, b.xf.q);
             put_u32(&mut out, b.shapes.len() as u32);
             for &s in &b.shapes {
-                put_geometry(&mut out, &world.shapes.get(s).expect("a body's shape is live").geometry);
+                put_geometry(
+                    &mut out,
+                    &world.shapes.get(s).expect("a body's shape is live").geometry,
+                    &world.geometry,
+                );
             }
         }
         for gone in next..self.bodies.len() {

@@ -262,6 +262,7 @@ impl World {
             shapes,
             broad,
             settings,
+            geometry,
             ..
         } = self;
         let mut sc = std::mem::take(&mut soft_bodies.scratch);
@@ -309,7 +310,7 @@ impl World {
             }
             s.touching.clear();
             prepare_pins(s, bodies, &mut sc, k as u32);
-            find_contacts(s, bodies, shapes, broad, &mut sc, dt, k as u32);
+            find_contacts(s, bodies, shapes, geometry, broad, &mut sc, dt, k as u32);
         }
         for k in 0..soft_bodies.live.len() {
             let s = soft_bodies.pool.at_mut(soft_bodies.live[k]);
@@ -397,6 +398,7 @@ fn find_contacts(
     s: &mut SoftBody,
     bodies: &Pool<Body>,
     shapes: &Pool<Shape>,
+    geometry: &crate::collision::geometry_store::GeometryStore,
     broad: &crate::collision::broad_phase::BroadPhase,
     sc: &mut SoftScratch,
     dt: f32,
@@ -469,7 +471,7 @@ fn find_contacts(
                     continue;
                 }
                 let body = bodies.at(shape.body);
-                let m = collide(&sphere, &xf, &shape.geometry, &body.xf, reach);
+                let m = collide(geometry, &sphere, &xf, &shape.geometry, &body.xf, reach);
                 for mp in m.points() {
                     if mp.separation >= depth {
                         continue;

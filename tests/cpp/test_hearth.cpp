@@ -3,7 +3,8 @@
 // a Result in the nothrow API) leaving the world unchanged, move-only RAII ownership, lambdas
 // as force and contact generators (a hovering body, a lambda floor, exceptions and failed
 // Statuses reported by step(), boxes released), bulk read-back equal to single reads, joints,
-// particles, soft bodies (and their settings read back and changed) and built-in generators.
+// particles, soft bodies (and their settings read back and changed), built-in generators and
+// shared geometry (a box resting on a mesh floor and a hull cube on a heightfield).
 //
 // Compiled by tests/bindings_cpp.rs with -std=c++17 -Wall -Wextra -Wpedantic -Werror, linked
 // shared and static, and once more with -fno-exceptions (only the nothrow half is built then);
@@ -825,6 +826,72 @@ static void test_recording_start_failure() {
     CHECK_THROWS(w.stop_recording(), hearth::Code::InvalidArgument);
 }
 
+// Shared geometry: a box dropped on a mesh floor rests at the analytic height (0.5 m), a hull
+// cube on a heightfield at 1.0 m; counts, the refusal to free geometry in use, a mesh refused
+// on a dynamic body.
+static void test_geometry() {
+    hearth::World w = make_world();
+    std::vector<hearth::Vec3> v;
+    std::vector<uint32_t> idx;
+    const int n = 4;
+    for (int r = 0; r <= n; r++) {
+        for (int c = 0; c <= n; c++) {
+            v.push_back(hearth::vec3(float(c) - 2.0f, 0.0f, float(r) - 2.0f));
+        }
+    }
+    for (int r = 0; r < n; r++) {
+        for (int c = 0; c < n; c++) {
+            const uint32_t a = uint32_t(r * (n + 1) + c), b = a + 1, cc = a + uint32_t(n + 1), d = cc + 1;
+            for (uint32_t i : {a, cc, d, a, d, b}) {
+                idx.push_back(i);
+            }
+        }
+    }
+    idx.insert(idx.end(), {0, 0, 1}); // degenerate: skipped and counted
+    hearth::Mesh mesh = w.create_mesh(v, idx);
+    CHECK(mesh.triangle_count() == 32);
+    CHECK(mesh.degenerate_count() == 1);
+    hearth::Body ground = w.create_body(hearth::BodyType::Static);
+    ground.add(mesh.shape(hearth::vec3(2, 1, 2)));
+    hearth::Body dyn = w.create_body(hearth::BodyType::Dynamic, hearth::vec3(0, 3, 0));
+    CHECK_THROWS(dyn.add(mesh.shape()), hearth::Code::InvalidArgument);
+    CHECK_THROWS(mesh.destroy(), hearth::Code::InvalidArgument);
+
+    hearth::Body box = w.create_body(hearth::BodyType::Dynamic, hearth::vec3(0.3f, 1.5f, -0.2f));
+    box.add(hearth::box(hearth::vec3(0.5f, 0.5f, 0.5f)));
+
+    const std::vector<hearth::Vec3> cube = {
+        hearth::vec3(-0.5f, -0.5f, -0.5f), hearth::vec3(0.5f, -0.5f, -0.5f), hearth::vec3(-0.5f, 0.5f, -0.5f),
+        hearth::vec3(0.5f, 0.5f, -0.5f),   hearth::vec3(-0.5f, -0.5f, 0.5f), hearth::vec3(0.5f, -0.5f, 0.5f),
+        hearth::vec3(-0.5f, 0.5f, 0.5f),   hearth::vec3(0.5f, 0.5f, 0.5f),
+    };
+    hearth::Hull hull = w.create_hull(cube);
+    CHECK(hull.vertex_count() == 8);
+    CHECK_THROWS(w.create_hull(hearth::Span<const hearth::Vec3>(cube.data(), 3)), hearth::Code::InvalidArgument);
+    const std::vector<float> heights(6 * 5, 0.25f);
+    hearth::Heightfield hf = w.create_heightfield(6, 5, heights);
+    CHECK_THROWS(w.create_heightfield(5, 5, heights), hearth::Code::InvalidArgument);
+    hearth::Body terrain = w.create_body(hearth::BodyType::Static, hearth::vec3(20, 0, 0));
+    terrain.add(hf.shape(hearth::vec3(2, 2, 2))); // ground at y = 0.5
+    hearth::Body a = w.create_body(hearth::BodyType::Dynamic, hearth::vec3(25.1f, 2.0f, 5.1f));
+    a.add(hull.shape());
+    CHECK_NEAR(a.mass(), 1000.0, 0.01);
+    for (int i = 0; i < 240; i++) {
+        w.step(DT);
+    }
+    CHECK_NEAR(box.position().y, 0.5, 5e-3);
+    CHECK_NEAR(a.position().y, 1.0, 5e-3);
+    CHECK_THROWS(hull.destroy(), hearth::Code::InvalidArgument);
+    a.destroy();
+    hull.destroy();
+    CHECK_THROWS(hull.vertex_count(), hearth::Code::InvalidId);
+    terrain.destroy();
+    hf.destroy();
+    ground.destroy();
+    mesh.destroy();
+    CHECK_THROWS(mesh.triangle_count(), hearth::Code::InvalidId);
+}
+
 static void run_throwing_tests() {
     test_box_rests_on_plane();
     test_errors_as_exceptions();
@@ -841,6 +908,7 @@ static void run_throwing_tests() {
     test_builtin_generators();
     test_recording();
     test_recording_start_failure();
+    test_geometry();
 }
 #endif // HEARTH_CPP_EXCEPTIONS
 
@@ -1004,6 +1072,28 @@ static void test_nothrow_handles() {
     pd.radius = -1.0f;
     CHECK_CODE(w.create_particle(pd), hearth::Code::InvalidArgument);
     CHECK(w.particle_count().value() == 1);
+    // Shared geometry as Results.
+    const hearth::Vec3 tet[4] = {hearth::vec3(0, 0, 0), hearth::vec3(1, 0, 0), hearth::vec3(0, 1, 0),
+                                 hearth::vec3(0, 0, 1)};
+    hearth::Result<nt::Hull> hull = w.create_hull(tet);
+    CHECK_OK(hull);
+    CHECK(hull->vertex_count().value() == 4);
+    CHECK_OK(a.add(hull->shape(0.5f)));
+    CHECK_CODE(hull->destroy(), hearth::Code::InvalidArgument);
+    const uint32_t tri[3] = {0, 2, 1};
+    hearth::Result<nt::Mesh> mesh = w.create_mesh(tet, tri);
+    CHECK_OK(mesh);
+    CHECK(mesh->degenerate_count().value() == 0);
+    CHECK_CODE(a.add(mesh->shape()), hearth::Code::InvalidArgument); // a dynamic body
+    CHECK_OK(mesh->destroy());
+    CHECK_CODE(mesh->triangle_count(), hearth::Code::InvalidId);
+    const float h4[4] = {0, 0, 0, 0};
+    const uint8_t bad_hole[1] = {2};
+    CHECK_CODE(w.create_heightfield(2, 2, h4, bad_hole), hearth::Code::InvalidArgument);
+    hearth::Result<nt::Heightfield> hf = w.create_heightfield(2, 2, h4);
+    CHECK_OK(hf);
+    CHECK_OK(hf->destroy());
+    CHECK_CODE(hf->destroy(), hearth::Code::InvalidId);
     hearth::Result<nt::SoftBody> s = w.create_soft_box(hearth::soft_body_def(), hearth::vec3(0.5f, 0.5f, 0.5f), 2, 2, 2);
     CHECK_OK(s);
     CHECK(s->vertex_count().value() == 27);

@@ -215,3 +215,316 @@ pub fn world(sleep: bool) -> World {
     })
     .unwrap()
 }
+
+// ---------------------------------------------------------------- terrain (meshes, heightfields)
+
+/// Heights of a `(cells + 1)²` grid of samples, row-major: smooth hills (a few metres) from
+/// sums of sines, with phases from `seed`, in a bowl rising 3 m to the edges (so what rolls
+/// stays on the terrain).
+// 6.28 rather than 2π: the seeded terrains and drops stay the ones the tests were measured on.
+#[allow(clippy::approx_constant)]
+pub fn terrain_heights(cells: u32, seed: u32) -> Vec<f32> {
+    let n = cells + 1;
+    let mut s = seed.wrapping_mul(2654435761).wrapping_add(1);
+    let mut rnd = || {
+        s = s.wrapping_mul(1664525).wrapping_add(1013904223);
+        (s >> 8) as f32 / (1u32 << 24) as f32
+    };
+    let waves: Vec<(f32, f32, f32, f32)> = (0..4)
+        .map(|k| {
+            let f = 0.05 * (k + 1) as f32;
+            (f * (0.5 + rnd()), f * (0.5 + rnd()), 6.28 * rnd(), 1.5 / (k + 1) as f32)
+        })
+        .collect();
+    (0..n * n)
+        .map(|i| {
+            let (r, c) = ((i / n) as f32, (i % n) as f32);
+            let half = 0.5 * cells as f32;
+            let bowl = 3.0 * ((r - half).powi(2) + (c - half).powi(2)) / (half * half);
+            bowl + waves
+                .iter()
+                .map(|&(fx, fz, ph, a)| a * (fx * c + ph).sin() * (fz * r + 0.5 * ph).cos())
+                .sum::<f32>()
+        })
+        .collect()
+}
+
+/// The triangles of a heightfield grid as a mesh (same vertices and split as
+/// `collision/heightfield.rs`), sample spacing `spacing`, centred on the origin in x and z.
+pub fn grid_mesh(cells: u32, spacing: f32, heights: &[f32]) -> (Vec<Vec3>, Vec<[u32; 3]>) {
+    let n = cells + 1;
+    let half = 0.5 * cells as f32 * spacing;
+    let vertices = (0..n * n)
+        .map(|i| {
+            let (r, c) = (i / n, i % n);
+            Vec3::new(
+                c as f32 * spacing - half,
+                heights[i as usize],
+                r as f32 * spacing - half,
+            )
+        })
+        .collect();
+    let mut triangles = Vec::with_capacity(2 * (cells * cells) as usize);
+    let id = |r: u32, c: u32| r * n + c;
+    for r in 0..cells {
+        for c in 0..cells {
+            triangles.push([id(r, c), id(r + 1, c), id(r + 1, c + 1)]);
+            triangles.push([id(r, c), id(r + 1, c + 1), id(r, c + 1)]);
+        }
+    }
+    (vertices, triangles)
+}
+
+/// A static triangle-mesh terrain of `cells × cells` 1 m cells (2·cells² triangles) centred
+/// on the origin; `flat` gives a plane at y = 0.
+pub fn terrain_mesh(world: &mut World, cells: u32, flat: bool, seed: u32) -> BodyHandle {
+    let heights = if flat {
+        vec![0.0; ((cells + 1) * (cells + 1)) as usize]
+    } else {
+        terrain_heights(cells, seed)
+    };
+    let (v, t) = grid_mesh(cells, 1.0, &heights);
+    let mesh = world.create_mesh(&v, &t).unwrap();
+    let g = world.create_body(&BodyDef::default()).unwrap();
+    world
+        .create_shape(
+            g,
+            &material(),
+            &Geometry::Mesh {
+                mesh,
+                local: Transform::IDENTITY,
+                scale: Vec3::ONE,
+            },
+        )
+        .unwrap();
+    g
+}
+
+/// The same terrain as `terrain_mesh`, as a heightfield.
+pub fn terrain_heightfield(world: &mut World, cells: u32, flat: bool, seed: u32) -> BodyHandle {
+    let n = cells + 1;
+    let heights = if flat {
+        vec![0.0; (n * n) as usize]
+    } else {
+        terrain_heights(cells, seed)
+    };
+    let hf = world.create_heightfield(n, n, &heights, None).unwrap();
+    let half = 0.5 * cells as f32;
+    let g = world.create_body(&BodyDef::default()).unwrap();
+    world
+        .create_shape(
+            g,
+            &material(),
+            &Geometry::Heightfield {
+                heightfield: hf,
+                local: Transform::new(Vec3::new(-half, 0.0, -half), Quat::IDENTITY),
+                scale: Vec3::ONE,
+            },
+        )
+        .unwrap();
+    g
+}
+
+/// `count` mixed bodies — spheres, boxes, capsules and convex hulls in turn, sizes 0.2 to
+/// 0.6 m — on a square lattice above `height` (2 m apart), over the terrain's middle.
+// 6.28 rather than 2π: the seeded terrains and drops stay the ones the tests were measured on.
+#[allow(clippy::approx_constant)]
+pub fn terrain_drop(world: &mut World, count: usize, height: f32, seed: u32) -> Vec<BodyHandle> {
+    let hull = world
+        .create_convex_hull(
+            &[
+                Vec3::new(0.4, 0.0, 0.0),
+                Vec3::new(-0.4, 0.0, 0.1),
+                Vec3::new(0.0, 0.35, 0.0),
+                Vec3::new(0.0, -0.35, -0.1),
+                Vec3::new(0.1, 0.1, 0.4),
+                Vec3::new(-0.1, -0.1, -0.4),
+                Vec3::new(0.25, 0.2, -0.25),
+                Vec3::new(-0.25, -0.2, 0.25),
+            ],
+            &Default::default(),
+        )
+        .unwrap();
+    let side = (count as f32).sqrt().ceil() as usize;
+    let mut s = seed.wrapping_mul(747796405).wrapping_add(7);
+    let mut rnd = move || {
+        s = s.wrapping_mul(1664525).wrapping_add(1013904223);
+        (s >> 8) as f32 / (1u32 << 24) as f32
+    };
+    (0..count)
+        .map(|i| {
+            let (x, z) = ((i % side) as f32, (i / side) as f32);
+            let p = Vec3::new(
+                2.0 * (x - 0.5 * side as f32),
+                height + 0.5 * rnd(),
+                2.0 * (z - 0.5 * side as f32),
+            );
+            let q = Quat::from_euler(glam::EulerRot::XYZ, 6.28 * rnd(), 6.28 * rnd(), 6.28 * rnd());
+            let b = world
+                .create_body(&BodyDef {
+                    body_type: BodyType::Dynamic,
+                    transform: Transform::new(p, q),
+                    ..Default::default()
+                })
+                .unwrap();
+            let size = 0.2 + 0.4 * rnd();
+            let geometry = match i % 4 {
+                0 => Geometry::Sphere {
+                    center: Vec3::ZERO,
+                    radius: size,
+                },
+                1 => Geometry::Box {
+                    center: Vec3::ZERO,
+                    rotation: Quat::IDENTITY,
+                    half_extents: Vec3::new(size, 0.7 * size, 0.85 * size),
+                },
+                2 => Geometry::Capsule {
+                    a: Vec3::new(-size, 0.0, 0.0),
+                    b: Vec3::new(size, 0.0, 0.0),
+                    radius: 0.5 * size,
+                },
+                _ => Geometry::Hull {
+                    hull,
+                    local: Transform::IDENTITY,
+                    scale: 0.5 + size,
+                },
+            };
+            world.create_shape(b, &material(), &geometry).unwrap();
+            b
+        })
+        .collect()
+}
+
+/// A small deterministic generator (xorshift) for seeded scenes.
+pub struct Rng(pub u64);
+
+impl Rng {
+    pub fn next_u32(&mut self) -> u32 {
+        self.0 ^= self.0 << 13;
+        self.0 ^= self.0 >> 7;
+        self.0 ^= self.0 << 17;
+        (self.0 >> 32) as u32
+    }
+    /// Uniform in `[lo, hi)`.
+    pub fn range(&mut self, lo: f32, hi: f32) -> f32 {
+        lo + (hi - lo) * (self.next_u32() as f32 / 4_294_967_296.0)
+    }
+    pub fn vec(&mut self, s: f32) -> Vec3 {
+        Vec3::new(self.range(-s, s), self.range(-s, s), self.range(-s, s))
+    }
+    pub fn quat(&mut self) -> Quat {
+        loop {
+            let q = Quat::from_xyzw(
+                self.range(-1.0, 1.0),
+                self.range(-1.0, 1.0),
+                self.range(-1.0, 1.0),
+                self.range(-1.0, 1.0),
+            );
+            if q.length() > 0.1 {
+                return q.normalize();
+            }
+        }
+    }
+}
+
+/// `n` random points on an ellipsoid of semi-axes `axes` (a rock-like cloud).
+pub fn random_cloud(rng: &mut Rng, n: usize, axes: Vec3) -> Vec<Vec3> {
+    (0..n)
+        .map(|_| loop {
+            let v = rng.vec(1.0);
+            let l = v.length();
+            if l > 0.1 && l <= 1.0 {
+                return v / l * axes;
+            }
+        })
+        .collect()
+}
+
+/// The eight corners of a cube of half extent `h`.
+pub fn cube_points(h: f32) -> Vec<Vec3> {
+    (0..8)
+        .map(|i| {
+            Vec3::new(
+                if i & 1 != 0 { h } else { -h },
+                if i & 2 != 0 { h } else { -h },
+                if i & 4 != 0 { h } else { -h },
+            )
+        })
+        .collect()
+}
+
+/// A dynamic body with one hull shape.
+pub fn dynamic_hull(world: &mut World, hull: hearth::ConvexHullHandle, xf: Transform, def: &ShapeDef) -> BodyHandle {
+    let b = world
+        .create_body(&BodyDef {
+            body_type: BodyType::Dynamic,
+            transform: xf,
+            ..Default::default()
+        })
+        .unwrap();
+    world
+        .create_shape(
+            b,
+            def,
+            &Geometry::Hull {
+                hull,
+                local: Transform::IDENTITY,
+                scale: 1.0,
+            },
+        )
+        .unwrap();
+    b
+}
+
+/// The box tower of `tower` with every box a hull cube (one shared hull).
+pub fn hull_tower(world: &mut World, n: usize) -> Vec<BodyHandle> {
+    ground_box(world, 20.0);
+    let cube = world.create_convex_hull(&cube_points(H), &Default::default()).unwrap();
+    (0..n)
+        .map(|i| {
+            let p = Vec3::new(0.0, H + 2.0 * H * i as f32, 0.0);
+            dynamic_hull(world, cube, Transform::new(p, Quat::IDENTITY), &material())
+        })
+        .collect()
+}
+
+/// `count` random hulls (12–24 points on ellipsoids of semi-axes 0.25–0.5 m, each its own
+/// hull), in random orientations, dropped from a grid of spacing 1.2 m into a 20 × 20 m
+/// box container with walls.
+pub fn hull_pile(world: &mut World, count: usize, seed: u64) -> Vec<BodyHandle> {
+    ground_box(world, 10.0);
+    let wall = |world: &mut World, p: Vec3, h: Vec3| {
+        let b = world
+            .create_body(&BodyDef {
+                transform: Transform::new(p, Quat::IDENTITY),
+                ..Default::default()
+            })
+            .unwrap();
+        let g = Geometry::Box {
+            center: Vec3::ZERO,
+            rotation: Quat::IDENTITY,
+            half_extents: h,
+        };
+        world.create_shape(b, &material(), &g).unwrap();
+    };
+    let height = 20.0;
+    wall(world, Vec3::new(10.5, height, 0.0), Vec3::new(0.5, height, 11.0));
+    wall(world, Vec3::new(-10.5, height, 0.0), Vec3::new(0.5, height, 11.0));
+    wall(world, Vec3::new(0.0, height, 10.5), Vec3::new(11.0, height, 0.5));
+    wall(world, Vec3::new(0.0, height, -10.5), Vec3::new(11.0, height, 0.5));
+    let mut rng = Rng(seed.max(1));
+    let per_row = 16; // 16 × 1.2 = 19.2 m
+    let mut out = Vec::with_capacity(count);
+    for i in 0..count {
+        let layer = i / (per_row * per_row);
+        let r = i % (per_row * per_row);
+        let (x, z) = ((r % per_row) as f32, (r / per_row) as f32);
+        let p = Vec3::new(-9.0 + 1.2 * x, 1.0 + 1.2 * layer as f32, -9.0 + 1.2 * z);
+        let n = 12 + (rng.next_u32() % 13) as usize;
+        let axes = Vec3::new(rng.range(0.25, 0.5), rng.range(0.25, 0.5), rng.range(0.25, 0.5));
+        let cloud = random_cloud(&mut rng, n, axes);
+        let hull = world.create_convex_hull(&cloud, &Default::default()).unwrap();
+        out.push(dynamic_hull(world, hull, Transform::new(p, rng.quat()), &material()));
+    }
+    out
+}

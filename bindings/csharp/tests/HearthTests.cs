@@ -163,6 +163,13 @@ internal static class HearthTests
                 return Convert.ToInt64(Enum.Parse(f.Value, member), CultureInfo.InvariantCulture);
             }
         }
+        if (cName.StartsWith("HEARTH_MAX_", StringComparison.Ordinal))
+        {
+            string field = "Max" + Pascal(cName.Substring("HEARTH_MAX_".Length).ToLowerInvariant());
+            FieldInfo fi = typeof(Native).GetField(field);
+            Ensure(fi != null, "Native has no constant " + field + " for " + cName);
+            return Convert.ToInt64(fi.GetValue(null), CultureInfo.InvariantCulture);
+        }
         if (cName.StartsWith("HEARTH_VERSION_", StringComparison.Ordinal))
         {
             string field = "Version" + Pascal(cName.Substring("HEARTH_VERSION_".Length).ToLowerInvariant());
@@ -1191,6 +1198,75 @@ internal static class HearthTests
         }
     }
 
+    // ---- shared geometry -----------------------------------------------------------------------
+
+    private static void TestGeometry()
+    {
+        using (var world = new World())
+        {
+            // A 4 × 4 grid of unit cells at y = 0 (counter-clockwise seen from +y), plus one
+            // degenerate triangle, scaled to 8 m × 8 m: a unit box rests with its centre 0.5 m up.
+            const int n = 4;
+            var v = new Vec3[(n + 1) * (n + 1)];
+            for (int r = 0; r <= n; r++)
+                for (int c = 0; c <= n; c++)
+                    v[r * (n + 1) + c] = new Vec3(c - 0.5f * n, 0f, r - 0.5f * n);
+            var idx = new List<uint>();
+            for (int r = 0; r < n; r++)
+                for (int c = 0; c < n; c++)
+                {
+                    uint a = (uint)(r * (n + 1) + c), b = a + 1, cc = a + (uint)(n + 1), d = cc + 1;
+                    idx.AddRange(new[] { a, cc, d, a, d, b });
+                }
+            idx.AddRange(new uint[] { 0, 0, 1 });
+            Mesh mesh = world.CreateMesh(v, idx.ToArray());
+            Equal(mesh.TriangleCount, 32, "triangles kept");
+            Equal(mesh.DegenerateCount, 1, "degenerate triangles counted");
+            Body ground = world.CreateBody(BodyType.Static, Vec3.Zero);
+            ground.CreateMesh(mesh.Shape(Transform.Identity, new Vec3(2f, 1f, 2f)));
+            Body box = DynamicBox(world, new Vec3(0.3f, 1.5f, -0.2f), 0.5f);
+            HearthException e = Fails(Result.InvalidArgument, () => box.CreateMesh(mesh.Shape(Transform.Identity, new Vec3(1f, 1f, 1f))), "mesh on a dynamic body");
+            Ensure(e.Detail.Contains("static or kinematic"), "the refusal says why: " + e.Detail);
+
+            // A hull cube on a heightfield whose ground is at y = 0.5 rests with its centre at 1.0.
+            var cube = new Vec3[8];
+            for (int i = 0; i < 8; i++)
+                cube[i] = new Vec3((i & 1) != 0 ? 0.5f : -0.5f, (i & 2) != 0 ? 0.5f : -0.5f, (i & 4) != 0 ? 0.5f : -0.5f);
+            Hull hull = world.CreateHull(cube);
+            Equal(hull.VertexCount, 8, "hull vertices");
+            Fails(Result.InvalidArgument, () => world.CreateHull(new[] { cube[0], cube[1], cube[2] }), "three points");
+            HullDef bad = HullDef.Default();
+            bad.ConvexRadius = -1f;
+            Fails(Result.InvalidArgument, () => world.CreateHull(bad, cube), "negative convex radius");
+            var heights = new float[6 * 5];
+            for (int i = 0; i < heights.Length; i++) heights[i] = 0.25f;
+            Heightfield field = world.CreateHeightfield(6, 5, heights, null);
+            Fails(Result.InvalidArgument, () => world.CreateHeightfield(2, 2, new float[4], new byte[] { 2 }), "hole flag 2");
+            Body terrain = world.CreateBody(BodyType.Static, new Vec3(20f, 0f, 0f));
+            terrain.CreateHeightfield(field.Shape(Transform.Identity, new Vec3(2f, 2f, 2f)));
+            Body dropped = world.CreateBody(BodyType.Dynamic, new Vec3(25.1f, 2f, 5.1f));
+            dropped.CreateHull(hull.Shape(Transform.Identity, 1f));
+            Near(dropped.Mass, 1000f, 1e-2f, "1 m³ hull of water");
+            Fails(Result.InvalidArgument, () => dropped.CreateHull(hull.Shape(Transform.Identity, 0f)), "scale 0");
+            Run(world, 240);
+            Near(box.Position.Y, 0.5f, 0.005f, "box on the mesh floor");
+            Near(dropped.Position.Y, 1.0f, 0.005f, "hull cube on the heightfield");
+
+            e = Fails(Result.InvalidArgument, () => hull.Destroy(), "hull in use");
+            Ensure(e.Detail.Contains("1 shape"), "the refusal counts the users: " + e.Detail);
+            dropped.Destroy();
+            hull.Destroy();
+            Fails(Result.InvalidId, () => hull.Destroy(), "hull destroyed twice");
+            Fails(Result.InvalidArgument, () => mesh.Destroy(), "mesh in use");
+            ground.Destroy();
+            mesh.Destroy();
+            Fails(Result.InvalidId, () => { int unused = mesh.TriangleCount; }, "stale mesh");
+            terrain.Destroy();
+            field.Destroy();
+            Fails(Result.InvalidId, () => field.Destroy(), "heightfield destroyed twice");
+        }
+    }
+
     // ---- driver -------------------------------------------------------------------------------
 
     private static void TestRecording()
@@ -1316,6 +1392,7 @@ internal static class HearthTests
             new KeyValuePair<string, Action>("soft bodies", TestSoftBodies),
             new KeyValuePair<string, Action>("soft body settings", TestSoftBodySettings),
             new KeyValuePair<string, Action>("recording", TestRecording),
+            new KeyValuePair<string, Action>("shared geometry", TestGeometry),
         };
         int passed = 0, failed = 0;
         foreach (var test in tests)

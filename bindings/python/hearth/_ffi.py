@@ -57,6 +57,11 @@ HEARTH_JOINT_SLIDER = 4
 HEARTH_INTEGRATOR_SEMI_IMPLICIT_EULER = 0
 HEARTH_INTEGRATOR_RK4 = 1
 
+HEARTH_MAX_HULL_POINTS = 1048576
+HEARTH_MAX_MESH_VERTICES = 67108864
+HEARTH_MAX_MESH_INDICES = 201326592
+HEARTH_MAX_HEIGHTFIELD_SAMPLES = 32768
+
 
 # enum HearthResult: an int32_t in C. A subclass (not c_int32 itself) so that the loader can
 # tell the functions that return a result from any that return a plain int32_t, and make
@@ -471,6 +476,59 @@ class HearthPlane(_Struct):
     ]
 
 
+class HearthHullId(_Struct):
+    _fields_ = [
+        ("index", c_uint32),
+        ("generation", c_uint32),
+    ]
+
+
+class HearthMeshId(_Struct):
+    _fields_ = [
+        ("index", c_uint32),
+        ("generation", c_uint32),
+    ]
+
+
+class HearthHeightfieldId(_Struct):
+    _fields_ = [
+        ("index", c_uint32),
+        ("generation", c_uint32),
+    ]
+
+
+class HearthHullDef(_Struct):
+    _fields_ = [
+        ("convex_radius", c_float),
+        ("weld_tolerance", c_float),
+        ("internal_value", c_uint32),
+    ]
+
+
+class HearthHullShape(_Struct):
+    _fields_ = [
+        ("hull", HearthHullId),
+        ("local", HearthTransform),
+        ("scale", c_float),
+    ]
+
+
+class HearthMeshShape(_Struct):
+    _fields_ = [
+        ("mesh", HearthMeshId),
+        ("local", HearthTransform),
+        ("scale", HearthVec3),
+    ]
+
+
+class HearthHeightfieldShape(_Struct):
+    _fields_ = [
+        ("heightfield", HearthHeightfieldId),
+        ("local", HearthTransform),
+        ("scale", HearthVec3),
+    ]
+
+
 class HearthSoftBodyDef(_Struct):
     _fields_ = [
         ("transform", HearthTransform),
@@ -805,6 +863,37 @@ _fn(
 _fn(
     "hearth_shape_create_plane", HearthResult, POINTER(HearthWorld), HearthBodyId, POINTER(HearthShapeDef),
     POINTER(HearthPlane), POINTER(HearthShapeId),
+)
+_fn("hearth_hull_def_default", HearthHullDef)
+_fn(
+    "hearth_hull_create", HearthResult, POINTER(HearthWorld), POINTER(HearthHullDef), POINTER(HearthVec3), c_size_t,
+    POINTER(HearthHullId),
+)
+_fn("hearth_hull_destroy", HearthResult, POINTER(HearthWorld), HearthHullId)
+_fn("hearth_hull_get_vertex_count", HearthResult, POINTER(HearthWorld), HearthHullId, POINTER(c_uint32))
+_fn(
+    "hearth_mesh_create", HearthResult, POINTER(HearthWorld), POINTER(HearthVec3), c_size_t, POINTER(c_uint32),
+    c_size_t, POINTER(HearthMeshId),
+)
+_fn("hearth_mesh_destroy", HearthResult, POINTER(HearthWorld), HearthMeshId)
+_fn("hearth_mesh_get_triangle_count", HearthResult, POINTER(HearthWorld), HearthMeshId, POINTER(c_uint32))
+_fn("hearth_mesh_get_degenerate_count", HearthResult, POINTER(HearthWorld), HearthMeshId, POINTER(c_uint32))
+_fn(
+    "hearth_heightfield_create", HearthResult, POINTER(HearthWorld), c_uint32, c_uint32, POINTER(c_float),
+    POINTER(c_uint8), POINTER(HearthHeightfieldId),
+)
+_fn("hearth_heightfield_destroy", HearthResult, POINTER(HearthWorld), HearthHeightfieldId)
+_fn(
+    "hearth_shape_create_hull", HearthResult, POINTER(HearthWorld), HearthBodyId, POINTER(HearthShapeDef),
+    POINTER(HearthHullShape), POINTER(HearthShapeId),
+)
+_fn(
+    "hearth_shape_create_mesh", HearthResult, POINTER(HearthWorld), HearthBodyId, POINTER(HearthShapeDef),
+    POINTER(HearthMeshShape), POINTER(HearthShapeId),
+)
+_fn(
+    "hearth_shape_create_heightfield", HearthResult, POINTER(HearthWorld), HearthBodyId, POINTER(HearthShapeDef),
+    POINTER(HearthHeightfieldShape), POINTER(HearthShapeId),
 )
 _fn("hearth_shape_destroy", HearthResult, POINTER(HearthWorld), HearthShapeId)
 _fn("hearth_shape_get_body", HearthResult, POINTER(HearthWorld), HearthShapeId, POINTER(HearthBodyId))

@@ -277,6 +277,24 @@ class Body(_Handle):
         """`hearth_shape_create_plane` (static bodies): points with dot(normal, p) <= offset are inside."""
         return self._add(lib.hearth_shape_create_plane, _ffi.HearthPlane(to_vec3(normal), offset), material)
 
+    def add_hull(self, hull, scale=1.0, position=(0.0, 0.0, 0.0), rotation=IDENTITY, **material):
+        """`hearth_shape_create_hull`: instances `hull` (a Hull) scaled uniformly by `scale`, placed
+        at `position`/`rotation` in the body frame. Mass comes from the polyhedron and density."""
+        shape = _ffi.HearthHullShape(hull._id, to_transform((position, rotation)), scale)
+        return self._add(lib.hearth_shape_create_hull, shape, material)
+
+    def add_mesh(self, mesh, scale=(1.0, 1.0, 1.0), position=(0.0, 0.0, 0.0), rotation=IDENTITY, **material):
+        """`hearth_shape_create_mesh` (static and kinematic bodies): instances `mesh` (a Mesh) scaled
+        per axis, placed at `position`/`rotation` in the body frame."""
+        shape = _ffi.HearthMeshShape(mesh._id, to_transform((position, rotation)), to_vec3(scale))
+        return self._add(lib.hearth_shape_create_mesh, shape, material)
+
+    def add_heightfield(self, heightfield, scale=(1.0, 1.0, 1.0), position=(0.0, 0.0, 0.0), rotation=IDENTITY, **material):
+        """`hearth_shape_create_heightfield` (static and kinematic bodies): `scale` x and z are the
+        sample spacing (m), y multiplies the heights."""
+        shape = _ffi.HearthHeightfieldShape(heightfield._id, to_transform((position, rotation)), to_vec3(scale))
+        return self._add(lib.hearth_shape_create_heightfield, shape, material)
+
 
 class Shape(_Handle):
     """A shape on a body (`HearthShapeId`). Create with `Body.add_sphere` and friends."""
@@ -665,3 +683,57 @@ def body_ids(bodies):
 def particle_ids(particles):
     """A ctypes array of the particles' C ids (see `body_ids`)."""
     return _ids(particles, _ffi.HearthParticleId)
+
+
+class Hull(_Handle):
+    """A convex hull shared by shapes (`HearthHullId`). Create with `World.create_hull`; use with
+    `Body.add_hull`. `destroy` is refused (InvalidArgument) while shapes use it."""
+
+    __slots__ = ()
+    _ID_TYPE = _ffi.HearthHullId
+
+    @property
+    def vertex_count(self):
+        out = ctypes.c_uint32()
+        lib.hearth_hull_get_vertex_count(self._w, self._id, byref(out))
+        return out.value
+
+    def destroy(self):
+        lib.hearth_hull_destroy(self._w, self._id)
+
+
+class Mesh(_Handle):
+    """A triangle mesh shared by shapes (`HearthMeshId`). Create with `World.create_mesh`; use with
+    `Body.add_mesh` on static or kinematic bodies."""
+
+    __slots__ = ()
+    _ID_TYPE = _ffi.HearthMeshId
+
+    def _count(self, fn):
+        out = ctypes.c_uint32()
+        fn(self._w, self._id, byref(out))
+        return out.value
+
+    @property
+    def triangle_count(self):
+        """Triangles kept (those given minus the degenerate ones)."""
+        return self._count(lib.hearth_mesh_get_triangle_count)
+
+    @property
+    def degenerate_count(self):
+        """Triangles skipped at creation as degenerate."""
+        return self._count(lib.hearth_mesh_get_degenerate_count)
+
+    def destroy(self):
+        lib.hearth_mesh_destroy(self._w, self._id)
+
+
+class Heightfield(_Handle):
+    """A heightfield shared by shapes (`HearthHeightfieldId`). Create with
+    `World.create_heightfield`; use with `Body.add_heightfield` on static or kinematic bodies."""
+
+    __slots__ = ()
+    _ID_TYPE = _ffi.HearthHeightfieldId
+
+    def destroy(self):
+        lib.hearth_heightfield_destroy(self._w, self._id)

@@ -14,7 +14,10 @@ from .handles import (
     Body,
     BodyType,
     Generator,
+    Heightfield,
+    Hull,
     Joint,
+    Mesh,
     Particle,
     SoftBody,
     _body_id,
@@ -456,6 +459,40 @@ class World:
         out = ctypes.c_size_t()
         lib.hearth_world_get_soft_body_count(self._ptr, byref(out))
         return out.value
+
+    # -- shared geometry (the arrays are copied)
+    def create_hull(self, points, **fields):
+        """`hearth_hull_create`: a convex hull of `points` (3-sequences or a flat float32 buffer).
+        Keywords: fields of HearthHullDef (convex_radius, weld_tolerance)."""
+        hd = _def(lib.hearth_hull_def_default, fields)
+        pts = _input_array(points, _ffi.HearthVec3, "f", 3)
+        out = _ffi.HearthHullId()
+        lib.hearth_hull_create(self._ptr, byref(hd), pts, len(pts), byref(out))
+        return Hull(self, out)
+
+    def create_mesh(self, vertices, indices):
+        """`hearth_mesh_create`: `vertices` (3-sequences or a flat float32 buffer) and `indices`
+        (three per triangle, counter-clockwise seen from the front; flat, triples or uint32)."""
+        verts = _input_array(vertices, _ffi.HearthVec3, "f", 3)
+        idx = _input_array(indices, ctypes.c_uint32, "I", 1)
+        out = _ffi.HearthMeshId()
+        lib.hearth_mesh_create(self._ptr, verts, len(verts), idx, len(idx), byref(out))
+        return Mesh(self, out)
+
+    def create_heightfield(self, rows, columns, heights, holes=None):
+        """`hearth_heightfield_create`: `rows × columns` row-major `heights` (float32 buffer or
+        numbers); `holes` None or one 0/1 flag per cell, (rows − 1) × (columns − 1) of them."""
+        h = _input_array(heights, ctypes.c_float, "f", 1)
+        if len(h) != rows * columns:  # the library reads rows × columns heights
+            raise ValueError(f"{len(h)} heights for {rows} × {columns} samples")
+        flags = None
+        if holes is not None:
+            flags = (ctypes.c_uint8 * len(holes))(*[int(x) for x in holes])
+            if rows >= 2 and columns >= 2 and len(flags) != (rows - 1) * (columns - 1):
+                raise ValueError(f"{len(flags)} hole flags for {(rows - 1) * (columns - 1)} cells")
+        out = _ffi.HearthHeightfieldId()
+        lib.hearth_heightfield_create(self._ptr, rows, columns, h, flags, byref(out))
+        return Heightfield(self, out)
 
 
 def _input_array(values, ctype, typecode, per):

@@ -1,4 +1,4 @@
-use super::super::{collide, Manifold};
+use super::super::{collide_primitives as collide, Manifold};
 use super::{EDGE_FLAG, REF_ON_B_FLAG};
 use crate::collision::shape::Geometry;
 use crate::math::{Quat, Transform, Vec3};

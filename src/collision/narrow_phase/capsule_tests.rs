@@ -1,4 +1,4 @@
-use super::super::collide;
+use super::super::collide_primitives as collide;
 use crate::collision::shape::Geometry;
 use crate::math::{Quat, Transform, Vec3};
 use std::f32::consts::FRAC_PI_2;

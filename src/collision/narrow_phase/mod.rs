@@ -10,15 +10,29 @@
 //! is +Y. Nothing here allocates.
 //!
 //! One file per family: `sphere` (sphere against everything), `capsule` (capsule against
-//! capsule, box, plane), `box_box`, `plane` (box against plane); `geom` holds the shared
-//! helpers.
+//! capsule, box, plane), `box_box`, `plane` (box against plane), `hull` (hulls against
+//! spheres, capsules and planes), `hull_hull` (hulls and boxes against hulls, SAT with a
+//! cached axis); `geom` holds the shared helpers. Triangle meshes and heightfields:
+//! `triangle` (a convex shape against one triangle, with active edges), `mesh` (the
+//! triangles under a shape, folded into several manifolds by normal: [`collide_triangles`]),
+//! `hull_view` (a hull as a polytope for the triangle test).
 
 mod box_box;
 mod capsule;
 mod geom;
+pub(crate) mod hull;
+mod hull_hull;
+mod hull_view;
+pub mod mesh;
 mod plane;
 mod sphere;
+pub mod triangle;
 
+pub use mesh::{collide_triangles, MeshManifolds, MAX_MESH_MANIFOLDS};
+
+pub use hull_hull::SatCache;
+
+use crate::collision::geometry_store::GeometryStore;
 use crate::collision::shape::Geometry;
 use crate::math::{Transform, Vec3};
 use geom::{WorldBox, WorldPlane};
@@ -70,19 +84,99 @@ impl Manifold {
 ///
 /// Pairs are handled with `kind(a) <= kind(b)`; the other order swaps the arguments and
 /// flips the normal (points, separations and ids are unchanged).
-pub fn collide(a: &Geometry, xf_a: &Transform, b: &Geometry, xf_b: &Transform, speculative: f32) -> Manifold {
+/// Shared geometry (hulls) is read from `store`.
+pub fn collide(
+    store: &GeometryStore,
+    a: &Geometry,
+    xf_a: &Transform,
+    b: &Geometry,
+    xf_b: &Transform,
+    speculative: f32,
+) -> Manifold {
+    collide_cached(store, a, xf_a, b, xf_b, speculative, &mut SatCache::None)
+}
+
+/// [`collide`] with the pair's separating-axis cache (`SatCache`), kept by the caller
+/// between calls for the same ordered pair (the world keeps one per contact).
+pub fn collide_cached(
+    store: &GeometryStore,
+    a: &Geometry,
+    xf_a: &Transform,
+    b: &Geometry,
+    xf_b: &Transform,
+    speculative: f32,
+    cache: &mut SatCache,
+) -> Manifold {
     if a.kind() > b.kind() {
-        let mut m = collide_ordered(b, xf_b, a, xf_a, speculative);
+        let mut m = collide_ordered(store, b, xf_b, a, xf_a, speculative, cache);
         m.normal = -m.normal;
         return m;
     }
-    collide_ordered(a, xf_a, b, xf_b, speculative)
+    collide_ordered(store, a, xf_a, b, xf_b, speculative, cache)
+}
+
+/// `collide` for shapes that use no shared geometry (unit tests of the primitive pairs).
+#[cfg(test)]
+pub(crate) fn collide_primitives(
+    a: &Geometry,
+    xf_a: &Transform,
+    b: &Geometry,
+    xf_b: &Transform,
+    speculative: f32,
+) -> Manifold {
+    collide(&GeometryStore::new(1), a, xf_a, b, xf_b, speculative)
 }
 
 /// `collide` for `kind(a) <= kind(b)`.
-fn collide_ordered(a: &Geometry, xf_a: &Transform, b: &Geometry, xf_b: &Transform, speculative: f32) -> Manifold {
+fn collide_ordered(
+    store: &GeometryStore,
+    a: &Geometry,
+    xf_a: &Transform,
+    b: &Geometry,
+    xf_b: &Transform,
+    speculative: f32,
+    cache: &mut SatCache,
+) -> Manifold {
+    use hull::Poly;
     use Geometry as G;
+    if b.is_triangles() {
+        // A convex shape against a mesh or heightfield: the deepest of its manifolds (the
+        // contact stage takes them all, through `collide_triangles`).
+        let mut out = MeshManifolds::EMPTY;
+        collide_triangles(store, a, xf_a, b, xf_b, speculative, &mut out);
+        return mesh::deepest(&out);
+    }
+    let hull_poly = |g: &Geometry, xf: &Transform| match *g {
+        G::Hull { hull, local, scale } => Poly::hull(store.hull_at(hull.index), &local, scale, xf),
+        _ => unreachable!("only called for hulls"),
+    };
     match (*a, *b) {
+        (G::Sphere { center, radius }, G::Hull { .. }) => {
+            hull::sphere_hull(xf_a.apply(center), radius, &hull_poly(b, xf_b), speculative)
+        }
+        (G::Capsule { a: pa, b: qa, radius }, G::Hull { .. }) => {
+            hull::capsule_hull(xf_a.apply(pa), xf_a.apply(qa), radius, &hull_poly(b, xf_b), speculative)
+        }
+        (
+            G::Box {
+                center,
+                rotation,
+                half_extents,
+            },
+            G::Hull { .. },
+        ) => hull_hull::hull_hull(
+            &Poly::boxed(center, rotation, half_extents, xf_a),
+            &hull_poly(b, xf_b),
+            speculative,
+            cache,
+        ),
+        (G::Hull { .. }, G::Hull { .. }) => {
+            hull_hull::hull_hull(&hull_poly(a, xf_a), &hull_poly(b, xf_b), speculative, cache)
+        }
+        (G::Hull { .. }, G::Plane { normal, offset }) => {
+            let plane = WorldPlane::new(normal, offset, xf_b);
+            hull::hull_plane(&hull_poly(a, xf_a), plane.n, plane.d, speculative)
+        }
         (G::Sphere { center: ca, radius: ra }, G::Sphere { center: cb, radius: rb }) => {
             sphere::sphere_sphere(xf_a.apply(ca), ra, xf_b.apply(cb), rb, speculative)
         }
@@ -186,3 +280,5 @@ fn collide_ordered(a: &Geometry, xf_a: &Transform, b: &Geometry, xf_b: &Transfor
 
 #[cfg(test)]
 mod fuzz_tests;
+#[cfg(test)]
+mod hull_tests;

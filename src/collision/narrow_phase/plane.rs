@@ -61,7 +61,7 @@ pub(crate) fn box_plane(a: &WorldBox, plane: &WorldPlane, speculative: f32) -> M
 
 #[cfg(test)]
 mod tests {
-    use super::super::collide;
+    use super::super::collide_primitives as collide;
     use crate::collision::shape::Geometry;
     use crate::math::{Quat, Transform, Vec3};
     use std::f32::consts::FRAC_PI_4;

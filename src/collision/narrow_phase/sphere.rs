@@ -89,7 +89,7 @@ pub(crate) fn sphere_plane(ca: Vec3, ra: f32, plane: &WorldPlane, speculative: f
 
 #[cfg(test)]
 mod tests {
-    use super::super::collide;
+    use super::super::collide_primitives as collide;
     use crate::collision::shape::Geometry;
     use crate::math::{Quat, Transform, Vec3};
 

@@ -1,0 +1,323 @@
+//! Convex hulls: a polyhedron built once from a point cloud (`builder`, quickhull) and
+//! instanced by any number of shapes through the world's [`GeometryStore`].
+//!
+//! Layout (one hull, all arrays small and contiguous):
+//!
+//! * `vertices` — at most [`MAX_HULL_VERTICES`] points in the hull's own frame;
+//! * `planes` — one outward unit normal and offset per face (`dot(n, p) <= offset` inside);
+//!   every vertex satisfies every plane (offsets are the support values of the vertices);
+//! * `faces` — each face is a run `first .. first + count` of `half_edges`, in
+//!   counter-clockwise order seen from outside; the next half-edge of a face is the
+//!   following one in its run (wrapping), so no `next` index is stored;
+//! * `half_edges` — `origin` vertex, `twin` half-edge and `face`;
+//! * `edges` — one half-edge per undirected edge, for the separating-axis test;
+//! * `edge_directions` — the distinct edge directions (unit, parallel ones once);
+//! * `radius` — the convex radius: the shape is the polyhedron Minkowski-summed with a
+//!   sphere of this radius (a rounded hull).
+//!
+//! Mass properties are integrated once at creation (`mass`) at unit density.
+//!
+//! [`GeometryStore`]: crate::collision::geometry_store::GeometryStore
+
+pub mod builder;
+pub mod mass;
+
+use crate::collision::shape::MassProperties;
+use crate::math::Vec3;
+
+/// Most vertices a hull keeps (indices fit a byte, as in Box2D's and Jolt's hulls).
+pub const MAX_HULL_VERTICES: usize = 255;
+
+/// A face plane: `dot(normal, p) <= offset` inside.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Plane {
+    pub normal: Vec3,
+    pub offset: f32,
+}
+
+impl Plane {
+    #[inline]
+    pub fn distance(&self, p: Vec3) -> f32 {
+        self.normal.dot(p) - self.offset
+    }
+}
+
+/// A face: its half-edges are `half_edges[first .. first + count]`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Face {
+    pub first: u16,
+    pub count: u16,
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct HalfEdge {
+    /// Vertex the half-edge starts at.
+    pub origin: u16,
+    /// The opposite half-edge (same edge, other face).
+    pub twin: u16,
+    pub face: u16,
+}
+
+/// An edge for the separating-axis test: its end points (vertex indices) and the normals of
+/// its two faces, which bound the edge's arc on the Gauss map, with their cross product
+/// `n2 × n1` (parallel to the edge).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct EdgeGauss {
+    pub n1: Vec3,
+    pub n2: Vec3,
+    pub n2_x_n1: Vec3,
+    pub v0: u16,
+    pub v1: u16,
+}
+
+/// A convex polyhedron (optionally rounded), immutable once built.
+#[derive(Clone, Debug)]
+pub struct ConvexHull {
+    pub(crate) vertices: Vec<Vec3>,
+    pub(crate) planes: Vec<Plane>,
+    pub(crate) faces: Vec<Face>,
+    pub(crate) half_edges: Vec<HalfEdge>,
+    pub(crate) edges: Vec<u16>,
+    pub(crate) edge_directions: Vec<Vec3>,
+    /// Per entry of `edges`: end points and face normals (`EdgeGauss`).
+    pub(crate) edge_gauss: Vec<EdgeGauss>,
+    pub(crate) radius: f32,
+    /// Mass properties at density 1 about the hull's own origin frame (centre in that frame).
+    pub(crate) unit_mass: MassProperties,
+    /// Surface area of the core polyhedron (m²).
+    pub(crate) area: f32,
+    /// Local bounds of the core: min and max corner.
+    pub(crate) min: Vec3,
+    pub(crate) max: Vec3,
+    /// Radius about `unit_mass.center` that bounds the core.
+    pub(crate) bound_radius: f32,
+}
+
+impl ConvexHull {
+    /// Builds the hull's half-edge structure, planes and mass properties from a closed
+    /// convex polyhedron: `vertices` and faces given as counter-clockwise (seen from
+    /// outside) vertex index loops. The builder (`builder.rs`) is the only caller; it hands
+    /// in a valid polyhedron. Returns `None` when the loops do not close into a manifold
+    /// surface (an edge without exactly one opposite half-edge).
+    pub(crate) fn from_polyhedron(vertices: Vec<Vec3>, face_loops: &[Vec<u16>], radius: f32) -> Option<ConvexHull> {
+        let mut faces = Vec::with_capacity(face_loops.len());
+        let mut half_edges: Vec<HalfEdge> = Vec::new();
+        for (f, lp) in face_loops.iter().enumerate() {
+            if lp.len() < 3 {
+                return None;
+            }
+            faces.push(Face {
+                first: half_edges.len() as u16,
+                count: lp.len() as u16,
+            });
+            for &v in lp {
+                half_edges.push(HalfEdge {
+                    origin: v,
+                    twin: u16::MAX,
+                    face: f as u16,
+                });
+            }
+        }
+        if half_edges.len() >= u16::MAX as usize {
+            return None;
+        }
+        // Twins: the half-edge b→a for each a→b.
+        let mut by_ends: Vec<(u32, u16)> = Vec::with_capacity(half_edges.len());
+        for (f, face) in faces.iter().enumerate() {
+            let _ = f;
+            for k in 0..face.count {
+                let e = face.first + k;
+                let n = face.first + (k + 1) % face.count;
+                let (a, b) = (half_edges[e as usize].origin, half_edges[n as usize].origin);
+                by_ends.push((((a as u32) << 16) | b as u32, e));
+            }
+        }
+        by_ends.sort_unstable();
+        if by_ends.windows(2).any(|w| w[0].0 == w[1].0) {
+            return None;
+        }
+        let mut edges = Vec::new();
+        for &(key, e) in &by_ends {
+            let (a, b) = (key >> 16, key & 0xffff);
+            let twin_key = (b << 16) | a;
+            let t = by_ends.binary_search_by_key(&twin_key, |x| x.0).ok()?;
+            half_edges[e as usize].twin = by_ends[t].1;
+            if a < b {
+                edges.push(e);
+            }
+        }
+        edges.sort_unstable();
+        let mut hull = ConvexHull {
+            vertices,
+            planes: Vec::new(),
+            faces,
+            half_edges,
+            edges,
+            edge_directions: Vec::new(),
+            edge_gauss: Vec::new(),
+            radius,
+            unit_mass: MassProperties::ZERO,
+            area: 0.0,
+            min: Vec3::ZERO,
+            max: Vec3::ZERO,
+            bound_radius: 0.0,
+        };
+        hull.planes = (0..hull.faces.len()).map(|f| hull.fit_plane(f)).collect();
+        hull.edge_directions = hull.distinct_edge_directions();
+        hull.edge_gauss = hull
+            .edges
+            .iter()
+            .map(|&e| {
+                let he = hull.half_edges[e as usize];
+                let twin = hull.half_edges[he.twin as usize];
+                let n1 = hull.planes[he.face as usize].normal;
+                let n2 = hull.planes[twin.face as usize].normal;
+                EdgeGauss {
+                    n1,
+                    n2,
+                    n2_x_n1: n2.cross(n1),
+                    v0: he.origin,
+                    v1: twin.origin,
+                }
+            })
+            .collect();
+        let (mp, area) = mass::polyhedron_mass(&hull.vertices, &hull.face_loops_iter());
+        hull.area = area;
+        hull.unit_mass = if radius > 0.0 {
+            mass::rounded_mass(&hull, mp, area)
+        } else {
+            mp
+        };
+        hull.min = hull.vertices.iter().fold(Vec3::splat(f32::MAX), |m, v| m.min(*v));
+        hull.max = hull.vertices.iter().fold(Vec3::splat(-f32::MAX), |m, v| m.max(*v));
+        let c = hull.unit_mass.center;
+        hull.bound_radius = hull.vertices.iter().map(|v| (*v - c).length()).fold(0.0, f32::max);
+        Some(hull)
+    }
+
+    /// Face vertex loops (indices), for integration and export.
+    pub(crate) fn face_loops_iter(&self) -> Vec<Vec<u16>> {
+        (0..self.faces.len()).map(|f| self.face_vertices(f).collect()).collect()
+    }
+
+    /// Vertex indices of face `f`, counter-clockwise seen from outside.
+    #[inline]
+    pub fn face_vertices(&self, f: usize) -> impl Iterator<Item = u16> + '_ {
+        let face = self.faces[f];
+        self.half_edges[face.first as usize..(face.first + face.count) as usize]
+            .iter()
+            .map(|e| e.origin)
+    }
+
+    /// Newell's normal of face `f` (the sum of `v_i × v_(i+1)`: twice the area vector),
+    /// offset from the support of all vertices, so every
+    /// vertex lies on or under every plane.
+    fn fit_plane(&self, f: usize) -> Plane {
+        let idx: Vec<u16> = self.face_vertices(f).collect();
+        let mut n = glam::DVec3::ZERO;
+        for k in 0..idx.len() {
+            let a = self.vertices[idx[k] as usize].as_dvec3();
+            let b = self.vertices[idx[(k + 1) % idx.len()] as usize].as_dvec3();
+            n += a.cross(b);
+        }
+        let normal = n.normalize_or_zero().as_vec3();
+        let offset = self.vertices.iter().map(|v| normal.dot(*v)).fold(f32::MIN, f32::max);
+        Plane { normal, offset }
+    }
+
+    fn distinct_edge_directions(&self) -> Vec<Vec3> {
+        let mut out: Vec<Vec3> = Vec::new();
+        for &e in &self.edges {
+            let (a, b) = self.edge_points(e as usize);
+            let d = (b - a).normalize_or_zero();
+            if d == Vec3::ZERO {
+                continue;
+            }
+            if !out.iter().any(|o| o.cross(d).length_squared() < 1.0e-8) {
+                out.push(d);
+            }
+        }
+        out
+    }
+
+    /// End points of half-edge `e` (origin, then the origin of the next half-edge).
+    #[inline]
+    pub fn edge_points(&self, e: usize) -> (Vec3, Vec3) {
+        let he = self.half_edges[e];
+        let twin = self.half_edges[he.twin as usize];
+        (self.vertices[he.origin as usize], self.vertices[twin.origin as usize])
+    }
+
+    pub fn vertices(&self) -> &[Vec3] {
+        &self.vertices
+    }
+
+    pub fn planes(&self) -> &[Plane] {
+        &self.planes
+    }
+
+    pub fn faces(&self) -> &[Face] {
+        &self.faces
+    }
+
+    pub fn half_edges(&self) -> &[HalfEdge] {
+        &self.half_edges
+    }
+
+    /// One half-edge per undirected edge.
+    pub fn edges(&self) -> &[u16] {
+        &self.edges
+    }
+
+    pub fn edge_gauss(&self) -> &[EdgeGauss] {
+        &self.edge_gauss
+    }
+
+    pub fn edge_directions(&self) -> &[Vec3] {
+        &self.edge_directions
+    }
+
+    /// The convex radius (m): the shape is the polyhedron grown by this much.
+    pub fn radius(&self) -> f32 {
+        self.radius
+    }
+
+    /// Volume of the (rounded) shape, m³.
+    pub fn volume(&self) -> f32 {
+        self.unit_mass.mass
+    }
+
+    /// Mass properties at `density` (kg/m³) in the hull's frame.
+    pub fn mass_properties(&self, density: f32) -> MassProperties {
+        MassProperties {
+            mass: self.unit_mass.mass * density,
+            center: self.unit_mass.center,
+            inertia: self.unit_mass.inertia * density,
+        }
+    }
+
+    /// Index of the vertex furthest along `d` (the core's support point).
+    #[inline]
+    pub fn support_index(&self, d: Vec3) -> usize {
+        let mut best = 0;
+        let mut best_d = f32::MIN;
+        for (i, v) in self.vertices.iter().enumerate() {
+            let x = v.dot(d);
+            if x > best_d {
+                best_d = x;
+                best = i;
+            }
+        }
+        best
+    }
+
+    /// Radius about the centre of mass that bounds the core.
+    pub fn bound_radius(&self) -> f32 {
+        self.bound_radius
+    }
+
+    /// Bounds of the core in the hull's frame.
+    pub fn local_bounds(&self) -> (Vec3, Vec3) {
+        (self.min, self.max)
+    }
+}
