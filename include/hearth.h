@@ -1166,7 +1166,11 @@ typedef struct HearthSoftBodyDef {
     float mass;
     /**
      * Compliance of the stretch springs along the mesh edges (m/N, >= 0; 0 is
-     * inextensible). Default 0.
+     * inextensible). Default 0. The edges of a skin (a closed mesh with no inner springs:
+     * an icosphere, a closed host mesh) resist stretching only, as a membrane does; an
+     * inextensible skin also keeps its total area at most its rest area, so its gas does
+     * not stretch it (the default ball stays within 1 % of its rest edge lengths up to
+     * nRT 1600 J).
      */
     float edge_compliance;
     /**

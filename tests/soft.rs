@@ -130,14 +130,17 @@ fn pressurised_icosphere_bounces_settles_and_keeps_its_volume() {
     assert!(rebound > 0.05, "the ball should bounce, rebound {rebound}");
     assert!(kinetic < 0.01, "the ball should settle, kinetic energy {kinetic}");
     assert!((s.center().y - 0.5).abs() < 0.05, "centre {}", s.center().y);
-    assert!(volume_error < 0.05, "volume error {volume_error}");
-    assert!(worst < 0.05, "worst volume error {worst}");
+    // At rest the inextensible skin holds the rest volume (0.17 % measured). At the impact
+    // the skin, a membrane that buckles rather than a shell that resists compression,
+    // flattens and the gas takes the landing: 6.7 % measured.
+    assert!(volume_error < 0.005, "volume error {volume_error}");
+    assert!(worst < 0.075, "worst volume error {worst}");
 }
 
 #[test]
 fn doubling_the_pressure_makes_the_ball_stiffer() {
-    // Flattening under its own weight: free height (no gravity) minus resting height. With
-    // inextensible edges the skin carries most of its own weight, so this changes little.
+    // Flattening under its own weight: free height (no gravity) minus resting height (36 mm
+    // at 500 J, 25 mm at 1000 J measured).
     let mut flat = [0.0; 2];
     for (k, p) in [500.0, 1000.0].into_iter().enumerate() {
         let mut free = World::new(WorldSettings {
@@ -164,16 +167,16 @@ fn doubling_the_pressure_makes_the_ball_stiffer() {
     }
     assert!(flat[0] > 0.005, "the ball should flatten under its weight: {}", flat[0]);
     assert!(flat[1] < 0.95 * flat[0], "{flat:?}");
-    // Under a 3.2 kg box. With the default inextensible skin (two stretch passes, not
-    // converged to rigid) the skin's own give dominates the dent, so the gas makes it only
-    // somewhat stiffer: 24.3 mm at 500 J, 21.2 mm at 1000 J.
+    // Under a 3.2 kg box. The skin buckles instead of carrying compression, so the gas
+    // carries the box on the area it presses: twice the gas, about half the area (a dent's
+    // depth grows with its area): 35.7 mm at 500 J, 25.2 mm at 1000 J.
     let dents = [drop_box_on_ball(500.0), drop_box_on_ball(1000.0)];
     println!(
         "dent under a 3.2 kg box: {:.1} mm at nRT 500 J, {:.1} mm at 1000 J",
         1000.0 * dents[0],
         1000.0 * dents[1]
     );
-    assert!(dents[1] < 0.92 * dents[0], "{dents:?}");
+    assert!(dents[1] < 0.8 * dents[0], "{dents:?}");
 }
 
 #[test]

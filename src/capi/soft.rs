@@ -60,7 +60,11 @@ pub struct HearthSoftBodyDef {
     /// given to `hearth_soft_body_create_mesh`. Default 1.
     pub mass: f32,
     /// Compliance of the stretch springs along the mesh edges (m/N, >= 0; 0 is
-    /// inextensible). Default 0.
+    /// inextensible). Default 0. The edges of a skin (a closed mesh with no inner springs:
+    /// an icosphere, a closed host mesh) resist stretching only, as a membrane does; an
+    /// inextensible skin also keeps its total area at most its rest area, so its gas does
+    /// not stretch it (the default ball stays within 1 % of its rest edge lengths up to
+    /// nRT 1600 J).
     pub edge_compliance: f32,
     /// Compliance of the bending springs across edges shared by two triangles (m/N, >= 0;
     /// `INFINITY` disables bending). Default 0.01.

@@ -222,6 +222,50 @@ pub(crate) fn topology(triangles: &[[u32; 3]], extra: &[[u32; 2]]) -> (Vec<[u32;
     (edges, bends)
 }
 
+/// For a closed surface (`is_closed`), each triangle's three neighbours: entry `j` is the
+/// triangle across the edge opposite its vertex `j`.
+pub(crate) fn neighbours(triangles: &[[u32; 3]]) -> Vec<[u32; 3]> {
+    let key = |a: u32, b: u32| ((a as u64) << 32) | b as u64;
+    let mut by_edge: Vec<(u64, u32)> = Vec::with_capacity(3 * triangles.len());
+    for (t, tri) in triangles.iter().enumerate() {
+        for e in 0..3 {
+            by_edge.push((key(tri[e], tri[(e + 1) % 3]), t as u32));
+        }
+    }
+    by_edge.sort_unstable();
+    triangles
+        .iter()
+        .map(|tri| {
+            std::array::from_fn(|j| {
+                // The edge opposite vertex j runs from tri[j+1] to tri[j+2]; its neighbour has
+                // it the other way round.
+                let k = key(tri[(j + 2) % 3], tri[(j + 1) % 3]);
+                let at = by_edge.partition_point(|&(e, _)| e < k);
+                by_edge[at].1
+            })
+        })
+        .collect()
+}
+
+/// Whether the triangles close a surface: every edge is used once in each direction, so
+/// each is shared by exactly two triangles wound the same way.
+pub(crate) fn is_closed(triangles: &[[u32; 3]]) -> bool {
+    if triangles.is_empty() {
+        return false;
+    }
+    let mut directed: Vec<u64> = triangles
+        .iter()
+        .flat_map(|t| (0..3).map(move |e| ((t[e] as u64) << 32) | t[(e + 1) % 3] as u64))
+        .collect();
+    directed.sort_unstable();
+    if directed.windows(2).any(|w| w[0] == w[1]) {
+        return false;
+    }
+    directed
+        .iter()
+        .all(|&k| directed.binary_search(&k.rotate_right(32)).is_ok())
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -257,6 +301,22 @@ mod tests {
         assert!(edges.len() > m.vertices.len());
         // One pair per surface edge, fewer where two edges share their opposite pair.
         assert!(!bends.is_empty() && bends.len() <= 3 * m.triangles.len() / 2);
+    }
+
+    #[test]
+    fn neighbours_of_a_closed_surface_share_an_edge() {
+        let m = icosphere(1.0, 1);
+        assert!(is_closed(&m.triangles));
+        let nb = neighbours(&m.triangles);
+        for (t, tri) in m.triangles.iter().enumerate() {
+            for j in 0..3 {
+                let other = m.triangles[nb[t][j] as usize];
+                let (a, b) = (tri[(j + 1) % 3], tri[(j + 2) % 3]);
+                assert!(nb[t][j] as usize != t && other.contains(&a) && other.contains(&b));
+            }
+        }
+        assert!(!is_closed(&cloth(1.0, 1.0, 2, 2).triangles));
+        assert!(is_closed(&lattice(Vec3::ONE, [2, 1, 3]).triangles));
     }
 
     #[test]
