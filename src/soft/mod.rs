@@ -519,6 +519,12 @@ impl World {
         let q = check_quat("rotation", def.transform.q)?;
         let xf = Transform::new(def.transform.p, q);
         let pos: Vec<Vec3> = mesh.vertices.iter().map(|&v| xf.apply(v)).collect();
+        if let Some(i) = pos.iter().position(|p| !p.is_finite()) {
+            return Err(invalid(format!(
+                "transform.position {} places vertex {i} outside the float range",
+                def.transform.p
+            )));
+        }
         let (edges, bends) = mesh::topology(&mesh.triangles, &mesh.extra_edges);
         let skin = mesh.extra_edges.is_empty() && mesh::is_closed(&mesh.triangles);
         let spring = |e: &[u32; 2]| Spring {
