@@ -260,7 +260,8 @@ fn hang_cloth(n: u32) -> (f32, f32) {
 #[test]
 fn cloth_pinned_at_two_corners_hangs_without_stretching() {
     let (stretch, low) = hang_cloth(16);
-    assert!(stretch < 0.05, "stretch {stretch}");
+    // 0.07 % measured.
+    assert!(stretch < 0.005, "stretch {stretch}");
     assert!(
         (low - 1.0).abs() < 0.05,
         "the cloth should hang straight down, lowest {low}"
@@ -272,7 +273,8 @@ fn a_64x64_cloth_pinned_at_two_corners_hangs_without_stretching() {
     // One Gauss-Seidel pass per sub-step rang this cloth apart (> 100 % stretch); two passes
     // and tethers to both pins hang it.
     let (stretch, low) = hang_cloth(64);
-    assert!(stretch < 0.05, "stretch {stretch}");
+    // 0.40 % measured.
+    assert!(stretch < 0.005, "stretch {stretch}");
     assert!(
         (low - 1.0).abs() < 0.05,
         "the cloth should hang straight down, lowest {low}"
@@ -712,4 +714,42 @@ fn soft_bodies_are_deterministic_and_do_not_allocate_in_a_steady_step() {
     let (b, _) = run();
     assert_eq!(a, b);
     assert_eq!(n, 0, "allocations in a steady step");
+}
+
+#[test]
+fn a_box_resting_on_a_ball_does_not_allocate_in_a_steady_step() {
+    // The skin's face contacts and the fixed-geometry hold (a box on the ball, the ball
+    // squeezed against the ground and the crate's walls) keep their lists' capacity too.
+    let mut w = world();
+    for (p, half) in [
+        (Vec3::new(0.61, 0.25, 0.0), Vec3::new(0.1, 0.25, 0.71)),
+        (Vec3::new(-0.61, 0.25, 0.0), Vec3::new(0.1, 0.25, 0.71)),
+        (Vec3::new(0.0, 0.25, 0.61), Vec3::new(0.71, 0.25, 0.1)),
+        (Vec3::new(0.0, 0.25, -0.61), Vec3::new(0.71, 0.25, 0.1)),
+    ] {
+        static_box(&mut w, p, half);
+    }
+    let h = ball(&mut w, 0.5, 400.0);
+    let half = Vec3::new(0.2, 0.1, 0.2);
+    // 40 kg on the 5 kg ball.
+    dynamic_box(
+        &mut w,
+        Vec3::new(0.0, 1.2, 0.0),
+        half,
+        40.0 / (8.0 * half.x * half.y * half.z),
+    );
+    // Ten seconds for the box to settle: while it still moves, the stage's lists are still
+    // growing to their steady capacity (4 allocations measured after 4 s, none after 10 s).
+    for _ in 0..600 {
+        w.step(DT).unwrap();
+    }
+    let before = ALLOCATIONS.with(|c| c.get());
+    let mut faces = 0;
+    for _ in 0..60 {
+        w.step(DT).unwrap();
+        faces += w.soft_body(h).unwrap().face_contacts.len();
+    }
+    let allocations = ALLOCATIONS.with(|c| c.get()) - before;
+    assert!(faces > 0, "the box should be held by the skin's faces");
+    assert_eq!(allocations, 0, "allocations in a steady step");
 }

@@ -42,7 +42,7 @@
 //! 3. **Constraints** (Gauss–Seidel XPBD, compliance `α / h²`, so stiffness does not depend
 //!    on the step): `iterations` passes over the stretch springs (one pass is not enough
 //!    on a large mesh: a 64×64 cloth hung by its corners rang ever harder and stretched by
-//!    more than 100 %; two passes hang it within 0.4 %), each after the area of an
+//!    more than 100 %; two passes hang it within 0.5 %), each after the area of an
 //!    inextensible skin (below); one pass over the bending springs, the volume constraint;
 //!    attachments of pins to coupled bodies; then tethers (each free vertex stays within its
 //!    rest distance of its nearest pins, so a hanging cloth does not stretch under its own
