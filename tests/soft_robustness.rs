@@ -8,7 +8,7 @@
 //!   mid-surface) and never pushes a vertex through the static ground (a plane or a static
 //!   box) by more than 1 cm; in a crate it comes to rest on the ball. A seeded randomized version drops
 //!   spheres, capsules and boxes of random mass (up to twenty times the ball's), height,
-//!   offset and orientation, and checks the same (2 vertex radii inside at most), plus
+//!   offset and orientation on balls of random radius, mass and gas, and checks the same (2 vertex radii inside at most), plus
 //!   finite state, bounded speed and no energy growth (gas energy included).
 //! * The solver stays finite at any time step from 1e-6 s to 0.1 s (and below).
 
@@ -54,18 +54,38 @@ fn world(ground: Ground) -> World {
 
 /// The default ball resting on the ground (its lowest vertex one vertex radius up).
 fn ball(w: &mut World, pressure: f32) -> SoftBodyHandle {
+    ball_of(w, &Ball::default(), pressure)
+}
+
+/// A 642-vertex ball: radius (m), mass (kg), gas (J).
+#[derive(Clone, Copy, Debug)]
+struct Ball {
+    radius: f32,
+    mass: f32,
+    gas: f32,
+}
+
+impl Default for Ball {
+    fn default() -> Ball {
+        Ball {
+            radius: BALL_RADIUS,
+            mass: BALL_MASS,
+            gas: BALL_GAS,
+        }
+    }
+}
+
+fn ball_of(w: &mut World, b: &Ball, pressure: f32) -> SoftBodyHandle {
     let def = SoftBodyDef {
-        transform: at(Vec3::new(0.0, BALL_RADIUS + R, 0.0)),
-        mass: BALL_MASS,
+        transform: at(Vec3::new(0.0, b.radius + R, 0.0)),
+        mass: b.mass,
         pressure,
         ..Default::default()
     };
-    let h = w
-        .create_soft_body(&def, &mesh::icosphere(BALL_RADIUS, 3), None)
-        .unwrap();
+    let h = w.create_soft_body(&def, &mesh::icosphere(b.radius, 3), None).unwrap();
     let s = w.soft_body(h).unwrap();
     assert_eq!(s.vertex_count(), 642);
-    assert!((s.total_mass() - BALL_MASS).abs() < 1e-4, "{}", s.total_mass());
+    assert!((s.total_mass() / b.mass - 1.0).abs() < 1e-4, "{}", s.total_mass());
     h
 }
 
@@ -255,6 +275,7 @@ impl Dropper {
 /// of low walls if `crate_walls`.
 #[derive(Clone, Copy, Debug)]
 struct Drop {
+    ball: Ball,
     ground: Ground,
     dropper: Dropper,
     mass: f32,
@@ -326,7 +347,7 @@ fn drop(d: &Drop, steps: usize) -> Outcome {
             static_box(&mut w, p, half);
         }
     }
-    let h = ball(&mut w, BALL_GAS);
+    let h = ball_of(&mut w, &d.ball, d.ball.gas);
     for _ in 0..60 {
         w.step(DT).unwrap();
     }
@@ -385,6 +406,7 @@ fn drop(d: &Drop, steps: usize) -> Outcome {
 /// The 40 kg box (0.4 × 0.2 × 0.4 m) of the testers, dropped flat from 0.3 m.
 fn heavy_box(ground: Ground, crate_walls: bool) -> Drop {
     Drop {
+        ball: Ball::default(),
         ground,
         dropper: Dropper::Box(Vec3::new(0.2, 0.1, 0.2)),
         mass: 20.0 * BALL_MASS,
@@ -423,7 +445,8 @@ const INSIDE: f32 = 1.5 * R;
 const END_INSIDE: f32 = 0.5 * R;
 
 /// The same over the random drops: a small heavy box presses the deepest, narrowest dent
-/// (14.7 mm measured, a 0.12 × 0.15 × 0.2 m box of 10.6 kg).
+/// (8.7 mm measured over these drops; 14.7 mm in another draw, a 0.12 × 0.15 × 0.2 m box
+/// of 10.6 kg on the default ball).
 const RANDOM_INSIDE: f32 = 2.0 * R;
 
 #[test]
@@ -482,14 +505,21 @@ fn random_droppers_up_to_twenty_times_the_ball_s_mass_are_held() {
             )),
         };
         let axis = Vec3::new(rng.next() - 0.5, rng.next() - 0.5, rng.next() - 0.5).normalize_or_zero();
+        // The ball: radius 0.35..0.65 m, 1..4 kg, gas 300..1,600 J.
+        let ball = Ball {
+            radius: 0.35 + 0.3 * rng.next(),
+            mass: 1.0 + 3.0 * rng.next(),
+            gas: 300.0 + 1300.0 * rng.next(),
+        };
         let d = Drop {
+            ball,
             ground: if rng.next() < 0.5 {
                 Ground::Plane
             } else {
                 Ground::StaticBox
             },
             dropper,
-            mass: BALL_MASS * (0.5 + 19.5 * rng.next()),
+            mass: ball.mass * (0.5 + 19.5 * rng.next()),
             q: Quat::from_axis_angle(if axis == Vec3::ZERO { Vec3::Y } else { axis }, 3.0 * rng.next()),
             height: 0.3 * rng.next(),
             offset: Vec3::new(0.6 * rng.next() - 0.3, 0.0, 0.6 * rng.next() - 0.3),
@@ -497,14 +527,15 @@ fn random_droppers_up_to_twenty_times_the_ball_s_mass_are_held() {
         };
         let o = drop(&d, 180);
         println!(
-            "case {case}: {:?} {:.1} kg from {:.2} m, offset ({:.2}, {:.2}), {:?}: inside {:.1} mm (end {:.1}), into the ground {:.1} mm, \
+            "case {case}: {:?} on {:?}, {:?} {:.1} kg from {:.2} m, offset ({:.2}, {:.2}): inside {:.1} mm (end {:.1}), into the ground {:.1} mm, \
              speeds {:.2} / {:.2} m/s, energy {:.1} -> max {:.1} J",
+            d.ball,
+            d.ground,
             d.dropper,
             d.mass,
             d.height,
             d.offset.x,
             d.offset.z,
-            d.ground,
             1000.0 * o.inside,
             1000.0 * o.end_inside,
             1000.0 * o.through,
@@ -514,10 +545,10 @@ fn random_droppers_up_to_twenty_times_the_ball_s_mass_are_held() {
             o.energy_max
         );
         check_held(&d, &o, RANDOM_INSIDE);
-        // A drop of at most 0.3 m + the ball's height (1 m) gives at most sqrt(2 g 1.3) =
-        // 5 m/s to the dropper; a squeezed skin whips its 3 g vertices faster (up to 34 m/s
+        // A drop of at most 0.3 m + the ball's height (1.3 m) gives at most sqrt(2 g 1.6) =
+        // 5.6 m/s to the dropper; a squeezed skin whips its 3 g vertices faster (up to 34 m/s
         // measured over 40 drops), but nowhere near the 400 m/s speed limit.
-        assert!(o.body_speed < 6.0, "dropper speed {}: {d:?}", o.body_speed);
+        assert!(o.body_speed < 6.5, "dropper speed {}: {d:?}", o.body_speed);
         assert!(o.vertex_speed < 100.0, "vertex speed {}: {d:?}", o.vertex_speed);
         assert!(
             o.energy_max <= o.energy0 + ENERGY_SLACK * o.energy0.abs().max(1.0),
@@ -535,9 +566,11 @@ fn random_droppers_up_to_twenty_times_the_ball_s_mass_are_held() {
     );
 }
 
-/// Relative energy gain allowed over a drop (none was measured: the largest energy after
-/// the release stayed below the energy at the release in 40 drops).
-const ENERGY_SLACK: f32 = 0.001;
+/// Relative energy gain allowed over a drop. None in most drops; a capsule glancing off a
+/// stiff ball (nRT 1,050 J) gains 0.13 % once, at the impact, within the first second:
+/// the largest energy then stays the same over the next 9 s while the total falls (no
+/// growth, a transient of the contact's first sub-steps).
+const ENERGY_SLACK: f32 = 0.005;
 
 #[test]
 fn the_soft_solver_stays_finite_at_any_time_step() {
