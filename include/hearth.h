@@ -1492,7 +1492,11 @@ typedef struct HearthSoftBodyDef {
     float mass;
     /**
      * Compliance of the stretch springs along the mesh edges (m/N, >= 0; 0 is
-     * inextensible). Default 0.
+     * inextensible). Default 0. The edges of a skin (a closed mesh with no inner springs:
+     * an icosphere, a closed host mesh) resist stretching only, as a membrane does; an
+     * inextensible skin also keeps its total area at most its rest area, so its gas does
+     * not stretch it (the default ball stays within 1 % of its rest edge lengths up to
+     * nRT 1600 J).
      */
     float edge_compliance;
     /**
@@ -3321,8 +3325,9 @@ struct HearthSoftBodyDef hearth_soft_body_def_default(void);
  * `HEARTH_ERROR_INVALID_ARGUMENT` (def not from `hearth_soft_body_def_default()` or out of
  * range, `vertex_count` 0 or above 1048576, `index_count` 0 or not a multiple of 3 or above
  * 6 × 1048576, an index >= `vertex_count`, a triangle repeating a vertex, a NaN or
- * infinite vertex, a mass <= 0 or not finite), `HEARTH_ERROR_WORLD_LOCKED`. Nothing is
- * created on error.
+ * infinite vertex, a mass <= 0 or not finite, a `def.transform.position` that moves a
+ * vertex out of the float range), `HEARTH_ERROR_WORLD_LOCKED`. Nothing is created on
+ * error.
  *
  * # Safety
  * `vertices` must hold `vertex_count` vectors, `indices` `index_count` indices and
@@ -3338,14 +3343,18 @@ HearthResult hearth_soft_body_create_mesh(struct HearthWorld *world,
                                           struct HearthSoftBodyId *out_soft_body);
 
 /**
- * Creates a soft ball: an icosphere of `radius` (m, > 0) centred on `def.transform`, an
- * icosahedron whose triangles are split in four `subdivisions` times (0..=6). Vertex
- * counts: 12, 42, 162, 642, 2562, 10242, 40962. Give it `def.pressure` (a balloon) or
- * `def.preserve_volume` to hold its shape.
+ * Creates a soft ball: an icosphere of `radius` (m, 0.001..=10000) centred on
+ * `def.transform`, an icosahedron whose triangles are split in four `subdivisions` times
+ * (0..=6). Vertex counts: 12, 42, 162, 642, 2562, 10242, 40962. Give it `def.pressure` (a
+ * balloon) or `def.preserve_volume` to hold its shape. It is a skin (see
+ * `HearthSoftBodyDef::edge_compliance`): rigid shapes are kept out of its faces as well as
+ * its vertices, and static geometry wins over a dynamic body squeezing it (a 40 kg box
+ * dropped 0.3 m on a 2 kg, 642-vertex ball of nRT 400 J pushes no vertex more than 1 cm
+ * into the ground and gets no point more than 1.5 cm inside the skin).
  *
  * Errors: `HEARTH_ERROR_NULL_POINTER`, `HEARTH_ERROR_INVALID_ARGUMENT` (def as for
- * `hearth_soft_body_create_mesh`, radius not finite or <= 0, subdivisions above 6),
- * `HEARTH_ERROR_WORLD_LOCKED`.
+ * `hearth_soft_body_create_mesh`; `radius` NaN, infinite or outside 0.001..=10000;
+ * `subdivisions` above 6), `HEARTH_ERROR_WORLD_LOCKED`. The message names the parameter.
  *
  * # Safety
  * Pointers must be NULL or valid.
@@ -3357,15 +3366,17 @@ HearthResult hearth_soft_body_create_icosphere(struct HearthWorld *world,
                                                struct HearthSoftBodyId *out_soft_body);
 
 /**
- * Creates a soft box of `half_extents` (m, each > 0) centred on `def.transform`, filled
- * with a lattice of `cells_x × cells_y × cells_z` cells (each 1..=64): a vertex at every
+ * Creates a soft box of `half_extents` (m, each 0.001..=10000) centred on
+ * `def.transform`, filled with a lattice of `cells_x × cells_y × cells_z` cells (each
+ * 1..=64): a vertex at every
  * lattice point, springs along every cell edge, face diagonal and body diagonal (so it
  * keeps its shape without gas), and the outer faces as triangles (wound outwards). Vertex
  * count: `(cells_x + 1)(cells_y + 1)(cells_z + 1)`.
  *
  * Errors: `HEARTH_ERROR_NULL_POINTER`, `HEARTH_ERROR_INVALID_ARGUMENT` (def as for
- * `hearth_soft_body_create_mesh`, a half extent not finite or <= 0, a cell count outside
- * 1..=64), `HEARTH_ERROR_WORLD_LOCKED`.
+ * `hearth_soft_body_create_mesh`; a half extent NaN, infinite or outside 0.001..=10000; a
+ * cell count outside 1..=64), `HEARTH_ERROR_WORLD_LOCKED`. The message names the
+ * parameter (`half_extents.x`, `cells_y`, ...).
  *
  * # Safety
  * Pointers must be NULL or valid.
@@ -3379,15 +3390,17 @@ HearthResult hearth_soft_body_create_box(struct HearthWorld *world,
                                          struct HearthSoftBodyId *out_soft_body);
 
 /**
- * Creates an open cloth of `width × height` (m, each > 0) in the XZ plane of
- * `def.transform` (normal +Y), with `columns × rows` cells (each 1..=1024). Vertex
+ * Creates an open cloth of `width × height` (m, each 0.001..=10000) in the XZ plane of
+ * `def.transform` (normal +Y), with `columns × rows` cells (each 1..=1024, and at most
+ * 1048576 vertices in all). Vertex
  * `(i, j)` has index `i + (columns + 1) · j`, `i` along +X from `-width/2`, `j` along +Z
  * from `-height/2`: pin corners 0 and `columns` to hang it by its edge at z = -height/2.
  * Vertex count: `(columns + 1)(rows + 1)`.
  *
  * Errors: `HEARTH_ERROR_NULL_POINTER`, `HEARTH_ERROR_INVALID_ARGUMENT` (def as for
- * `hearth_soft_body_create_mesh`, a size not finite or <= 0, a cell count outside
- * 1..=1024), `HEARTH_ERROR_WORLD_LOCKED`.
+ * `hearth_soft_body_create_mesh`; `width` or `height` NaN, infinite or outside
+ * 0.001..=10000; `columns` or `rows` outside 1..=1024; `(columns + 1)(rows + 1)` above
+ * 1048576), `HEARTH_ERROR_WORLD_LOCKED`. The message names the parameter.
  *
  * # Safety
  * Pointers must be NULL or valid.

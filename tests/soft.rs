@@ -130,14 +130,17 @@ fn pressurised_icosphere_bounces_settles_and_keeps_its_volume() {
     assert!(rebound > 0.05, "the ball should bounce, rebound {rebound}");
     assert!(kinetic < 0.01, "the ball should settle, kinetic energy {kinetic}");
     assert!((s.center().y - 0.5).abs() < 0.05, "centre {}", s.center().y);
-    assert!(volume_error < 0.05, "volume error {volume_error}");
-    assert!(worst < 0.05, "worst volume error {worst}");
+    // At rest the inextensible skin holds the rest volume (0.17 % measured). At the impact
+    // the skin, a membrane that buckles rather than a shell that resists compression,
+    // flattens and the gas takes the landing: 6.7 % measured.
+    assert!(volume_error < 0.005, "volume error {volume_error}");
+    assert!(worst < 0.075, "worst volume error {worst}");
 }
 
 #[test]
 fn doubling_the_pressure_makes_the_ball_stiffer() {
-    // Flattening under its own weight: free height (no gravity) minus resting height. With
-    // inextensible edges the skin carries most of its own weight, so this changes little.
+    // Flattening under its own weight: free height (no gravity) minus resting height (36 mm
+    // at 500 J, 25 mm at 1000 J measured).
     let mut flat = [0.0; 2];
     for (k, p) in [500.0, 1000.0].into_iter().enumerate() {
         let mut free = World::new(WorldSettings {
@@ -164,16 +167,16 @@ fn doubling_the_pressure_makes_the_ball_stiffer() {
     }
     assert!(flat[0] > 0.005, "the ball should flatten under its weight: {}", flat[0]);
     assert!(flat[1] < 0.95 * flat[0], "{flat:?}");
-    // Under a 3.2 kg box. With the default inextensible skin (two stretch passes, not
-    // converged to rigid) the skin's own give dominates the dent, so the gas makes it only
-    // somewhat stiffer: 24.3 mm at 500 J, 21.2 mm at 1000 J.
+    // Under a 3.2 kg box. The skin buckles instead of carrying compression, so the gas
+    // carries the box on the area it presses: twice the gas, about half the area (a dent's
+    // depth grows with its area): 35.7 mm at 500 J, 25.2 mm at 1000 J.
     let dents = [drop_box_on_ball(500.0), drop_box_on_ball(1000.0)];
     println!(
         "dent under a 3.2 kg box: {:.1} mm at nRT 500 J, {:.1} mm at 1000 J",
         1000.0 * dents[0],
         1000.0 * dents[1]
     );
-    assert!(dents[1] < 0.92 * dents[0], "{dents:?}");
+    assert!(dents[1] < 0.8 * dents[0], "{dents:?}");
 }
 
 #[test]
@@ -257,7 +260,8 @@ fn hang_cloth(n: u32) -> (f32, f32) {
 #[test]
 fn cloth_pinned_at_two_corners_hangs_without_stretching() {
     let (stretch, low) = hang_cloth(16);
-    assert!(stretch < 0.05, "stretch {stretch}");
+    // 0.07 % measured.
+    assert!(stretch < 0.005, "stretch {stretch}");
     assert!(
         (low - 1.0).abs() < 0.05,
         "the cloth should hang straight down, lowest {low}"
@@ -269,7 +273,8 @@ fn a_64x64_cloth_pinned_at_two_corners_hangs_without_stretching() {
     // One Gauss-Seidel pass per sub-step rang this cloth apart (> 100 % stretch); two passes
     // and tethers to both pins hang it.
     let (stretch, low) = hang_cloth(64);
-    assert!(stretch < 0.05, "stretch {stretch}");
+    // 0.40 % measured.
+    assert!(stretch < 0.005, "stretch {stretch}");
     assert!(
         (low - 1.0).abs() < 0.05,
         "the cloth should hang straight down, lowest {low}"
@@ -711,4 +716,42 @@ fn soft_bodies_are_deterministic_and_do_not_allocate_in_a_steady_step() {
     let (b, _) = run();
     assert_eq!(a, b);
     assert_eq!(n, 0, "allocations in a steady step");
+}
+
+#[test]
+fn a_box_resting_on_a_ball_does_not_allocate_in_a_steady_step() {
+    // The skin's face contacts and the fixed-geometry hold (a box on the ball, the ball
+    // squeezed against the ground and the crate's walls) keep their lists' capacity too.
+    let mut w = world();
+    for (p, half) in [
+        (Vec3::new(0.61, 0.25, 0.0), Vec3::new(0.1, 0.25, 0.71)),
+        (Vec3::new(-0.61, 0.25, 0.0), Vec3::new(0.1, 0.25, 0.71)),
+        (Vec3::new(0.0, 0.25, 0.61), Vec3::new(0.71, 0.25, 0.1)),
+        (Vec3::new(0.0, 0.25, -0.61), Vec3::new(0.71, 0.25, 0.1)),
+    ] {
+        static_box(&mut w, p, half);
+    }
+    let h = ball(&mut w, 0.5, 400.0);
+    let half = Vec3::new(0.2, 0.1, 0.2);
+    // 40 kg on the 5 kg ball.
+    dynamic_box(
+        &mut w,
+        Vec3::new(0.0, 1.2, 0.0),
+        half,
+        40.0 / (8.0 * half.x * half.y * half.z),
+    );
+    // Ten seconds for the box to settle: while it still moves, the stage's lists are still
+    // growing to their steady capacity (4 allocations measured after 4 s, none after 10 s).
+    for _ in 0..600 {
+        w.step(DT).unwrap();
+    }
+    let before = ALLOCATIONS.with(|c| c.get());
+    let mut faces = 0;
+    for _ in 0..60 {
+        w.step(DT).unwrap();
+        faces += w.soft_body(h).unwrap().face_contacts.len();
+    }
+    let allocations = ALLOCATIONS.with(|c| c.get()) - before;
+    assert!(faces > 0, "the box should be held by the skin's faces");
+    assert_eq!(allocations, 0, "allocations in a steady step");
 }

@@ -2,8 +2,78 @@
 //! on the origin; and the topology a soft body derives from a triangle mesh (unique edges,
 //! bending pairs across edges).
 
+use crate::error::{invalid, Result};
 use crate::hash::IntMap;
 use crate::math::Vec3;
+
+/// Smallest size (m) the helpers accept for a radius, half extent, width or height.
+pub const MIN_SIZE: f32 = 1.0e-3;
+/// Largest size (m) the helpers accept for a radius, half extent, width or height.
+pub const MAX_SIZE: f32 = 1.0e4;
+/// Most icosphere subdivisions (40,962 vertices).
+pub const MAX_SUBDIVISIONS: u32 = 6;
+/// Most lattice cells along each axis of a box.
+pub const MAX_LATTICE_CELLS: u32 = 64;
+/// Most cloth cells along each side (the vertex count `(columns + 1)(rows + 1)` is also
+/// bounded by `MAX_SOFT_VERTICES`).
+pub const MAX_CLOTH_CELLS: u32 = 1024;
+
+/// A helper size must be finite and in `MIN_SIZE..=MAX_SIZE`.
+fn check_size(name: &str, x: f32) -> Result<()> {
+    if x.is_finite() && (MIN_SIZE..=MAX_SIZE).contains(&x) {
+        Ok(())
+    } else {
+        Err(invalid(format!("{name} must be in {MIN_SIZE}..={MAX_SIZE} m, got {x}")))
+    }
+}
+
+fn check_count(name: &str, x: u32, lo: u32, hi: u32) -> Result<()> {
+    if (lo..=hi).contains(&x) {
+        Ok(())
+    } else {
+        Err(invalid(format!("{name} must be in {lo}..={hi}, got {x}")))
+    }
+}
+
+/// `icosphere` after checking its parameters: `radius` in `MIN_SIZE..=MAX_SIZE`,
+/// `subdivisions` in `0..=MAX_SUBDIVISIONS`; errors name the parameter.
+pub fn try_icosphere(radius: f32, subdivisions: u32) -> Result<SoftMesh> {
+    check_size("radius", radius)?;
+    check_count("subdivisions", subdivisions, 0, MAX_SUBDIVISIONS)?;
+    Ok(icosphere(radius, subdivisions))
+}
+
+/// `lattice` after checking its parameters: each half extent in `MIN_SIZE..=MAX_SIZE`,
+/// each cell count in `1..=MAX_LATTICE_CELLS`; errors name the parameter
+/// (`half_extents.x`, `cells_x`, ...).
+pub fn try_lattice(half_extents: Vec3, cells: [u32; 3]) -> Result<SoftMesh> {
+    for (axis, (h, n)) in ["x", "y", "z"]
+        .iter()
+        .zip(half_extents.to_array().into_iter().zip(cells))
+    {
+        check_size(&format!("half_extents.{axis}"), h)?;
+        check_count(&format!("cells_{axis}"), n, 1, MAX_LATTICE_CELLS)?;
+    }
+    Ok(lattice(half_extents, cells))
+}
+
+/// `cloth` after checking its parameters: `width` and `height` in `MIN_SIZE..=MAX_SIZE`,
+/// `columns` and `rows` in `1..=MAX_CLOTH_CELLS` with at most `MAX_SOFT_VERTICES`
+/// vertices in all; errors name the parameter.
+pub fn try_cloth(width: f32, height: f32, columns: u32, rows: u32) -> Result<SoftMesh> {
+    check_size("width", width)?;
+    check_size("height", height)?;
+    check_count("columns", columns, 1, MAX_CLOTH_CELLS)?;
+    check_count("rows", rows, 1, MAX_CLOTH_CELLS)?;
+    let vertices = (columns as usize + 1) * (rows as usize + 1);
+    if vertices > super::MAX_SOFT_VERTICES {
+        return Err(invalid(format!(
+            "columns × rows = {columns} × {rows} makes {vertices} vertices, more than {}",
+            super::MAX_SOFT_VERTICES
+        )));
+    }
+    Ok(cloth(width, height, columns, rows))
+}
 
 /// A triangle mesh (counter-clockwise seen from outside for closed meshes) plus optional
 /// extra springs that are not triangle edges (the inner springs of a lattice).
@@ -222,6 +292,50 @@ pub(crate) fn topology(triangles: &[[u32; 3]], extra: &[[u32; 2]]) -> (Vec<[u32;
     (edges, bends)
 }
 
+/// For a closed surface (`is_closed`), each triangle's three neighbours: entry `j` is the
+/// triangle across the edge opposite its vertex `j`.
+pub(crate) fn neighbours(triangles: &[[u32; 3]]) -> Vec<[u32; 3]> {
+    let key = |a: u32, b: u32| ((a as u64) << 32) | b as u64;
+    let mut by_edge: Vec<(u64, u32)> = Vec::with_capacity(3 * triangles.len());
+    for (t, tri) in triangles.iter().enumerate() {
+        for e in 0..3 {
+            by_edge.push((key(tri[e], tri[(e + 1) % 3]), t as u32));
+        }
+    }
+    by_edge.sort_unstable();
+    triangles
+        .iter()
+        .map(|tri| {
+            std::array::from_fn(|j| {
+                // The edge opposite vertex j runs from tri[j+1] to tri[j+2]; its neighbour has
+                // it the other way round.
+                let k = key(tri[(j + 2) % 3], tri[(j + 1) % 3]);
+                let at = by_edge.partition_point(|&(e, _)| e < k);
+                by_edge[at].1
+            })
+        })
+        .collect()
+}
+
+/// Whether the triangles close a surface: every edge is used once in each direction, so
+/// each is shared by exactly two triangles wound the same way.
+pub(crate) fn is_closed(triangles: &[[u32; 3]]) -> bool {
+    if triangles.is_empty() {
+        return false;
+    }
+    let mut directed: Vec<u64> = triangles
+        .iter()
+        .flat_map(|t| (0..3).map(move |e| ((t[e] as u64) << 32) | t[(e + 1) % 3] as u64))
+        .collect();
+    directed.sort_unstable();
+    if directed.windows(2).any(|w| w[0] == w[1]) {
+        return false;
+    }
+    directed
+        .iter()
+        .all(|&k| directed.binary_search(&k.rotate_right(32)).is_ok())
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -257,6 +371,36 @@ mod tests {
         assert!(edges.len() > m.vertices.len());
         // One pair per surface edge, fewer where two edges share their opposite pair.
         assert!(!bends.is_empty() && bends.len() <= 3 * m.triangles.len() / 2);
+    }
+
+    #[test]
+    fn neighbours_of_a_closed_surface_share_an_edge() {
+        let m = icosphere(1.0, 1);
+        assert!(is_closed(&m.triangles));
+        let nb = neighbours(&m.triangles);
+        for (t, tri) in m.triangles.iter().enumerate() {
+            for j in 0..3 {
+                let other = m.triangles[nb[t][j] as usize];
+                let (a, b) = (tri[(j + 1) % 3], tri[(j + 2) % 3]);
+                assert!(nb[t][j] as usize != t && other.contains(&a) && other.contains(&b));
+            }
+        }
+        assert!(!is_closed(&cloth(1.0, 1.0, 2, 2).triangles));
+        assert!(is_closed(&lattice(Vec3::ONE, [2, 1, 3]).triangles));
+    }
+
+    #[test]
+    fn checked_helpers_name_the_parameter_out_of_range() {
+        let message = |r: Result<SoftMesh>| r.unwrap_err().to_string();
+        assert!(message(try_lattice(Vec3::new(1.0, f32::MAX, 1.0), [1, 1, 1])).contains("half_extents.y"));
+        assert!(message(try_lattice(Vec3::ONE, [1, 65, 1])).contains("cells_y"));
+        assert!(message(try_icosphere(f32::NAN, 1)).contains("radius"));
+        assert!(message(try_icosphere(1.0, 7)).contains("subdivisions"));
+        assert!(message(try_cloth(1.0, 1.0e-4, 1, 1)).contains("height"));
+        assert!(message(try_cloth(1.0, 1.0, 1024, 1024)).contains("columns × rows"));
+        assert_eq!(try_icosphere(MIN_SIZE, 0).unwrap().vertices.len(), 12);
+        assert_eq!(try_lattice(Vec3::splat(MAX_SIZE), [1, 1, 1]).unwrap().vertices.len(), 8);
+        assert_eq!(try_cloth(MAX_SIZE, MIN_SIZE, 1024, 1).unwrap().vertices.len(), 2050);
     }
 
     #[test]

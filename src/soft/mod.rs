@@ -6,10 +6,20 @@
 //! stretch springs (the unique mesh edges, plus the inner springs of a lattice) and its
 //! bending springs (between the two vertices opposite each edge shared by two triangles).
 //!
-//! * `mesh.rs` — helpers: icosphere, box lattice, cloth grid; edges and bending pairs.
+//! * `mesh.rs` — helpers: icosphere, box lattice, cloth grid (and their checked forms
+//!   with the parameter ranges); edges, bending pairs, closedness and neighbours.
 //! * `solver.rs` — the soft-body stage of the step (after the particle stage): XPBD with
-//!   sub-steps, collisions with rigid shapes and planes, two-way impulses with dynamic
-//!   bodies, pins.
+//!   sub-steps, the skin's area, two-way impulses with dynamic bodies, pins.
+//! * `contact.rs` — vertex contacts with rigid shapes and planes: found once per step,
+//!   solved each sub-step, fixed geometry last so it wins over a dynamic body.
+//! * `face.rs` — a skin's faces against rigid shapes' corners, edges and thin parts, which
+//!   reach through between vertices.
+//!
+//! **Skins.** A closed mesh with no inner springs (an icosphere, a closed host mesh) is a
+//! *skin*, a membrane: its stretch springs resist stretching only (it buckles under
+//! compression), an inextensible skin's total area is held at most at its rest area (the
+//! uniform tension that holds it against its gas), and shapes are kept out of its faces
+//! as well as its vertices.
 //!
 //! **Pins.** A vertex pinned to the world stays where it was pinned. A vertex pinned to a
 //! static or kinematic body follows the body. A vertex pinned to a dynamic body is held at
@@ -20,6 +30,8 @@
 //! large hanging cloth does not stretch under its own weight. Destroying a body unpins
 //! every vertex pinned to it; those vertices then move freely again.
 
+mod contact;
+mod face;
 pub mod mesh;
 pub mod solver;
 
@@ -27,6 +39,7 @@ use crate::error::{check_finite, check_non_negative, check_positive, check_quat,
 use crate::math::{Quat, Transform, Vec3};
 use crate::pool::{Handle, Pool};
 use crate::world::World;
+pub use face::FaceContact;
 pub use mesh::SoftMesh;
 
 pub type SoftBodyHandle = Handle;
@@ -42,7 +55,8 @@ pub struct SoftBodyDef {
     /// given.
     pub mass: f32,
     /// Compliance of the stretch springs (m/N, >= 0; 0 is inextensible). XPBD: the
-    /// stiffness does not depend on the time step and any value is stable.
+    /// stiffness does not depend on the time step and any value is stable. A skin's
+    /// springs resist stretching only.
     pub edge_compliance: f32,
     /// Compliance of the bending springs (m/N, >= 0); infinity disables bending.
     pub bend_compliance: f32,
@@ -71,7 +85,7 @@ pub struct SoftBodyDef {
     /// XPBD sub-steps per step (1..=64).
     pub substeps: u32,
     /// Gauss–Seidel passes over the stretch springs per sub-step (1..=16). One pass rings
-    /// and stretches a large cloth; two hang a 64×64 cloth within 0.2 %.
+    /// and stretches a large cloth; two hang a 64×64 cloth within 0.5 %.
     pub iterations: u32,
     /// Collide with rigid shapes and planes.
     pub collide: bool,
@@ -216,6 +230,9 @@ pub(crate) struct Spring {
     pub a: u32,
     pub b: u32,
     pub rest: f32,
+    /// Resists stretching only (an edge of a skin: a membrane buckles instead of carrying
+    /// compression).
+    pub tension_only: bool,
 }
 
 /// A tether (long-range attachment): a vertex stays within `max` (its rest distance) of
@@ -289,7 +306,17 @@ pub struct SoftBody {
     pub(crate) tethers: Vec<Tether>,
     /// How each pin holds its vertex this step (aligned with `pins`).
     pub(crate) pin_at: Vec<solver::PinAt>,
+    /// Each vertex's contact with fixed geometry this step (planes, static, kinematic and
+    /// sleeping bodies).
     pub contacts: Vec<VertexContact>,
+    /// Each vertex's contact with an awake dynamic body this step.
+    pub body_contacts: Vec<VertexContact>,
+    /// Shapes held out of the faces of a skin this step (`face.rs`).
+    pub face_contacts: Vec<face::FaceContact>,
+    /// Normal of the fixed geometry each vertex touches in the current sub-step, zero if
+    /// none (scratch).
+    pub(crate) held: Vec<Vec3>,
+
     /// Coupled bodies (indices in the stage's list) this soft body acts on this step.
     pub(crate) touching: Vec<u32>,
     /// Velocities before the sub-step's update (scratch, one per vertex).
@@ -298,6 +325,19 @@ pub struct SoftBody {
     pub(crate) grad: Vec<Vec3>,
     /// Enclosed volume at creation (m³).
     pub rest_volume: f32,
+    /// Surface area at creation (m²).
+    pub rest_area: f32,
+    /// A skin: a closed surface (every edge shared by two triangles wound the same way)
+    /// with no inner springs, a membrane with an inside and an outside. Its edges resist
+    /// stretching only (it buckles instead of carrying compression), its area may not
+    /// exceed its rest area when inextensible, and rigid shapes are held out of its faces
+    /// as well as its vertices (`face.rs`).
+    pub skin: bool,
+    /// For a skin, each triangle's neighbours across its edges (`mesh::neighbours`); empty
+    /// otherwise.
+    pub(crate) neighbours: Vec<[u32; 3]>,
+    /// Longest rest length of a stretch spring (m).
+    pub(crate) longest_edge: f32,
     /// Impulses applied since the last step, added to velocities at its start (N·s).
     pub(crate) impulses: Vec<Vec3>,
     pub(crate) has_impulses: bool,
@@ -403,6 +443,17 @@ pub(crate) fn volume_of(pos: &[Vec3], triangles: &[[u32; 3]]) -> f32 {
         / 6.0
 }
 
+pub(crate) fn area_of(pos: &[Vec3], triangles: &[[u32; 3]]) -> f32 {
+    triangles
+        .iter()
+        .map(|t| {
+            let [a, b, c] = t.map(|i| pos[i as usize]);
+            (b - a).cross(c - a).length()
+        })
+        .sum::<f32>()
+        * 0.5
+}
+
 /// The soft bodies of a world.
 pub struct SoftBodies {
     pub(crate) pool: Pool<SoftBody>,
@@ -468,16 +519,32 @@ impl World {
         let q = check_quat("rotation", def.transform.q)?;
         let xf = Transform::new(def.transform.p, q);
         let pos: Vec<Vec3> = mesh.vertices.iter().map(|&v| xf.apply(v)).collect();
+        if let Some(i) = pos.iter().position(|p| !p.is_finite()) {
+            return Err(invalid(format!(
+                "transform.position {} places vertex {i} outside the float range",
+                def.transform.p
+            )));
+        }
         let (edges, bends) = mesh::topology(&mesh.triangles, &mesh.extra_edges);
+        let skin = mesh.extra_edges.is_empty() && mesh::is_closed(&mesh.triangles);
         let spring = |e: &[u32; 2]| Spring {
             a: e[0],
             b: e[1],
             rest: pos[e[0] as usize].distance(pos[e[1] as usize]),
+            tension_only: false,
         };
-        let edges: Vec<Spring> = edges.iter().map(spring).collect();
+        let edges: Vec<Spring> = edges
+            .iter()
+            .map(|e| Spring {
+                tension_only: skin,
+                ..spring(e)
+            })
+            .collect();
         // Built even when bending is off (infinite compliance) so it can be turned on later.
         let bends: Vec<Spring> = bends.iter().map(spring).collect();
+        let longest_edge = edges.iter().map(|e| e.rest).fold(0.0, f32::max);
         let rest_volume = volume_of(&pos, &mesh.triangles);
+        let rest_area = area_of(&pos, &mesh.triangles);
         let body = SoftBody {
             def: SoftBodyDef { transform: xf, ..*def },
             vel: vec![def.velocity; n],
@@ -493,10 +560,21 @@ impl World {
             tethers: Vec::new(),
             pin_at: Vec::new(),
             contacts: vec![VertexContact::default(); n],
+            body_contacts: vec![VertexContact::default(); n],
+            face_contacts: Vec::new(),
+            held: vec![Vec3::ZERO; n],
             touching: Vec::new(),
             grad: vec![Vec3::ZERO; n],
             old: vec![Vec3::ZERO; n],
             rest_volume,
+            rest_area,
+            skin,
+            longest_edge,
+            neighbours: if skin {
+                mesh::neighbours(&mesh.triangles)
+            } else {
+                Vec::new()
+            },
             impulses: vec![Vec3::ZERO; n],
             has_impulses: false,
         };
