@@ -1216,3 +1216,120 @@ fn a_twist_limit_keeps_the_swing_where_twist_is_defined() {
     // 0.03 rad (`tests/joints.rs`).
     assert!(twist < 0.7, "twist {twist}");
 }
+
+/// Log-uniform in `[lo, hi]` (both > 0).
+fn log_range(rng: &mut Rng, lo: f32, hi: f32) -> f32 {
+    (lo.ln() + (hi.ln() - lo.ln()) * rng.unit()).exp().min(hi)
+}
+
+/// Every body and particle finite and within the world's speed limits (a small rounding
+/// margin above them).
+fn assert_bounded(w: &World, bodies: &[BodyHandle], particles: &[hearth::pool::Handle], what: &str) {
+    let (max_v, max_w) = (w.settings.max_linear_speed, w.settings.max_angular_speed);
+    for &b in bodies {
+        let o = w.body(b).unwrap();
+        assert!(
+            o.xf.p.is_finite() && o.xf.q.is_finite() && o.v.is_finite() && o.w.is_finite(),
+            "{what}: body {b:?} at {} v {} w {}",
+            o.xf.p,
+            o.v,
+            o.w
+        );
+        assert!(
+            o.v.length() <= max_v * 1.0001 && o.w.length() <= max_w * 1.0001,
+            "{what}: body {b:?} at {} m/s, {} rad/s",
+            o.v.length(),
+            o.w.length()
+        );
+    }
+    for &p in particles {
+        let (x, v) = (w.particle_position(p).unwrap(), w.particle_velocity(p).unwrap());
+        assert!(
+            x.is_finite() && v.is_finite() && v.length() <= max_v * 1.0001,
+            "{what}: particle at {x} v {v}"
+        );
+    }
+}
+
+/// Stiff springs with any finite stiffness and damping (seeded, log-uniform from 1 to
+/// f32::MAX) on the lightest particle (inverse mass 1e9 1/kg) and on points up to 10 km off
+/// the centre of light, 1 mm bodies (mobility up to ~1e26 1/kg) stay finite and within the
+/// speed limits. The gains' stiffness times mobility overflowed f32 and the exact step's
+/// `e^(-c h/2) · cosh` was `0 · ∞`: NaN velocities (fuzzer seed 1, call 192).
+#[test]
+fn stiff_springs_of_any_stiffness_on_the_lightest_ends_stay_finite() {
+    for seed in 0..24u64 {
+        let mut rng = Rng(0x5715_F000 + seed);
+        let mut w = World::new(WorldSettings {
+            enable_sleep: false,
+            substeps: 1 + rng.below(64),
+            ..Default::default()
+        })
+        .unwrap();
+        let (mut bodies, mut particles) = (Vec::new(), Vec::new());
+        for i in 0..4 {
+            let stiffness = log_range(&mut rng, 1.0, f32::MAX);
+            let damping = if rng.chance(0.2) {
+                0.0
+            } else {
+                log_range(&mut rng, 1.0, f32::MAX)
+            };
+            let anchor = rng.vec(100.0);
+            let local_point = if rng.chance(0.5) {
+                Vec3::ZERO
+            } else {
+                rng.vec(1.0) * log_range(&mut rng, 1e-3, 1e4)
+            };
+            let g = w
+                .create_generator(&GeneratorDef::StiffSpring {
+                    anchor: End::World(anchor),
+                    local_point,
+                    stiffness,
+                    damping,
+                })
+                .unwrap();
+            let at = Vec3::new(10.0 * i as f32, 0.0, 0.0) + rng.vec(5.0);
+            if i % 2 == 0 {
+                let p = w
+                    .create_particle(&hearth::particles::ParticleDef {
+                        position: at,
+                        inverse_mass: log_range(&mut rng, 1e3, 1e9),
+                        collide: false,
+                        ..Default::default()
+                    })
+                    .unwrap();
+                w.attach_particle(g, p).unwrap();
+                particles.push(p);
+            } else {
+                let b = w
+                    .create_body(&BodyDef {
+                        body_type: BodyType::Dynamic,
+                        transform: Transform::new(at, rng.quat()),
+                        ..Default::default()
+                    })
+                    .unwrap();
+                let def = ShapeDef {
+                    density: log_range(&mut rng, 1e-3, 1e5),
+                    ..Default::default()
+                };
+                let radius = log_range(&mut rng, 1e-3, 1.0);
+                w.create_shape(
+                    b,
+                    &def,
+                    &Geometry::Sphere {
+                        center: Vec3::ZERO,
+                        radius,
+                    },
+                )
+                .unwrap();
+                w.attach_body(g, b).unwrap();
+                bodies.push(b);
+            }
+        }
+        let dt = log_range(&mut rng, 1e-3, 0.1);
+        for step in 0..60 {
+            w.step(dt).unwrap();
+            assert_bounded(&w, &bodies, &particles, &format!("seed {seed} step {step}"));
+        }
+    }
+}
