@@ -1024,9 +1024,14 @@ fn a_broken_joint_reports_no_force() {
 
 #[test]
 fn extreme_values_leave_every_body_finite_and_within_the_limits() {
-    // Torque, force, impulse, velocities, spring stiffness and damping, drag, extra gravity
-    // and explosions at f32::MAX-scale values: finite and within the speed limits.
+    // Spring stiffness and damping and drag at f32::MAX-scale values, torque, force,
+    // impulse, velocities, extra gravity and explosions at the largest values their ranges
+    // accept (README "Supported ranges"): finite and within the speed limits.
+    use hearth::error::{
+        MAX_ACCELERATION, MAX_COORDINATE, MAX_FORCE, MAX_GRAVITY_SCALE, MAX_IMPULSE, MAX_INVERSE_MASS,
+    };
     let big = 3.0e38f32;
+    let (force, impulse, accel, far) = (MAX_FORCE, MAX_IMPULSE, MAX_ACCELERATION, MAX_COORDINATE);
     let mut w = world();
     let (max_v, max_w) = (w.settings.max_linear_speed, w.settings.max_angular_speed);
     let mut bodies = Vec::new();
@@ -1064,15 +1069,15 @@ fn extreme_values_leave_every_body_finite_and_within_the_limits() {
         },
         GeneratorDef::Drag { k1: big, k2: big },
         GeneratorDef::Gravity {
-            acceleration: Vec3::new(big, -big, big),
+            acceleration: Vec3::new(accel, -accel, accel) / 3f32.sqrt(),
         },
         GeneratorDef::Explosion {
             center: Vec3::new(18.0, 3.0, 1.0),
             blast_radius: 10.0,
-            blast_impulse: big,
+            blast_impulse: impulse,
             shock_speed: 10.0,
             shock_thickness: 1.0,
-            shock_force: big,
+            shock_force: force,
             max_radius: 50.0,
             affect_all: false,
         },
@@ -1081,36 +1086,44 @@ fn extreme_values_leave_every_body_finite_and_within_the_limits() {
         let g = w.create_generator(def).unwrap();
         w.attach_body(g, bodies[i]).unwrap();
     }
-    // Particles too: f32::MAX-scale gravity scale, acceleration, force and mass.
+    // Particles too: the largest gravity scale, acceleration, force and inverse mass.
     let particle = w
         .create_particle(&hearth::particles::ParticleDef {
             position: Vec3::new(0.0, 10.0, 5.0),
-            acceleration: Vec3::new(big, big, -big),
-            inverse_mass: big,
-            gravity_scale: -big,
+            acceleration: Vec3::new(accel, accel, -accel) / 3f32.sqrt(),
+            inverse_mass: MAX_INVERSE_MASS,
+            gravity_scale: -MAX_GRAVITY_SCALE,
             ..Default::default()
         })
         .unwrap();
     let last = bodies[7];
-    w.set_angular_velocity(last, Vec3::new(big, -big, 0.0)).unwrap();
-    w.set_linear_velocity(last, Vec3::new(big, big, big)).unwrap();
-    let o = w.body(last).unwrap();
-    assert!(
-        o.v.length() <= max_v * 1.0001 && o.w.length() <= max_w * 1.0001,
-        "set velocities are capped"
-    );
+    // Velocities past the limits are refused; at them they are taken.
+    assert!(w.set_angular_velocity(last, Vec3::new(big, -big, 0.0)).is_err());
+    assert!(w.set_linear_velocity(last, Vec3::new(big, big, big)).is_err());
+    w.set_angular_velocity(last, Vec3::new(1.0, -1.0, 0.0).normalize() * max_w)
+        .unwrap();
+    w.set_linear_velocity(last, Vec3::ONE.normalize() * max_v).unwrap();
     for step in 0..120 {
-        w.apply_torque(last, Vec3::new(big, big, -big), true).unwrap();
-        w.apply_torque(last, Vec3::new(big, big, -big), true).unwrap();
-        w.apply_force(last, Vec3::new(-big, big, big), true).unwrap();
-        w.apply_force(last, Vec3::new(-big, big, big), true).unwrap();
-        w.apply_force_at_point(last, Vec3::new(big, -big, big), Vec3::new(big, 0.0, -big), true)
+        let d = |v: Vec3| v.normalize();
+        w.apply_torque(last, d(Vec3::new(1.0, 1.0, -1.0)) * force, true)
             .unwrap();
-        w.apply_impulse_at_point(bodies[6], Vec3::splat(big), Vec3::new(-big, big, 0.0), true)
+        w.apply_torque(last, d(Vec3::new(1.0, 1.0, -1.0)) * force, true)
             .unwrap();
-        w.apply_angular_impulse(bodies[5], Vec3::splat(-big), true).unwrap();
-        w.apply_particle_force(particle, Vec3::splat(big), true).unwrap();
-        w.apply_particle_force(particle, Vec3::splat(big), true).unwrap();
+        w.apply_force(last, d(Vec3::new(-1.0, 1.0, 1.0)) * force, true).unwrap();
+        w.apply_force(last, d(Vec3::new(-1.0, 1.0, 1.0)) * force, true).unwrap();
+        w.apply_force_at_point(
+            last,
+            d(Vec3::new(1.0, -1.0, 1.0)) * force,
+            Vec3::new(far, 0.0, -far),
+            true,
+        )
+        .unwrap();
+        w.apply_impulse_at_point(bodies[6], d(Vec3::ONE) * impulse, Vec3::new(-far, far, 0.0), true)
+            .unwrap();
+        w.apply_angular_impulse(bodies[5], d(-Vec3::ONE) * impulse, true)
+            .unwrap();
+        w.apply_particle_force(particle, d(Vec3::ONE) * force, true).unwrap();
+        w.apply_particle_force(particle, d(Vec3::ONE) * force, true).unwrap();
         w.step(DT).unwrap();
         let (pp, pv) = (
             w.particle_position(particle).unwrap(),
