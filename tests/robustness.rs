@@ -1024,15 +1024,14 @@ fn a_broken_joint_reports_no_force() {
 
 #[test]
 fn extreme_values_leave_every_body_finite_and_within_the_limits() {
-    // Spring stiffness and damping, drag and extra gravity at f32::MAX-scale values (any
-    // finite value is accepted), torque, force, impulse, velocities, explosions and particles
-    // at the largest values README "Supported ranges" accepts: finite and within the speed
-    // limits.
+    // Spring stiffness and damping and drag at f32::MAX-scale values, torque, force,
+    // impulse, velocities, extra gravity and explosions at the largest values their ranges
+    // accept (README "Supported ranges"): finite and within the speed limits.
     use hearth::error::{
         MAX_ACCELERATION, MAX_COORDINATE, MAX_FORCE, MAX_GRAVITY_SCALE, MAX_IMPULSE, MAX_INVERSE_MASS,
     };
     let big = 3.0e38f32;
-    let (force, impulse, far) = (MAX_FORCE, MAX_IMPULSE, MAX_COORDINATE);
+    let (force, impulse, accel, far) = (MAX_FORCE, MAX_IMPULSE, MAX_ACCELERATION, MAX_COORDINATE);
     let mut w = world();
     let (max_v, max_w) = (w.settings.max_linear_speed, w.settings.max_angular_speed);
     let mut bodies = Vec::new();
@@ -1070,7 +1069,7 @@ fn extreme_values_leave_every_body_finite_and_within_the_limits() {
         },
         GeneratorDef::Drag { k1: big, k2: big },
         GeneratorDef::Gravity {
-            acceleration: Vec3::new(big, -big, big),
+            acceleration: Vec3::new(accel, -accel, accel) / 3f32.sqrt(),
         },
         GeneratorDef::Explosion {
             center: Vec3::new(18.0, 3.0, 1.0),
@@ -1091,41 +1090,40 @@ fn extreme_values_leave_every_body_finite_and_within_the_limits() {
     let particle = w
         .create_particle(&hearth::particles::ParticleDef {
             position: Vec3::new(0.0, 10.0, 5.0),
-            acceleration: Vec3::new(1.0, 1.0, -1.0) * (MAX_ACCELERATION / 3f32.sqrt()),
+            acceleration: Vec3::new(accel, accel, -accel) / 3f32.sqrt(),
             inverse_mass: MAX_INVERSE_MASS,
             gravity_scale: -MAX_GRAVITY_SCALE,
             ..Default::default()
         })
         .unwrap();
     let last = bodies[7];
+    // Velocities past the limits are refused; at them they are taken.
     assert!(w.set_angular_velocity(last, Vec3::new(big, -big, 0.0)).is_err());
     assert!(w.set_linear_velocity(last, Vec3::new(big, big, big)).is_err());
-    w.set_angular_velocity(last, Vec3::new(max_w, 0.0, 0.0)).unwrap();
-    w.set_linear_velocity(last, Vec3::new(0.0, 0.0, max_v)).unwrap();
+    w.set_angular_velocity(last, Vec3::new(1.0, -1.0, 0.0).normalize() * max_w)
+        .unwrap();
+    w.set_linear_velocity(last, Vec3::ONE.normalize() * max_v).unwrap();
     for step in 0..120 {
-        w.apply_torque(last, Vec3::new(force, force, -force) / 2.0, true)
+        let d = |v: Vec3| v.normalize();
+        w.apply_torque(last, d(Vec3::new(1.0, 1.0, -1.0)) * force, true)
             .unwrap();
-        w.apply_torque(last, Vec3::new(force, force, -force) / 2.0, true)
+        w.apply_torque(last, d(Vec3::new(1.0, 1.0, -1.0)) * force, true)
             .unwrap();
-        w.apply_force(last, Vec3::new(-force, force, force) / 2.0, true)
-            .unwrap();
-        w.apply_force(last, Vec3::new(-force, force, force) / 2.0, true)
-            .unwrap();
+        w.apply_force(last, d(Vec3::new(-1.0, 1.0, 1.0)) * force, true).unwrap();
+        w.apply_force(last, d(Vec3::new(-1.0, 1.0, 1.0)) * force, true).unwrap();
         w.apply_force_at_point(
             last,
-            Vec3::new(force, -force, force) / 2.0,
+            d(Vec3::new(1.0, -1.0, 1.0)) * force,
             Vec3::new(far, 0.0, -far),
             true,
         )
         .unwrap();
-        w.apply_impulse_at_point(bodies[6], Vec3::splat(impulse / 2.0), Vec3::new(-far, far, 0.0), true)
+        w.apply_impulse_at_point(bodies[6], d(Vec3::ONE) * impulse, Vec3::new(-far, far, 0.0), true)
             .unwrap();
-        w.apply_angular_impulse(bodies[5], Vec3::splat(-impulse / 2.0), true)
+        w.apply_angular_impulse(bodies[5], d(-Vec3::ONE) * impulse, true)
             .unwrap();
-        w.apply_particle_force(particle, Vec3::splat(force / 2.0), true)
-            .unwrap();
-        w.apply_particle_force(particle, Vec3::splat(force / 2.0), true)
-            .unwrap();
+        w.apply_particle_force(particle, d(Vec3::ONE) * force, true).unwrap();
+        w.apply_particle_force(particle, d(Vec3::ONE) * force, true).unwrap();
         w.step(DT).unwrap();
         let (pp, pv) = (
             w.particle_position(particle).unwrap(),
@@ -1230,4 +1228,197 @@ fn a_twist_limit_keeps_the_swing_where_twist_is_defined() {
     // and the limit (±0.3 rad) holds to 0.63 rad (measured); at moderate swings it holds to
     // 0.03 rad (`tests/joints.rs`).
     assert!(twist < 0.7, "twist {twist}");
+}
+
+/// Log-uniform in `[lo, hi]` (both > 0).
+fn log_range(rng: &mut Rng, lo: f32, hi: f32) -> f32 {
+    (lo.ln() + (hi.ln() - lo.ln()) * rng.unit()).exp().min(hi)
+}
+
+/// Every body and particle finite and within the world's speed limits (a small rounding
+/// margin above them).
+fn assert_bounded(w: &World, bodies: &[BodyHandle], particles: &[hearth::pool::Handle], what: &str) {
+    let (max_v, max_w) = (w.settings.max_linear_speed, w.settings.max_angular_speed);
+    for &b in bodies {
+        let o = w.body(b).unwrap();
+        assert!(
+            o.xf.p.is_finite() && o.xf.q.is_finite() && o.v.is_finite() && o.w.is_finite(),
+            "{what}: body {b:?} at {} v {} w {}",
+            o.xf.p,
+            o.v,
+            o.w
+        );
+        assert!(
+            o.v.length() <= max_v * 1.0001 && o.w.length() <= max_w * 1.0001,
+            "{what}: body {b:?} at {} m/s, {} rad/s",
+            o.v.length(),
+            o.w.length()
+        );
+    }
+    for &p in particles {
+        let (x, v) = (w.particle_position(p).unwrap(), w.particle_velocity(p).unwrap());
+        assert!(
+            x.is_finite() && v.is_finite() && v.length() <= max_v * 1.0001,
+            "{what}: particle at {x} v {v}"
+        );
+    }
+}
+
+/// Stiff springs with any finite stiffness and damping (seeded, log-uniform from 1 to
+/// f32::MAX) on the lightest particle (inverse mass 1e9 1/kg) and on points up to 10 km off
+/// the centre of light, 1 mm bodies (mobility up to ~1e26 1/kg) stay finite and within the
+/// speed limits. The gains' stiffness times mobility overflowed f32 and the exact step's
+/// `e^(-c h/2) · cosh` was `0 · ∞`: NaN velocities (fuzzer seed 1, call 192).
+#[test]
+fn stiff_springs_of_any_stiffness_on_the_lightest_ends_stay_finite() {
+    for seed in 0..24u64 {
+        let mut rng = Rng(0x5715_F000 + seed);
+        let mut w = World::new(WorldSettings {
+            enable_sleep: false,
+            substeps: 1 + rng.below(64),
+            ..Default::default()
+        })
+        .unwrap();
+        let (mut bodies, mut particles) = (Vec::new(), Vec::new());
+        for i in 0..4 {
+            let stiffness = log_range(&mut rng, 1.0, f32::MAX);
+            let damping = if rng.chance(0.2) {
+                0.0
+            } else {
+                log_range(&mut rng, 1.0, f32::MAX)
+            };
+            let anchor = rng.vec(100.0);
+            let local_point = if rng.chance(0.5) {
+                Vec3::ZERO
+            } else {
+                rng.vec(1.0) * log_range(&mut rng, 1e-3, 1e4)
+            };
+            let g = w
+                .create_generator(&GeneratorDef::StiffSpring {
+                    anchor: End::World(anchor),
+                    local_point,
+                    stiffness,
+                    damping,
+                })
+                .unwrap();
+            let at = Vec3::new(10.0 * i as f32, 0.0, 0.0) + rng.vec(5.0);
+            if i % 2 == 0 {
+                let p = w
+                    .create_particle(&hearth::particles::ParticleDef {
+                        position: at,
+                        inverse_mass: log_range(&mut rng, 1e3, 1e9),
+                        collide: false,
+                        ..Default::default()
+                    })
+                    .unwrap();
+                w.attach_particle(g, p).unwrap();
+                particles.push(p);
+            } else {
+                let b = w
+                    .create_body(&BodyDef {
+                        body_type: BodyType::Dynamic,
+                        transform: Transform::new(at, rng.quat()),
+                        ..Default::default()
+                    })
+                    .unwrap();
+                let def = ShapeDef {
+                    density: log_range(&mut rng, 1e-3, 1e5),
+                    ..Default::default()
+                };
+                let radius = log_range(&mut rng, 1e-3, 1.0);
+                w.create_shape(
+                    b,
+                    &def,
+                    &Geometry::Sphere {
+                        center: Vec3::ZERO,
+                        radius,
+                    },
+                )
+                .unwrap();
+                w.attach_body(g, b).unwrap();
+                bodies.push(b);
+            }
+        }
+        let dt = log_range(&mut rng, 1e-3, 0.1);
+        for step in 0..60 {
+            w.step(dt).unwrap();
+            assert_bounded(&w, &bodies, &particles, &format!("seed {seed} step {step}"));
+        }
+    }
+}
+
+/// A dynamic body at `p` of one of the extremes the supported ranges allow: without shapes
+/// (1 kg, unit inertia), a sphere of 1 to 10 mm of 0.001 to 1 kg/m³ (down to 4e-12 kg and
+/// an inverse inertia of 6e17), or a sphere of up to 10 m of up to 1e5 kg/m³.
+fn extreme_body(w: &mut World, rng: &mut Rng, p: Vec3) -> BodyHandle {
+    let b = w
+        .create_body(&BodyDef {
+            body_type: BodyType::Dynamic,
+            transform: Transform::new(p, rng.quat()),
+            ..Default::default()
+        })
+        .unwrap();
+    let (radius, density) = match rng.below(3) {
+        0 => return b,
+        1 => (log_range(rng, 1e-3, 1e-2), log_range(rng, 1e-3, 1.0)),
+        _ => (log_range(rng, 0.1, 10.0), log_range(rng, 1.0, 1e5)),
+    };
+    let def = ShapeDef {
+        density,
+        ..Default::default()
+    };
+    w.create_shape(
+        b,
+        &def,
+        &Geometry::Sphere {
+            center: Vec3::ZERO,
+            radius,
+        },
+    )
+    .unwrap();
+    b
+}
+
+/// Chains of joints of every kind (limits, motors, springs) between bodies of extreme mass
+/// and inertia ratios (shapeless 1 kg bodies, milligram spheres hinged a metre off their
+/// centre, 10 m spheres of 1e5 kg/m³), anchored to the world near the origin or 100 km out,
+/// under gravity up to 1e4 m/s² and 1 to 64 sub-steps, stay finite and within the speed
+/// limits (seeded). A joint sweep left a light body faster than the limits and the
+/// warm-started impulses fed that back until it overflowed to NaN (fuzzer seed 2 call 1310,
+/// seed 3 call 407).
+#[test]
+fn joints_between_extreme_mass_ratios_stay_finite_and_within_the_limits() {
+    for seed in 0..40u64 {
+        let mut rng = Rng(0x701A_7000 + seed);
+        let mut w = World::new(WorldSettings {
+            enable_sleep: false,
+            substeps: 1 + rng.below(64),
+            gravity: rng.vec(1.0).normalize_or_zero() * log_range(&mut rng, 1.0, 1e4),
+            ..Default::default()
+        })
+        .unwrap();
+        let origin = if rng.chance(0.3) {
+            Vec3::splat(99_000.0)
+        } else {
+            Vec3::ZERO
+        };
+        let mut unmeasured = false;
+        let mut bodies = Vec::new();
+        for link in 0..2 + rng.below(3) {
+            let at = origin + rng.vec(3.0);
+            let b = extreme_body(&mut w, &mut rng, at);
+            let kind = random_kind(&mut rng, &mut unmeasured);
+            let def = match bodies.last() {
+                Some(&prev) if link > 0 && rng.chance(0.8) => random_joint(&mut rng, kind, prev, Some(b), Vec3::ZERO),
+                _ => random_joint(&mut rng, kind, b, None, at),
+            };
+            w.create_joint(&def).unwrap();
+            bodies.push(b);
+        }
+        let dt = log_range(&mut rng, 1e-3, 0.1);
+        for step in 0..120 {
+            w.step(dt).unwrap();
+            assert_bounded(&w, &bodies, &[], &format!("seed {seed} step {step}"));
+        }
+    }
 }

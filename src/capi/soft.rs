@@ -795,7 +795,8 @@ pub unsafe extern "C" fn hearth_soft_body_is_vertex_pinned(
 /// start of the next step. A pinned vertex ignores it.
 ///
 /// Errors: `HEARTH_ERROR_NULL_POINTER`, `HEARTH_ERROR_INVALID_ID`,
-/// `HEARTH_ERROR_INVALID_ARGUMENT` (vertex out of range, NaN or infinite impulse),
+/// `HEARTH_ERROR_INVALID_ARGUMENT` (vertex out of range, impulse NaN, infinite or longer
+/// than 1e10 N·s),
 /// `HEARTH_ERROR_WORLD_LOCKED`.
 ///
 /// # Safety
@@ -815,7 +816,8 @@ pub unsafe extern "C" fn hearth_soft_body_apply_impulse(
 /// start of the next step (pinned vertices ignore it).
 ///
 /// Errors: `HEARTH_ERROR_NULL_POINTER`, `HEARTH_ERROR_INVALID_ID`,
-/// `HEARTH_ERROR_INVALID_ARGUMENT` (NaN or infinite), `HEARTH_ERROR_WORLD_LOCKED`.
+/// `HEARTH_ERROR_INVALID_ARGUMENT` (impulse NaN, infinite or longer than 1e10 N·s),
+/// `HEARTH_ERROR_WORLD_LOCKED`.
 ///
 /// # Safety
 /// `world` must be NULL or a live world.

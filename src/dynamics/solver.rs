@@ -718,7 +718,7 @@ pub fn solve(world: &mut World, dt: f32) {
         integrate_wide::velocities(eight, vel, drives, &paths.plain, limits);
         integrate_general_velocities(vel, drives, states, sims, &paths.general, h, limits);
         // Joints warm start first, then each contact batch is refreshed and warm started.
-        crate::dynamics::joints::solver::warm_start(joints, vel, states);
+        crate::dynamics::joints::solver::warm_start(joints, vel, states, limits);
         contact_wide::refresh_warm_start(states, vel, batches, sub == 0);
         // Soft, biased sweeps push overlap out and damp; positions move; a rigid relax sweep
         // removes the push velocity. Sweeps alternate direction through each manifold's points.

@@ -216,15 +216,20 @@ pub fn spring_lookahead(substeps: u32) -> f32 {
 }
 
 /// Weights `(T, Δ)` of the exact step: the trace and determinant of the one-step transition
-/// matrix of `x'' = -k x - c x'` (per unit mass) over `dt`.
-fn exact_step_invariants(k: f32, c: f32, dt: f32) -> (f64, f64) {
-    let (k, c, dt) = (k as f64, c as f64, dt as f64);
+/// matrix of `x'' = -k x - c x'` (per unit mass) over `dt`, for any finite `k, c >= 0`.
+/// Overdamped, the trace is `e^(-(c - s) dt / 2) + e^(-(c + s) dt / 2)` with
+/// `s = sqrt(c² - 4k)`, each exponent formed without cancellation; the product
+/// `e^(-c dt / 2) · 2 cosh(s dt / 2)` it replaces was `0 · ∞ = NaN` past `c dt ≈ 1400`.
+fn exact_step_invariants(k: f64, c: f64, dt: f32) -> (f64, f64) {
+    let dt = dt as f64;
     let disc = c * c - 4.0 * k;
-    let decay = (-0.5 * c * dt).exp();
     let trace = if disc < 0.0 {
-        2.0 * decay * (0.5 * (-disc).sqrt() * dt).cos()
+        2.0 * (-0.5 * c * dt).exp() * (0.5 * (-disc).sqrt() * dt).cos()
     } else {
-        2.0 * decay * (0.5 * disc.sqrt() * dt).cosh()
+        let s = disc.sqrt();
+        // (c - s) / 2 = 2k / (c + s), exact where s is close to c.
+        let slow = if c + s > 0.0 { 2.0 * k / (c + s) } else { 0.0 };
+        (-slow * dt).exp() + (-0.5 * (c + s) * dt).exp()
     };
     (trace, (-c * dt).exp())
 }
@@ -237,7 +242,12 @@ fn exact_step_invariants(k: f32, c: f32, dt: f32) -> (f64, f64) {
 /// With `a` constant, `v' = v + dt a` and `x' = x + dt v + s dt² a`, `s = (n + 1) / 2n`.
 /// Matching the trace `T` and determinant `Δ` of that map gives
 /// `K = (1 - T + Δ) / dt²` and `D = (2 - T - s (1 - T + Δ)) / dt`.
-pub fn stiff_spring_gains(k: f32, c: f32, dt: f32, substeps: u32) -> (f32, f32) {
+///
+/// `k` and `c` are per unit mass (stiffness and damping times the ends' mobility) and come
+/// in f64: any finite f32 stiffness times the mobility of the lightest particle (1e9 1/kg) or
+/// of an off-centre point of a light body overflowed f32 and made the gains NaN. `K` and `D`
+/// stay of the order of `1 / dt²` and `1 / dt` whatever the inputs.
+pub fn stiff_spring_gains(k: f64, c: f64, dt: f32, substeps: u32) -> (f32, f32) {
     let (t, det) = exact_step_invariants(k, c, dt);
     let n = substeps.max(1) as f64;
     let s = (n + 1.0) / (2.0 * n);
@@ -351,7 +361,12 @@ fn run(g: &Generator, ctx: &mut Ctx, slots: &mut Vec<u32>, gravity: Vec3, subste
                 // body moves more (the body turns), and gains made for the mass alone
                 // overdrove the turn into a spin.
                 let m = 1.0 / s.mobility as f64;
-                let (kk, dd) = stiff_spring_gains(stiffness * s.mobility, damping * s.mobility, dt, substeps);
+                let (kk, dd) = stiff_spring_gains(
+                    stiffness as f64 * s.mobility as f64,
+                    damping as f64 * s.mobility as f64,
+                    dt,
+                    substeps,
+                );
                 let accel =
                     -(kk as f64) * (s.point - sa.point).as_dvec3() - dd as f64 * (s.velocity - sa.velocity).as_dvec3();
                 ctx.add(o, accel * m, s.point);
@@ -516,14 +531,14 @@ mod tests {
             (1.0e4, 20.0, 1.0 / 60.0, 1),
             (25.0, 30.0, 0.02, 8),
         ] {
-            let (kk, dd) = stiff_spring_gains(k, c, dt, n);
+            let (kk, dd) = stiff_spring_gains(k as f64, c as f64, dt, n);
             let s = (n as f32 + 1.0) / (2.0 * n as f32);
             // x' = (1 - s dt² K) x + (dt - s dt² D) v; v' = -dt K x + (1 - dt D) v
             let (a, b) = (1.0 - s * dt * dt * kk, dt - s * dt * dt * dd);
             let (cc, d) = (-dt * kk, 1.0 - dt * dd);
             let det = a * d - b * cc;
             assert!((det as f64 - (-(c as f64) * dt as f64).exp()).abs() < 1e-4, "det {det}");
-            let (t, _) = exact_step_invariants(k, c, dt);
+            let (t, _) = exact_step_invariants(k as f64, c as f64, dt);
             assert!(((a + d) as f64 - t).abs() < 1e-4);
         }
     }

@@ -178,7 +178,7 @@ pub fn prepare(springs: &mut BodySprings, bodies: &Pool<Body>, h: f32) {
             Kind::Stiff => {
                 let m = s.ra.mobility;
                 if m > 0.0 {
-                    (s.k, s.c) = stiff_spring_gains(s.stiffness * m, s.damping * m, h, 1);
+                    (s.k, s.c) = stiff_spring_gains(s.stiffness as f64 * m as f64, s.damping as f64 * m as f64, h, 1);
                     s.mass = 1.0 / m;
                 } else {
                     (s.k, s.c, s.mass) = (0.0, 0.0, 0.0);

@@ -653,7 +653,7 @@ impl World {
     /// proportion to mass (`None`: every vertex changes velocity by `impulse / mass`).
     /// Acts at the start of the next step; pinned vertices ignore it.
     pub fn apply_soft_impulse(&mut self, h: SoftBodyHandle, vertex: Option<u32>, impulse: Vec3) -> Result<()> {
-        check_vec("impulse", impulse)?;
+        crate::error::check_impulse("impulse", impulse)?;
         let s = self.soft_body_mut(h)?;
         match vertex {
             Some(v) => {

@@ -569,6 +569,13 @@ fn solve(
                 sleep_threshold: settings.sleep_threshold,
             },
         );
+        // 6. The speed limit, as the prediction applies it: the velocities from the
+        // constraints' and contacts' corrections (a vertex pushed out from deep under a plane,
+        // or pulled by a tether or a pin to a far body) were written back uncapped
+        // (34,000 m/s with a 400 m/s limit, fuzzer seed 2).
+        for v in s.vel.iter_mut() {
+            *v = crate::math::clamp_length(*v, max_speed);
+        }
     }
 }
 

@@ -2260,13 +2260,17 @@ static void op_soft_other(FWorld *fw) {
     }
     case 8: { CALL(hearth_soft_body_get_center(w, sid, nul ? NULL : &out.v), gr, NULL, &out, sizeof out); break; }
     case 9: {
-        int which = (int)rnd(5);
+        /* All five scalar getters, so that the default run reaches each of them. */
         float *p = nul ? NULL : &out.x;
-        if (which == 0) { CALL(hearth_soft_body_get_mass(w, sid, p), gr, NULL, &out, sizeof out); }
-        else if (which == 1) { CALL(hearth_soft_body_get_volume(w, sid, p), gr, NULL, &out, sizeof out); }
-        else if (which == 2) { CALL(hearth_soft_body_get_rest_volume(w, sid, p), gr, NULL, &out, sizeof out); }
-        else if (which == 3) { CALL(hearth_soft_body_get_pressure(w, sid, p), gr, NULL, &out, sizeof out); }
-        else { CALL(hearth_soft_body_get_user_data(w, sid, nul ? NULL : &out.u64), gr, NULL, &out, sizeof out); }
+        { CALL(hearth_soft_body_get_mass(w, sid, p), gr, NULL, &out, sizeof out); }
+        memset(&out, SENTINEL, sizeof out);
+        { CALL(hearth_soft_body_get_volume(w, sid, p), gr, NULL, &out, sizeof out); }
+        memset(&out, SENTINEL, sizeof out);
+        { CALL(hearth_soft_body_get_rest_volume(w, sid, p), gr, NULL, &out, sizeof out); }
+        memset(&out, SENTINEL, sizeof out);
+        { CALL(hearth_soft_body_get_pressure(w, sid, p), gr, NULL, &out, sizeof out); }
+        memset(&out, SENTINEL, sizeof out);
+        { CALL(hearth_soft_body_get_user_data(w, sid, nul ? NULL : &out.u64), gr, NULL, &out, sizeof out); }
         break;
     }
     case 10: {
@@ -2302,14 +2306,20 @@ static void op_soft_other(FWorld *fw) {
     case 15: {
         HearthVec3 j = vec_up_to(10, 5);
         HearthResult e = vr;
-        if (f == F_NUMBER && !bad_vertex) { j = spoil3(j, nonfinite()); e = sr != HEARTH_OK ? sr : HEARTH_ERROR_INVALID_ARGUMENT; }
+        if (f == F_NUMBER && !bad_vertex) {
+            j = chance(50) ? spoil3(j, nonfinite()) : scale3(dir3(), chance(50) ? MAX_IMPULSE * 1.01f : FLT_MAX);
+            e = sr != HEARTH_OK ? sr : HEARTH_ERROR_INVALID_ARGUMENT;
+        }
         CALL(hearth_soft_body_apply_impulse(w, sid, vertex, j), e, NULL, NULL, 0);
         break;
     }
     case 16: {
         HearthVec3 j = vec_up_to(20, 10);
         HearthResult e = sr;
-        if (f == F_NUMBER) { j = spoil3(j, nonfinite()); e = sr != HEARTH_OK ? sr : HEARTH_ERROR_INVALID_ARGUMENT; }
+        if (f == F_NUMBER) {
+            j = chance(50) ? spoil3(j, nonfinite()) : scale3(dir3(), chance(50) ? MAX_IMPULSE * 1.01f : FLT_MAX);
+            e = sr != HEARTH_OK ? sr : HEARTH_ERROR_INVALID_ARGUMENT;
+        }
         CALL(hearth_soft_body_apply_impulse_all(w, sid, j), e, NULL, NULL, 0);
         break;
     }
