@@ -11,8 +11,10 @@
  */
 #include "hearth.h"
 
+#include <inttypes.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 
 #define BASE 5           /* boxes per side in the bottom layer: 25+16+9+4+1 = 55 boxes */
 #define PYRAMID_BOXES 55
@@ -23,6 +25,17 @@
 static const float DT = 1.0f / 60.0f;
 static const int STEPS = 300; /* 5 s */
 static const int REPORT_EVERY = 60;
+
+/* FNV-1a over the bits of floats, 32 bits at a time: the state hash the C, C++, Python and
+ * C# examples print must agree to the last bit. */
+static uint64_t hash_floats(uint64_t h, const float *f, size_t n) {
+    for (size_t i = 0; i < n; i++) {
+        uint32_t bits;
+        memcpy(&bits, &f[i], sizeof bits);
+        h = (h ^ bits) * UINT64_C(0x100000001b3);
+    }
+    return h;
+}
 
 /* The world, so that a failure can still destroy it before exiting. */
 static HearthWorld *g_world = NULL;
@@ -123,9 +136,12 @@ int main(int argc, char **argv) {
     printf("Hearth %u.%u.%u C example: pyramid of %d boxes (base %d) + pile of %d spheres/boxes\n",
            (unsigned)HEARTH_VERSION_MAJOR, (unsigned)HEARTH_VERSION_MINOR,
            (unsigned)HEARTH_VERSION_PATCH, PYRAMID_BOXES, BASE, PILE_BODIES);
-    printf("%8s %14s %8s\n", "t [s]", "top box y [m]", "awake");
+    /* "state hash": every body's position, rotation, linear and angular velocity (13 floats,
+     * bit for bit) after every step, folded into one running hash. */
+    printf("%8s %14s %8s %16s\n", "t [s]", "top box y [m]", "awake", "state hash");
+    uint64_t hash = UINT64_C(0xcbf29ce484222325);
 
-    HearthTransform transforms[MAX_BODIES]; /* caller-owned, filled in one call per report */
+    HearthTransform transforms[MAX_BODIES]; /* caller-owned, filled in one call per step */
     /* With a path argument, record the run for the browser viewer (viewer/index.html). */
     if (argc > 1) {
         HearthRecordDef record = hearth_record_def_default();
@@ -134,10 +150,20 @@ int main(int argc, char **argv) {
     }
     for (int step = 1; step <= STEPS; step++) {
         CHECK(hearth_world_step(g_world, DT));
+        CHECK(hearth_world_get_transforms(g_world, bodies, count, transforms));
+        for (size_t b = 0; b < count; b++) {
+            HearthVec3 v, w;
+            CHECK(hearth_body_get_linear_velocity(g_world, bodies[b], &v));
+            CHECK(hearth_body_get_angular_velocity(g_world, bodies[b], &w));
+            const HearthTransform *x = &transforms[b];
+            const float state[13] = {x->position.x, x->position.y, x->position.z, x->rotation.x,
+                                     x->rotation.y, x->rotation.z, x->rotation.w, v.x, v.y, v.z,
+                                     w.x, w.y, w.z};
+            hash = hash_floats(hash, state, 13);
+        }
         if (step % REPORT_EVERY != 0) {
             continue;
         }
-        CHECK(hearth_world_get_transforms(g_world, bodies, count, transforms));
         int awake = 0;
         for (size_t b = 0; b < count; b++) {
             bool is_awake = false;
@@ -145,7 +171,8 @@ int main(int argc, char **argv) {
             awake += is_awake ? 1 : 0;
         }
         double t = (double)((float)step * DT);
-        printf("%8.2f %14.3f %4d/%d\n", t, (double)transforms[top].position.y, awake, (int)count);
+        printf("%8.2f %14.3f %4d/%d %016" PRIx64 "\n", t, (double)transforms[top].position.y, awake,
+               (int)count, hash);
     }
 
     if (argc > 1) {

@@ -12,7 +12,10 @@
  */
 #include "hearth.hpp"
 
+#include <cinttypes>
+#include <cstdint>
 #include <cstdio>
+#include <cstring>
 #include <stdexcept>
 #include <vector>
 
@@ -67,21 +70,39 @@ void run() {
     std::printf("Hearth %u.%u.%u C++ example: pyramid of %d boxes (base %d) + pile of %d spheres/boxes\n",
                 (unsigned)HEARTH_VERSION_MAJOR, (unsigned)HEARTH_VERSION_MINOR, (unsigned)HEARTH_VERSION_PATCH,
                 PYRAMID_BOXES, BASE, PILE_BODIES);
-    std::printf("%8s %14s %8s\n", "t [s]", "top box y [m]", "awake");
+    // "state hash": every body's position, rotation, linear and angular velocity (13 floats,
+    // bit for bit) after every step, folded into one running FNV-1a hash, as in pyramid.c.
+    std::printf("%8s %14s %8s %16s\n", "t [s]", "top box y [m]", "awake", "state hash");
+    std::uint64_t hash = 0xcbf29ce484222325ull;
+    auto fold = [&hash](float f) {
+        std::uint32_t bits;
+        std::memcpy(&bits, &f, sizeof bits);
+        hash = (hash ^ bits) * 0x100000001b3ull;
+    };
 
-    std::vector<hearth::Transform> transforms(bodies.size()); // filled in one call per report
+    std::vector<hearth::Transform> transforms(bodies.size()); // filled in one call per step
     for (int step = 1; step <= STEPS; step++) {
         world.step(DT);
+        world.transforms(bodies, transforms);
+        for (std::size_t b = 0; b < bodies.size(); b++) {
+            const auto body = world.body(bodies[b]);
+            const hearth::Transform &x = transforms[b];
+            const hearth::Vec3 v = body.linear_velocity(), w = body.angular_velocity();
+            for (float f : {x.position.x, x.position.y, x.position.z, x.rotation.x, x.rotation.y, x.rotation.z,
+                            x.rotation.w, v.x, v.y, v.z, w.x, w.y, w.z}) {
+                fold(f);
+            }
+        }
         if (step % REPORT_EVERY != 0) {
             continue;
         }
-        world.transforms(bodies, transforms);
         int awake = 0;
         for (const hearth::BodyId id : bodies) {
             awake += world.body(id).is_awake() ? 1 : 0;
         }
         const double t = (double)((float)step * DT);
-        std::printf("%8.2f %14.3f %4d/%d\n", t, (double)transforms[top].position.y, awake, (int)bodies.size());
+        std::printf("%8.2f %14.3f %4d/%d %016" PRIx64 "\n", t, (double)transforms[top].position.y, awake,
+                    (int)bodies.size(), hash);
     }
 }
 

@@ -119,24 +119,41 @@ internal static class Pyramid
 
                 Console.WriteLine("Hearth {0}.{1}.{2} C# example: pyramid of {3} boxes (base {4}) + pile of {5} spheres/boxes",
                     Native.VersionMajor, Native.VersionMinor, Native.VersionPatch, PyramidBoxes, Base, PileBodies);
-                Console.WriteLine("{0,8} {1,14} {2,8}", "t [s]", "top box y [m]", "awake");
+                // "state hash": every body's position, rotation, linear and angular velocity (13
+                // floats, bit for bit) after every step, folded into one running FNV-1a hash, as in
+                // pyramid.c.
+                Console.WriteLine("{0,8} {1,14} {2,8} {3,16}", "t [s]", "top box y [m]", "awake", "state hash");
+                ulong hash = 0xcbf29ce484222325UL;
 
-                var transforms = new Transform[MaxBodies]; // caller-owned, filled in one call per report
+                var transforms = new Transform[MaxBodies]; // caller-owned, filled in one call per step
                 for (int step = 1; step <= Steps; step++)
                 {
                     world.Step(Dt);
+                    world.GetTransforms(bodies, transforms, count);
+                    for (int b = 0; b < count; b++)
+                    {
+                        var body = world.GetBody(bodies[b]);
+                        Transform x = transforms[b];
+                        Vec3 v = body.LinearVelocity, w = body.AngularVelocity;
+                        float[] state = { x.Position.X, x.Position.Y, x.Position.Z, x.Rotation.X, x.Rotation.Y,
+                                          x.Rotation.Z, x.Rotation.W, v.X, v.Y, v.Z, w.X, w.Y, w.Z };
+                        foreach (float f in state)
+                        {
+                            hash = unchecked((hash ^ BitConverter.ToUInt32(BitConverter.GetBytes(f), 0)) * 0x100000001b3UL);
+                        }
+                    }
                     if (step % ReportEvery != 0)
                     {
                         continue;
                     }
-                    world.GetTransforms(bodies, transforms, count);
                     int awake = 0;
                     for (int b = 0; b < count; b++)
                     {
                         awake += world.GetBody(bodies[b]).IsAwake ? 1 : 0;
                     }
                     float t = (float)((float)step * Dt); // rounded to float as in C
-                    Console.WriteLine("{0} {1} {2,4}/{3}", Fixed(t, 2, 8), Fixed(transforms[top].Position.Y, 3, 14), awake, count);
+                    Console.WriteLine("{0} {1} {2,4}/{3} {4}", Fixed(t, 2, 8), Fixed(transforms[top].Position.Y, 3, 14), awake, count,
+                        hash.ToString("x16", CultureInfo.InvariantCulture));
                 }
             }
         }
