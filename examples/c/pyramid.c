@@ -26,17 +26,6 @@ static const float DT = 1.0f / 60.0f;
 static const int STEPS = 300; /* 5 s */
 static const int REPORT_EVERY = 60;
 
-/* FNV-1a over the bits of floats, 32 bits at a time: the state hash the C, C++, Python and
- * C# examples print must agree to the last bit. */
-static uint64_t hash_floats(uint64_t h, const float *f, size_t n) {
-    for (size_t i = 0; i < n; i++) {
-        uint32_t bits;
-        memcpy(&bits, &f[i], sizeof bits);
-        h = (h ^ bits) * UINT64_C(0x100000001b3);
-    }
-    return h;
-}
-
 /* The world, so that a failure can still destroy it before exiting. */
 static HearthWorld *g_world = NULL;
 
@@ -98,6 +87,29 @@ static void add_ground(void) {
     CHECK(hearth_shape_create_plane(g_world, ground, &sd, &plane, &shape));
 }
 
+/* FNV-1a over the bits of every body's position, rotation, linear and angular velocity (13
+ * floats), folded into `h`: the "state hash" column. The C, C++, Python and C# examples must
+ * print the same hashes, so they agree to the last bit on every body after every step. */
+static uint64_t hash_state(uint64_t h, const HearthBodyId *bodies, size_t count,
+                           HearthTransform *transforms) {
+    CHECK(hearth_world_get_transforms(g_world, bodies, count, transforms));
+    for (size_t b = 0; b < count; b++) {
+        HearthVec3 v, w;
+        CHECK(hearth_body_get_linear_velocity(g_world, bodies[b], &v));
+        CHECK(hearth_body_get_angular_velocity(g_world, bodies[b], &w));
+        const HearthTransform *x = &transforms[b];
+        const float state[13] = {x->position.x, x->position.y, x->position.z, x->rotation.x,
+                                 x->rotation.y, x->rotation.z, x->rotation.w, v.x, v.y, v.z,
+                                 w.x, w.y, w.z};
+        for (size_t i = 0; i < 13; i++) {
+            uint32_t bits;
+            memcpy(&bits, &state[i], sizeof bits);
+            h = (h ^ bits) * UINT64_C(0x100000001b3);
+        }
+    }
+    return h;
+}
+
 int main(int argc, char **argv) {
     if (hearth_version() != HEARTH_VERSION) {
         fprintf(stderr, "error: header version %u, library version %u\n", (unsigned)HEARTH_VERSION,
@@ -136,12 +148,10 @@ int main(int argc, char **argv) {
     printf("Hearth %u.%u.%u C example: pyramid of %d boxes (base %d) + pile of %d spheres/boxes\n",
            (unsigned)HEARTH_VERSION_MAJOR, (unsigned)HEARTH_VERSION_MINOR,
            (unsigned)HEARTH_VERSION_PATCH, PYRAMID_BOXES, BASE, PILE_BODIES);
-    /* "state hash": every body's position, rotation, linear and angular velocity (13 floats,
-     * bit for bit) after every step, folded into one running hash. */
     printf("%8s %14s %8s %16s\n", "t [s]", "top box y [m]", "awake", "state hash");
     uint64_t hash = UINT64_C(0xcbf29ce484222325);
 
-    HearthTransform transforms[MAX_BODIES]; /* caller-owned, filled in one call per step */
+    HearthTransform transforms[MAX_BODIES]; /* caller-owned, filled in one call per report */
     /* With a path argument, record the run for the browser viewer (viewer/index.html). */
     if (argc > 1) {
         HearthRecordDef record = hearth_record_def_default();
@@ -150,20 +160,11 @@ int main(int argc, char **argv) {
     }
     for (int step = 1; step <= STEPS; step++) {
         CHECK(hearth_world_step(g_world, DT));
-        CHECK(hearth_world_get_transforms(g_world, bodies, count, transforms));
-        for (size_t b = 0; b < count; b++) {
-            HearthVec3 v, w;
-            CHECK(hearth_body_get_linear_velocity(g_world, bodies[b], &v));
-            CHECK(hearth_body_get_angular_velocity(g_world, bodies[b], &w));
-            const HearthTransform *x = &transforms[b];
-            const float state[13] = {x->position.x, x->position.y, x->position.z, x->rotation.x,
-                                     x->rotation.y, x->rotation.z, x->rotation.w, v.x, v.y, v.z,
-                                     w.x, w.y, w.z};
-            hash = hash_floats(hash, state, 13);
-        }
+        hash = hash_state(hash, bodies, count, transforms); /* after every step */
         if (step % REPORT_EVERY != 0) {
             continue;
         }
+        CHECK(hearth_world_get_transforms(g_world, bodies, count, transforms));
         int awake = 0;
         for (size_t b = 0; b < count; b++) {
             bool is_awake = false;

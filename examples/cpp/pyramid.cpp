@@ -35,6 +35,25 @@ hearth::Body add_box(hearth::World &world, hearth::Vec3 p) {
     return body;
 }
 
+// FNV-1a over the bits of every body's position, rotation, linear and angular velocity (13
+// floats), folded into `h`: the "state hash" column, as in pyramid.c.
+std::uint64_t hash_state(std::uint64_t h, hearth::World &world, const std::vector<hearth::BodyId> &bodies,
+                         std::vector<hearth::Transform> &transforms) {
+    world.transforms(bodies, transforms);
+    for (std::size_t b = 0; b < bodies.size(); b++) {
+        const auto body = world.body(bodies[b]);
+        const hearth::Transform &x = transforms[b];
+        const hearth::Vec3 v = body.linear_velocity(), w = body.angular_velocity();
+        for (float f : {x.position.x, x.position.y, x.position.z, x.rotation.x, x.rotation.y, x.rotation.z,
+                        x.rotation.w, v.x, v.y, v.z, w.x, w.y, w.z}) {
+            std::uint32_t bits;
+            std::memcpy(&bits, &f, sizeof bits);
+            h = (h ^ bits) * 0x100000001b3ull;
+        }
+    }
+    return h;
+}
+
 hearth::Body add_sphere(hearth::World &world, hearth::Vec3 p) {
     hearth::Body body = world.create_body(hearth::BodyType::Dynamic, p);
     body.add(hearth::sphere(0.5f));
@@ -70,32 +89,17 @@ void run() {
     std::printf("Hearth %u.%u.%u C++ example: pyramid of %d boxes (base %d) + pile of %d spheres/boxes\n",
                 (unsigned)HEARTH_VERSION_MAJOR, (unsigned)HEARTH_VERSION_MINOR, (unsigned)HEARTH_VERSION_PATCH,
                 PYRAMID_BOXES, BASE, PILE_BODIES);
-    // "state hash": every body's position, rotation, linear and angular velocity (13 floats,
-    // bit for bit) after every step, folded into one running FNV-1a hash, as in pyramid.c.
     std::printf("%8s %14s %8s %16s\n", "t [s]", "top box y [m]", "awake", "state hash");
     std::uint64_t hash = 0xcbf29ce484222325ull;
-    auto fold = [&hash](float f) {
-        std::uint32_t bits;
-        std::memcpy(&bits, &f, sizeof bits);
-        hash = (hash ^ bits) * 0x100000001b3ull;
-    };
 
-    std::vector<hearth::Transform> transforms(bodies.size()); // filled in one call per step
+    std::vector<hearth::Transform> transforms(bodies.size()); // filled in one call per report
     for (int step = 1; step <= STEPS; step++) {
         world.step(DT);
-        world.transforms(bodies, transforms);
-        for (std::size_t b = 0; b < bodies.size(); b++) {
-            const auto body = world.body(bodies[b]);
-            const hearth::Transform &x = transforms[b];
-            const hearth::Vec3 v = body.linear_velocity(), w = body.angular_velocity();
-            for (float f : {x.position.x, x.position.y, x.position.z, x.rotation.x, x.rotation.y, x.rotation.z,
-                            x.rotation.w, v.x, v.y, v.z, w.x, w.y, w.z}) {
-                fold(f);
-            }
-        }
+        hash = hash_state(hash, world, bodies, transforms); // after every step
         if (step % REPORT_EVERY != 0) {
             continue;
         }
+        world.transforms(bodies, transforms);
         int awake = 0;
         for (const hearth::BodyId id : bodies) {
             awake += world.body(id).is_awake() ? 1 : 0;

@@ -42,6 +42,26 @@ internal static class Pyramid
         return body;
     }
 
+    // FNV-1a over the bits of every body's position, rotation, linear and angular velocity (13
+    // floats), folded into h: the "state hash" column, as in pyramid.c.
+    private static ulong HashState(ulong h, World world, BodyId[] bodies, Transform[] transforms, int count)
+    {
+        world.GetTransforms(bodies, transforms, count);
+        for (int b = 0; b < count; b++)
+        {
+            var body = world.GetBody(bodies[b]);
+            Transform x = transforms[b];
+            Vec3 v = body.LinearVelocity, w = body.AngularVelocity;
+            float[] state = { x.Position.X, x.Position.Y, x.Position.Z, x.Rotation.X, x.Rotation.Y,
+                              x.Rotation.Z, x.Rotation.W, v.X, v.Y, v.Z, w.X, w.Y, w.Z };
+            foreach (float f in state)
+            {
+                h = unchecked((h ^ BitConverter.ToUInt32(BitConverter.GetBytes(f), 0)) * 0x100000001b3UL);
+            }
+        }
+        return h;
+    }
+
     private static Body AddSphere(World world, Vec3 p)
     {
         Body body = DynamicBody(world, p);
@@ -119,33 +139,19 @@ internal static class Pyramid
 
                 Console.WriteLine("Hearth {0}.{1}.{2} C# example: pyramid of {3} boxes (base {4}) + pile of {5} spheres/boxes",
                     Native.VersionMajor, Native.VersionMinor, Native.VersionPatch, PyramidBoxes, Base, PileBodies);
-                // "state hash": every body's position, rotation, linear and angular velocity (13
-                // floats, bit for bit) after every step, folded into one running FNV-1a hash, as in
-                // pyramid.c.
                 Console.WriteLine("{0,8} {1,14} {2,8} {3,16}", "t [s]", "top box y [m]", "awake", "state hash");
                 ulong hash = 0xcbf29ce484222325UL;
 
-                var transforms = new Transform[MaxBodies]; // caller-owned, filled in one call per step
+                var transforms = new Transform[MaxBodies]; // caller-owned, filled in one call per report
                 for (int step = 1; step <= Steps; step++)
                 {
                     world.Step(Dt);
-                    world.GetTransforms(bodies, transforms, count);
-                    for (int b = 0; b < count; b++)
-                    {
-                        var body = world.GetBody(bodies[b]);
-                        Transform x = transforms[b];
-                        Vec3 v = body.LinearVelocity, w = body.AngularVelocity;
-                        float[] state = { x.Position.X, x.Position.Y, x.Position.Z, x.Rotation.X, x.Rotation.Y,
-                                          x.Rotation.Z, x.Rotation.W, v.X, v.Y, v.Z, w.X, w.Y, w.Z };
-                        foreach (float f in state)
-                        {
-                            hash = unchecked((hash ^ BitConverter.ToUInt32(BitConverter.GetBytes(f), 0)) * 0x100000001b3UL);
-                        }
-                    }
+                    hash = HashState(hash, world, bodies, transforms, count); // after every step
                     if (step % ReportEvery != 0)
                     {
                         continue;
                     }
+                    world.GetTransforms(bodies, transforms, count);
                     int awake = 0;
                     for (int b = 0; b < count; b++)
                     {

@@ -35,6 +35,16 @@ STEPS = 300  # 5 s
 REPORT_EVERY = 60
 
 
+def hash_state(h, bodies, transforms):
+    """FNV-1a over the bits of every body's position, rotation, linear and angular velocity
+    (13 floats), folded into h: the "state hash" column, as in pyramid.c."""
+    for b, body in enumerate(bodies):
+        state = list(transforms[7 * b : 7 * b + 7]) + list(body.linear_velocity) + list(body.angular_velocity)
+        for bits in struct.unpack("<13I", struct.pack("<13f", *state)):
+            h = ((h ^ bits) * 0x100000001B3) & 0xFFFFFFFFFFFFFFFF
+    return h
+
+
 def main():
     with hearth.World() as world:  # gravity -9.81 y, defaults of hearth_world_def_default()
         ground = world.create_body()  # static by default
@@ -71,22 +81,18 @@ def main():
             f"Hearth {hearth.VERSION_MAJOR}.{hearth.VERSION_MINOR}.{hearth.VERSION_PATCH} Python example: "
             f"pyramid of {PYRAMID_BOXES} boxes (base {BASE}) + pile of {PILE_BODIES} spheres/boxes"
         )
-        # "state hash": every body's position, rotation, linear and angular velocity (13 floats,
-        # bit for bit) after every step, folded into one running FNV-1a hash, as in pyramid.c.
         print("%8s %14s %8s %16s" % ("t [s]", "top box y [m]", "awake", "state hash"))
         state_hash = 0xCBF29CE484222325
 
         ids = hearth.body_ids(bodies)  # built once, reused every report
-        transforms = None  # caller-owned, filled in one call per step
+        transforms = None  # caller-owned, filled in one call per report
         for step in range(1, STEPS + 1):
             world.step(DT)
             transforms = world.get_transforms(ids, out=transforms)
-            for b, body in enumerate(bodies):
-                state = list(transforms[7 * b : 7 * b + 7]) + list(body.linear_velocity) + list(body.angular_velocity)
-                for bits in struct.unpack("<13I", struct.pack("<13f", *state)):
-                    state_hash = ((state_hash ^ bits) * 0x100000001B3) & 0xFFFFFFFFFFFFFFFF
+            state_hash = hash_state(state_hash, bodies, transforms)  # after every step
             if step % REPORT_EVERY != 0:
                 continue
+            transforms = world.get_transforms(ids, out=transforms)
             awake = sum(1 for body in bodies if body.is_awake)
             t = f32(step * DT)
             top_y = transforms[7 * top + 1]  # 7 floats per transform: position x, y, z, rotation
