@@ -5,8 +5,8 @@
 //! `src/capi/*.rs` and `build.rs`) state, with what backs it:
 //!
 //! * `Measured`: the test(s) asserting it at the stated precision. The test must exist and
-//!   its body must mention the figure's number (the bound, or a comment quoting the
-//!   document next to it), so the two are read side by side.
+//!   its doc comment or body must mention the figure's number (the bound, or a comment
+//!   quoting the document next to it), so the two are read side by side.
 //! * `Input`: a quantity a test's scene is built with (a mass, a height, a load); the test
 //!   must exist.
 //! * `Range`: an end of a supported range or a documented limit; `tests/ranges.rs` checks
@@ -306,15 +306,25 @@ fn root() -> &'static Path {
     Path::new(env!("CARGO_MANIFEST_DIR"))
 }
 
-/// The body of `fn name` in `tests/<file>.rs` (to the first line that is a lone `}`).
+/// `fn name` in `tests/<file>.rs` with its doc comment and attributes (the lines right above
+/// it), to the first line that is a lone `}`.
 fn test_body(path: &str) -> String {
     let (file, name) = path.split_once("::").unwrap();
     let source = std::fs::read_to_string(root().join("tests").join(format!("{file}.rs")))
         .unwrap_or_else(|_| panic!("{path}: no tests/{file}.rs"));
-    let start = source
+    let fn_at = source
         .find(&format!("fn {name}("))
         .unwrap_or_else(|| panic!("{path}: no function {name} in tests/{file}.rs"));
-    let end = source[start..].find("\n}\n").map_or(source.len(), |e| start + e);
+    let mut start = source[..fn_at].rfind('\n').map_or(0, |i| i + 1);
+    while start > 0 {
+        let above = source[..start - 1].rfind('\n').map_or(0, |i| i + 1);
+        let line = source[above..start - 1].trim_start();
+        if !(line.starts_with("///") || line.starts_with("#[")) {
+            break;
+        }
+        start = above;
+    }
+    let end = source[fn_at..].find("\n}\n").map_or(source.len(), |e| fn_at + e);
     source[start..end].to_string()
 }
 
