@@ -148,7 +148,7 @@ int main(int argc, char **argv) {
     printf("Hearth %u.%u.%u C example: pyramid of %d boxes (base %d) + pile of %d spheres/boxes\n",
            (unsigned)HEARTH_VERSION_MAJOR, (unsigned)HEARTH_VERSION_MINOR,
            (unsigned)HEARTH_VERSION_PATCH, PYRAMID_BOXES, BASE, PILE_BODIES);
-    printf("%8s %14s %8s %16s\n", "t [s]", "top box y [m]", "awake", "state hash");
+    printf("%8s %14s %16s %8s\n", "t [s]", "top box y [m]", "state hash", "awake");
     uint64_t hash = UINT64_C(0xcbf29ce484222325);
 
     HearthTransform transforms[MAX_BODIES]; /* caller-owned, filled in one call per report */
@@ -172,8 +172,8 @@ int main(int argc, char **argv) {
             awake += is_awake ? 1 : 0;
         }
         double t = (double)((float)step * DT);
-        printf("%8.2f %14.3f %4d/%d %016" PRIx64 "\n", t, (double)transforms[top].position.y, awake,
-               (int)count, hash);
+        printf("%8.2f %14.3f %016" PRIx64 " %4d/%d\n", t, (double)transforms[top].position.y, hash,
+               awake, (int)count);
     }
 
     if (argc > 1) {

@@ -89,7 +89,7 @@ void run() {
     std::printf("Hearth %u.%u.%u C++ example: pyramid of %d boxes (base %d) + pile of %d spheres/boxes\n",
                 (unsigned)HEARTH_VERSION_MAJOR, (unsigned)HEARTH_VERSION_MINOR, (unsigned)HEARTH_VERSION_PATCH,
                 PYRAMID_BOXES, BASE, PILE_BODIES);
-    std::printf("%8s %14s %8s %16s\n", "t [s]", "top box y [m]", "awake", "state hash");
+    std::printf("%8s %14s %16s %8s\n", "t [s]", "top box y [m]", "state hash", "awake");
     std::uint64_t hash = 0xcbf29ce484222325ull;
 
     std::vector<hearth::Transform> transforms(bodies.size()); // filled in one call per report
@@ -105,8 +105,8 @@ void run() {
             awake += world.body(id).is_awake() ? 1 : 0;
         }
         const double t = (double)((float)step * DT);
-        std::printf("%8.2f %14.3f %4d/%d %016" PRIx64 "\n", t, (double)transforms[top].position.y, awake,
-                    (int)bodies.size(), hash);
+        std::printf("%8.2f %14.3f %016" PRIx64 " %4d/%d\n", t, (double)transforms[top].position.y, hash, awake,
+                    (int)bodies.size());
     }
 }
 

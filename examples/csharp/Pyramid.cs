@@ -139,7 +139,7 @@ internal static class Pyramid
 
                 Console.WriteLine("Hearth {0}.{1}.{2} C# example: pyramid of {3} boxes (base {4}) + pile of {5} spheres/boxes",
                     Native.VersionMajor, Native.VersionMinor, Native.VersionPatch, PyramidBoxes, Base, PileBodies);
-                Console.WriteLine("{0,8} {1,14} {2,8} {3,16}", "t [s]", "top box y [m]", "awake", "state hash");
+                Console.WriteLine("{0,8} {1,14} {2,16} {3,8}", "t [s]", "top box y [m]", "state hash", "awake");
                 ulong hash = 0xcbf29ce484222325UL;
 
                 var transforms = new Transform[MaxBodies]; // caller-owned, filled in one call per report
@@ -158,8 +158,8 @@ internal static class Pyramid
                         awake += world.GetBody(bodies[b]).IsAwake ? 1 : 0;
                     }
                     float t = (float)((float)step * Dt); // rounded to float as in C
-                    Console.WriteLine("{0} {1} {2,4}/{3} {4}", Fixed(t, 2, 8), Fixed(transforms[top].Position.Y, 3, 14), awake, count,
-                        hash.ToString("x16", CultureInfo.InvariantCulture));
+                    Console.WriteLine("{0} {1} {2} {3,4}/{4}", Fixed(t, 2, 8), Fixed(transforms[top].Position.Y, 3, 14),
+                        hash.ToString("x16", CultureInfo.InvariantCulture), awake, count);
                 }
             }
         }

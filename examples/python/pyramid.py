@@ -81,7 +81,7 @@ def main():
             f"Hearth {hearth.VERSION_MAJOR}.{hearth.VERSION_MINOR}.{hearth.VERSION_PATCH} Python example: "
             f"pyramid of {PYRAMID_BOXES} boxes (base {BASE}) + pile of {PILE_BODIES} spheres/boxes"
         )
-        print("%8s %14s %8s %16s" % ("t [s]", "top box y [m]", "awake", "state hash"))
+        print("%8s %14s %16s %8s" % ("t [s]", "top box y [m]", "state hash", "awake"))
         state_hash = 0xCBF29CE484222325
 
         ids = hearth.body_ids(bodies)  # built once, reused every report
@@ -96,7 +96,7 @@ def main():
             awake = sum(1 for body in bodies if body.is_awake)
             t = f32(step * DT)
             top_y = transforms[7 * top + 1]  # 7 floats per transform: position x, y, z, rotation
-            print("%8.2f %14.3f %4d/%d %016x" % (t, top_y, awake, len(bodies), state_hash))
+            print("%8.2f %14.3f %016x %4d/%d" % (t, top_y, state_hash, awake, len(bodies)))
 
     print("done")
     return 0
