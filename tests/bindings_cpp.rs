@@ -101,6 +101,7 @@ fn cpp_wrapper_without_exceptions() {
     );
 }
 
+/// The pyramid examples step 30 s and exit with status 1 unless every body sleeps by then.
 #[test]
 fn cpp_pyramid_prints_what_the_c_pyramid_prints() {
     let cpp = build("examples/cpp/pyramid.cpp", "pyramid_cpp", true, Link::Shared, &[]);

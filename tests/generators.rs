@@ -111,7 +111,8 @@ fn spring_period_matches_two_pi_sqrt_m_over_k() {
             "spring period ({name}): {period:.5} s, expected {expected:.5} s, error {:.4}%",
             100.0 * err
         );
-        assert!(err < 0.01, "{name}: period {period}, expected {expected}");
+        // Measured 0.029 % (particle, look-ahead spring) and 0.0008 % (body).
+        assert!(err < 5e-4, "{name}: period {period}, expected {expected}");
     }
 }
 
@@ -215,8 +216,9 @@ fn stiff_spring_decay_and_frequency_are_exact() {
                 100.0 * err,
                 100.0 * perr
             );
-            assert!(err < 0.01, "decay {measured}, expected {expected}");
-            assert!(perr < 0.01, "period {period}, expected {expected_period}");
+            // "Exact": measured 0.0000 % for both (f32 rounding); 1e-5 bounds it.
+            assert!(err < 1e-5, "decay {measured}, expected {expected}");
+            assert!(perr < 1e-5, "period {period}, expected {expected_period}");
         }
     }
 }
@@ -235,11 +237,22 @@ fn stiff_spring_is_stable_where_an_explicit_spring_explodes() {
         })
         .unwrap();
     w.attach_particle(g, p).unwrap();
-    for _ in 0..600 {
+    // The exact damped oscillator from rest at 0.5 m: ζ = c/(2√(k·m)) = 0.005, so
+    // |x(t)| ≤ 0.5·e^(−ζωt)/√(1−ζ²) with ζω = c/2m = 5/s. The stiff spring's step has the
+    // exact eigenvalues (so the exact decay per step), not the exact eigenvectors: sampled at
+    // ω·dt ≈ 17 its amplitude stays within 3 % of that envelope (measured at most 2.7 %
+    // above it, over all 10 s), so it decays at the exact rate, to 1e-22 m after 10 s.
+    let mut worst = 0.0f32;
+    for k in 1..=600 {
         w.step(DT).unwrap();
-        assert!(w.particle_position(p).unwrap().length() <= 0.5 + 1e-3);
+        let t = k as f32 * DT;
+        let envelope = 0.5 * (-5.0 * t).exp() / (1.0f32 - 0.005 * 0.005).sqrt();
+        let x = w.particle_position(p).unwrap().length();
+        worst = worst.max(x / envelope);
+        assert!(x <= 1.03 * envelope, "at {t} s: {x} m, envelope {envelope} m");
     }
-    assert!(w.particle_position(p).unwrap().length() < 0.5);
+    println!("stiff spring: largest amplitude over the exact envelope {worst}");
+    assert!(w.particle_position(p).unwrap().length() < 1e-20);
 }
 
 #[test]
@@ -327,7 +340,8 @@ fn buoyancy_equilibrium_depth_follows_archimedes() {
                 surface - y,
                 100.0 * err
             );
-            assert!(err < 0.02, "{name}: y {y}, expected {expected_y}");
+            // Measured at most 0.001 % of the submerged height.
+            assert!(err < 1e-4, "{name}: y {y}, expected {expected_y}");
         }
     }
 }
@@ -357,7 +371,8 @@ fn drag_terminal_velocity_matches_analytic() {
                 "drag m={m}: {name} terminal velocity {v:.5} m/s, analytic {vt:.5} m/s, error {:.4}%",
                 100.0 * err
             );
-            assert!(err < 0.01, "{name}: {v}, expected {vt}");
+            // Measured at most 0.0009 %.
+            assert!(err < 2e-5, "{name}: {v}, expected {vt}");
         }
     }
 }
@@ -476,7 +491,7 @@ fn rod_between_bodies_holds_length_and_cable_goes_slack() {
     println!("rigid rod: worst length error {worst:.5} m");
     // A generated contact keeps one normal per step, so a swinging rod stretches by about
     // (v·dt)²/2L between steps (1.3 mm here); distance joints re-aim every sub-step.
-    assert!(worst < 0.01, "rod length error {worst}");
+    assert!(worst < 1.5e-3, "rod length error {worst}"); // measured 1.32 mm
     assert!(w.generator(rod).is_ok());
 
     let c = ball(&mut w, Vec3::new(10.0, 4.0, 0.0), 1.0);

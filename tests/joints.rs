@@ -148,7 +148,11 @@ fn hinge_pendulum_matches_its_period() {
         "pendulum: period {period:.5} s, expected {expected:.5} s, error {:.4}%",
         err * 100.0
     );
-    assert!(n >= 4 && err < 0.01, "period {period}, expected {expected}");
+    // README: "hinge pendulum period within 0.001 %" (measured 0.0004 %).
+    assert!(
+        n >= 4 && err < 1e-5,
+        "period {period}, expected {expected}, error {err:e}"
+    );
 }
 
 /// A chain of `n` capsule links on ball joints from a world anchor, ending in a sphere of
@@ -222,11 +226,14 @@ fn heavy_chain_barely_stretches_and_does_not_jitter() {
             }
         }
         println!(
-            "chain {what}: largest stretch {:.4}% (limit 1%), late speed {late_speed:.2e} m/s",
+            "chain {what}: largest stretch {:.4}%, late speed {late_speed:.2e} m/s",
             max_stretch * 100.0
         );
         assert_eq!(w.settings.substeps, WorldSettings::default().substeps);
-        assert!(max_stretch < 0.001, "{what}: stretch {max_stretch}");
+        // README and ARCHITECTURE: the hanging chain "stretches 0.000 %", i.e. under
+        // 0.0005 % (measured 0.0003 %); swinging from 30° it measures 0.0012 %.
+        let limit = if angle == 0.0 { 5e-6 } else { 2e-5 };
+        assert!(max_stretch < limit, "{what}: stretch {:.5} %", 100.0 * max_stretch);
         if angle == 0.0 {
             // Hanging at rest: no jitter.
             assert!(late_speed < 1e-4, "hanging chain jitters: {late_speed} m/s");
@@ -299,7 +306,12 @@ fn hinge_and_slider_limits_hold_under_load() {
             "hinge limit: largest angle {worst:.4} rad, settled {settled:.4} under {torque} N·m (limit 0.3), joint gap {:.2e} m",
             gap(&w, joint_handles(&w)[0])
         );
-        assert!(worst < 0.3 + 0.01, "hinge angle {worst} under {torque} N·m");
+        // README: the limit holds "without overshoot" (measured 0.2981 rad, under the
+        // limit: the point rows give a little, so the arm's centre sits slightly inside).
+        assert!(worst < 0.3 + 1e-4, "hinge angle {worst} under {torque} N·m");
+        // ARCHITECTURE: held at its limit, the arm "sags 1.9 mm" (measured 1.86 mm).
+        let sag = gap(&w, joint_handles(&w)[0]);
+        assert!(sag < 1.95e-3, "joint gap at the limit {sag} m");
         // The point rows' stiff soft response gives a little under the load (the angle is
         // measured at the arm's centre, 1 m out).
         assert!((settled - 0.3).abs() < 0.01, "settled hinge angle {settled}");
@@ -495,6 +507,17 @@ fn ragdoll_falls_and_settles() {
         w.set_angular_velocity(b, Vec3::new(0.5, 0.0, 2.0)).unwrap();
     }
     let js = joint_handles(&w);
+    let potential = |w: &World| -> f32 {
+        parts
+            .iter()
+            .map(|&b| w.body(b).unwrap().mass * G * w.transform(b).unwrap().p.y)
+            .sum()
+    };
+    // Nothing drives the ragdoll: its energy (kinetic plus potential) never exceeds the
+    // start's. (Contacts push out at up to contact_push_max_velocity, which may lift a
+    // body a little: 1 % of the start energy is allowed, about 16 J.)
+    let start_energy = kinetic_energy(&w, &parts) + potential(&w);
+    let mut most_energy = f32::MIN;
     let mut worst_gap = 0.0f32;
     let mut max_speed = 0.0f32;
     let mut peak_energy = 0.0f32;
@@ -507,6 +530,7 @@ fn ragdoll_falls_and_settles() {
         }
         worst_gap = worst_gap.max(js.iter().map(|&j| gap(&w, j)).fold(0.0, f32::max));
         let e = kinetic_energy(&w, &parts);
+        most_energy = most_energy.max(e + potential(&w));
         peak_energy = peak_energy.max(e);
         if k as f32 * DT >= 6.0 {
             late_energy = late_energy.max(e);
@@ -536,8 +560,16 @@ fn ragdoll_falls_and_settles() {
          kinetic energy peak {peak_energy:.1} J, largest over 6..8 s {late_energy:.2e} J, below 1 mJ from {settled_at:?} s; end speed {end_speed:.4} m/s; asleep {asleep}",
         parts.len()
     );
-    assert!(max_speed < 15.0, "blew up: {max_speed} m/s");
-    assert!(worst_gap < 0.05, "joint gap {worst_gap}");
+    println!("ragdoll energy: start {start_energy:.1} J, largest {most_energy:.1} J");
+    assert!(
+        most_energy <= start_energy + 0.01 * start_energy.abs(),
+        "energy grew: {start_energy} -> {most_energy} J"
+    );
+    // Free fall from the highest part (2.9 m up) gives 7.5 m/s; with the spin the fastest
+    // part measured 8.72 m/s. More than 9.5 m/s would take energy from nowhere.
+    assert!(max_speed < 9.5, "top speed {max_speed} m/s");
+    // Measured 25.4 mm (the head and limbs hitting the ground at 8 m/s).
+    assert!(worst_gap < 0.03, "joint gap {worst_gap}");
     assert!(lowest > 0.0 && highest < 1.5, "heights {lowest}..{highest}");
     // At rest: 5 mJ is a 60 kg body moving at 1.3 cm/s (measured: under 1 mJ from about 3 s). The sphere head can keep rolling
     // slowly in place (a neutral mode: about the line through its neck anchor and its ground
@@ -737,13 +769,19 @@ fn distance_spring_oscillates_at_its_frequency() {
         w.step(DT).unwrap();
         let v = w.linear_velocity(b).unwrap().y;
         if prev < 0.0 && v >= 0.0 {
-            crossings.push(k as f32 * DT);
+            // Interpolated within the step.
+            crossings.push((k as f32 - 1.0 + prev / (prev - v)) * DT);
         }
         prev = v;
     }
     let period = (crossings[crossings.len() - 1] - crossings[0]) / (crossings.len() - 1) as f32;
-    println!("distance spring: period {period:.4} s, expected 0.5");
-    assert!((period - 0.5).abs() < 0.05, "period {period}");
+    let err = (period - 0.5).abs() / 0.5;
+    println!(
+        "distance spring: period {period:.5} s, expected 0.5, error {:.3} %",
+        100.0 * err
+    );
+    // A 2 Hz spring: the period is 0.5 s within 0.1 % (measured 0.055 %).
+    assert!(crossings.len() >= 5 && err < 1e-3, "period {period}");
 }
 
 #[test]
@@ -911,5 +949,7 @@ fn a_joint_grid_hangs_without_blowing_up() {
         .map(|&b| w.linear_velocity(b).unwrap().length())
         .fold(0.0f32, f32::max);
     println!("joint grid 20×20 after 10 s: largest joint gap {worst:.4} m, top speed {speed:.3} m/s");
-    assert!(worst < 0.1 && speed.is_finite() && speed < 20.0);
+    // Measured: gap 3.5 mm, at rest (1 mm/s) after 10 s.
+    assert!(worst < 4e-3, "largest joint gap {worst} m");
+    assert!(speed < 0.01, "the grid should hang at rest: {speed} m/s");
 }

@@ -132,7 +132,8 @@ fn assert_sags(label: &str, errors: &[f32], expected: &[f32]) {
 }
 
 /// A box 1, 10 or 100 times heavier than the box it rests on (both 1 m), on a plane and on a
-/// box floor: both rest at the closed-form heights (the heavy one 4.3 mm low at 1:100) and
+/// box floor: both rest at the closed-form heights (about 0.031 mm low per unit of mass
+/// ratio: the heavy one 4.3 mm low at 1:100) and
 /// sleep within 5 s. (A box floor used to rock the light box at 1:30 and up: see
 /// `Batches::build`, which now solves each body's ground contacts last.)
 #[test]
@@ -218,7 +219,7 @@ fn random_stacks_of_mixed_masses_rest_at_the_closed_form_heights() {
 }
 
 /// At 1:1000 a heavy box still comes to rest on a light one, 3.9 cm deep (closed form within
-/// 5 %), and sleeps within 20 s (measured 12.7 s). This is the edge of the supported range:
+/// 5 %; README: about 4 cm), and sleeps within 20 s (measured 12.7 s). This is the edge of the supported range:
 /// at 1:3000 the pair keeps bouncing, and at 1:10,000 the heavy box sinks through (the spring
 /// would sag 0.3 m).
 #[test]

@@ -41,6 +41,24 @@ fn allocations_per_step(world: &mut hearth::World, warmup: usize, measured: usiz
 // One test function: the counter is global, so the scenes run one after another.
 #[test]
 fn steady_steps_do_not_allocate() {
+    // Through the C API: hearth_world_step with user callbacks, a spring, joints, a soft
+    // body and particles expiring every 15 steps.
+    let mut scene = capi_scene::Scene::new();
+    for k in 0..240 {
+        scene.step(k);
+    }
+    let (expired, before) = (scene.expired, ALLOCATIONS.load(Ordering::Relaxed));
+    for k in 240..480 {
+        scene.step(k);
+    }
+    let allocations = ALLOCATIONS.load(Ordering::Relaxed) - before;
+    assert!(
+        scene.expired - expired >= 16 * 15,
+        "particles expired while measured: {}",
+        scene.expired - expired
+    );
+    assert_eq!(allocations, 0, "C API scene: allocations in 240 steps");
+
     let mut w = scenes::world(false);
     scenes::pyramid(&mut w, 10);
     assert_eq!(allocations_per_step(&mut w, 120, 120), 0, "pyramid (sleep off)");
@@ -73,5 +91,180 @@ fn steady_steps_do_not_allocate() {
             "bodies on a {} (sleep off)",
             if heightfield { "heightfield" } else { "mesh" }
         );
+    }
+}
+
+mod capi_scene {
+    //! A scene built and stepped through the C API (`hearth_world_step`): user force and
+    //! contact callbacks, a built-in spring, a ball-joint chain, a soft ball, and bursts of
+    //! particles that keep expiring.
+    use hearth::capi::body::*;
+    use hearth::capi::callback::*;
+    use hearth::capi::error::{HearthResult, HEARTH_OK};
+    use hearth::capi::generator::*;
+    use hearth::capi::joint::*;
+    use hearth::capi::particle::*;
+    use hearth::capi::shape::*;
+    use hearth::capi::soft::*;
+    use hearth::capi::types::*;
+    use hearth::capi::world::*;
+
+    fn ok(r: HearthResult) {
+        assert_eq!(r, HEARTH_OK, "a C API call failed");
+    }
+
+    fn v(x: f32, y: f32, z: f32) -> HearthVec3 {
+        HearthVec3 { x, y, z }
+    }
+
+    unsafe extern "C" fn push(_: *mut std::ffi::c_void, world: *mut HearthWorld, ctx: *const HearthGeneratorContext) {
+        let c = &*ctx;
+        for i in 0..c.body_count {
+            ok(hearth_body_apply_force(world, *c.bodies.add(i), v(0.0, 5.0, 1.0)));
+        }
+    }
+
+    unsafe extern "C" fn hold(
+        _: *mut std::ffi::c_void,
+        _: *mut HearthWorld,
+        ctx: *const HearthGeneratorContext,
+        sink: *mut HearthContactSink,
+    ) {
+        let c = &*ctx;
+        for i in 0..c.body_count {
+            // A contact holding the body above y = 0.25 (it rests on the ground there).
+            let contact = HearthGeneratedContact {
+                body_a: *c.bodies.add(i),
+                particle_a: Default::default(),
+                body_b: Default::default(),
+                particle_b: Default::default(),
+                point: v(3.0, 0.0, 0.0),
+                normal: v(0.0, 1.0, 0.0),
+                penetration: 0.0,
+                restitution: 0.0,
+                friction: 0.5,
+            };
+            ok(hearth_contact_sink_add(sink, &contact));
+        }
+    }
+
+    pub struct Scene {
+        pub world: *mut HearthWorld,
+        burst: HearthBurstDef,
+        pub expired: usize,
+    }
+
+    impl Scene {
+        pub fn new() -> Scene {
+            unsafe {
+                let mut wd = hearth_world_def_default();
+                wd.enable_sleep = 0;
+                let mut world = std::ptr::null_mut();
+                ok(hearth_world_create(&wd, &mut world));
+                let sd = hearth_shape_def_default();
+                let mut ground = Default::default();
+                ok(hearth_body_create(world, &hearth_body_def_default(), &mut ground));
+                let mut s = Default::default();
+                let plane = HearthPlane {
+                    normal: v(0.0, 1.0, 0.0),
+                    offset: 0.0,
+                };
+                ok(hearth_shape_create_plane(world, ground, &sd, &plane, &mut s));
+                let dynamic_box = |p: HearthVec3| {
+                    let mut bd = hearth_body_def_default();
+                    bd.r#type = HEARTH_BODY_DYNAMIC;
+                    bd.transform.position = p;
+                    let mut b = Default::default();
+                    ok(hearth_body_create(world, &bd, &mut b));
+                    let shape = HearthBox {
+                        center: v(0.0, 0.0, 0.0),
+                        rotation: HearthQuat {
+                            x: 0.0,
+                            y: 0.0,
+                            z: 0.0,
+                            w: 1.0,
+                        },
+                        half_extents: v(0.25, 0.25, 0.25),
+                    };
+                    let mut s = Default::default();
+                    ok(hearth_shape_create_box(world, b, &sd, &shape, &mut s));
+                    b
+                };
+                // A chain of three boxes on ball joints from a world anchor: it swings.
+                let mut prev = HearthBodyId::default();
+                for k in 0..3 {
+                    let b = dynamic_box(v(0.6 * (k + 1) as f32, 5.0, 0.0));
+                    let mut jd = hearth_ball_joint_def_default();
+                    jd.base.body_a = b;
+                    jd.base.body_b = prev;
+                    jd.base.frame_a.position = v(-0.3, 0.0, 0.0);
+                    jd.base.frame_b.position = if k == 0 { v(0.0, 5.0, 0.0) } else { v(0.3, 0.0, 0.0) };
+                    let mut j = Default::default();
+                    ok(hearth_joint_create_ball(world, &jd, &mut j));
+                    prev = b;
+                }
+                // A box pushed by a user force callback, held by a user contact callback.
+                let pushed = dynamic_box(v(3.0, 0.25, 0.0));
+                let mut fd = hearth_user_force_generator_def_default();
+                fd.callback = Some(push);
+                let mut g = Default::default();
+                ok(hearth_generator_create_user_force(world, &fd, &mut g));
+                ok(hearth_generator_attach_body(world, g, pushed));
+                let mut cd = hearth_user_contact_generator_def_default();
+                cd.callback = Some(hold);
+                ok(hearth_generator_create_user_contact(world, &cd, &mut g));
+                ok(hearth_generator_attach_body(world, g, pushed));
+                // A box on a built-in spring from a world point.
+                let bobbing = dynamic_box(v(-3.0, 2.0, 0.0));
+                let mut spd = hearth_spring_generator_def_default();
+                spd.other.point = v(-3.0, 4.0, 0.0);
+                spd.stiffness = 200.0;
+                ok(hearth_generator_create_spring(world, &spd, &mut g));
+                ok(hearth_generator_attach_body(world, g, bobbing));
+                // A soft ball dropped on the ground.
+                let mut soft = hearth_soft_body_def_default();
+                soft.transform.position = v(0.0, 1.0, 3.0);
+                soft.pressure = 300.0;
+                let mut h = Default::default();
+                ok(hearth_soft_body_create_icosphere(world, &soft, 0.4, 2, &mut h));
+                let mut burst = hearth_burst_def_default();
+                burst.position = v(0.0, 0.5, -3.0);
+                burst.lifetime_min = 0.1;
+                burst.lifetime_max = 0.2;
+                Scene {
+                    world,
+                    burst,
+                    expired: 0,
+                }
+            }
+        }
+
+        /// One step: every 15th emits a burst of 16 particles living 0.1..0.2 s, so each
+        /// burst has expired (and been reported) before the next.
+        pub fn step(&mut self, k: usize) {
+            unsafe {
+                if k % 15 == 0 {
+                    self.burst.seed = k as u64 + 1;
+                    ok(hearth_particle_emit_burst(
+                        self.world,
+                        &self.burst,
+                        std::ptr::null_mut(),
+                        0,
+                        std::ptr::null_mut(),
+                    ));
+                }
+                ok(hearth_world_step(self.world, 1.0 / 60.0));
+                let mut expired = std::ptr::null();
+                let mut count = 0;
+                ok(hearth_world_get_expired_particles(self.world, &mut expired, &mut count));
+                self.expired += count;
+            }
+        }
+    }
+
+    impl Drop for Scene {
+        fn drop(&mut self) {
+            unsafe { hearth_world_destroy(self.world) };
+        }
     }
 }

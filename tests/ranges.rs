@@ -563,6 +563,11 @@ fn the_largest_torque_on_the_smallest_body_leaves_it_finite() {
         },
     )
     .unwrap();
+    // README: the lightest body's inertia, 1.7e-18 kg·m² (2/5·m·r² of a 1 mm sphere of the
+    // lightest density), is far above f32's smallest normal number (1.2e-38).
+    let inertia = 0.4 * w.body(tiny).unwrap().mass * MIN_LENGTH * MIN_LENGTH;
+    assert!((inertia / 1.7e-18 - 1.0).abs() < 0.02, "lightest inertia {inertia:e}");
+    assert!(inertia > 1e20 * f32::MIN_POSITIVE);
     for _ in 0..10 {
         w.apply_torque(tiny, Vec3::new(MAX_FORCE, 0.0, 0.0), true).unwrap();
         w.apply_torque(boxy, Vec3::new(MAX_FORCE, MAX_FORCE, 0.0) * 0.7, true)

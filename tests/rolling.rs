@@ -291,6 +291,7 @@ impl Rng {
 /// sub-steps instead of 6 it gains nothing. At 0.3 rad of roll per sub-step the gyroscopic
 /// precession tips the rod against its contacts faster than the sub-steps resolve; a limit of
 /// the sub-step rate, not covered here.
+/// README: all sleep by 1.2× their analytic stopping time plus 4.5 s (`SETTLE`).
 #[test]
 fn random_rolling_bodies_lose_energy_and_come_to_rest() {
     let mut rng = Rng(0x5eed_1234_abcd_0042);
@@ -402,7 +403,7 @@ fn random_rolling_bodies_lose_energy_and_come_to_rest() {
 /// Seconds from stopping to sleeping, at most: the recency-weighted motion (half-life 1 s)
 /// falls from its cap of 10× the threshold to the threshold in 3.3 s, then the body must stay
 /// still for `time_to_sleep` (0.5 s).
-const SETTLE: f32 = 4.5;
+const SETTLE: f32 = 4.5; // README: "plus 4.5 s"
 
 /// The demo (`examples/demo.rs`): a 91-box pyramid hit by four balls and four boxes dropped
 /// from 9–16.5 m. The balls roll off across the ground box and stop; every body sleeps by

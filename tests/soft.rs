@@ -133,6 +133,7 @@ fn pressurised_icosphere_bounces_settles_and_keeps_its_volume() {
     // At rest the inextensible skin holds the rest volume (0.17 % measured). At the impact
     // the skin, a membrane that buckles rather than a shell that resists compression,
     // flattens and the gas takes the landing: 6.7 % measured.
+    // README: "within 0.5 % at rest".
     assert!(volume_error < 0.005, "volume error {volume_error}");
     assert!(worst < 0.075, "worst volume error {worst}");
 }
@@ -179,6 +180,12 @@ fn doubling_the_pressure_makes_the_ball_stiffer() {
     assert!(dents[1] < 0.8 * dents[0], "{dents:?}");
 }
 
+/// Edge and bend compliance over four decades, each on a 162-vertex ball (the same 5 kg,
+/// 0.5 m ball one subdivision coarser: the compliance, not the vertex count, is what is
+/// swept; the 642-vertex ball has its own tests above). It falls, bounces and settles; its
+/// energy never grows after the landing and it comes to rest. (The 642-vertex version ran 60
+/// s of simulation per compliance, half the Rust suite's time; this covers the same
+/// compliances over 20 s each, a twelfth of the work.)
 #[test]
 fn stiffness_sweep_stays_finite_without_energy_growth() {
     for compliance in [1.0e-7, 1.0e-6, 1.0e-5, 1.0e-4, 1.0e-3] {
@@ -188,10 +195,10 @@ fn stiffness_sweep_stays_finite_without_energy_growth() {
             bend_compliance: compliance,
             ..ball_def(1.0, 300.0)
         };
-        let h = w.create_soft_body(&def, &mesh::icosphere(0.5, 3), None).unwrap();
+        let h = w.create_soft_body(&def, &mesh::icosphere(0.5, 2), None).unwrap();
         let mut early: f32 = f32::MIN;
         let mut late: f32 = f32::MIN;
-        for step in 0..3600 {
+        for step in 0..1200 {
             w.step(DT).unwrap();
             let s = w.soft_body(h).unwrap();
             assert!(
@@ -199,15 +206,15 @@ fn stiffness_sweep_stays_finite_without_energy_growth() {
                 "compliance {compliance}"
             );
             let (k, p) = energy(&w, h);
-            if (600..1200).contains(&step) {
+            if (300..600).contains(&step) {
                 early = early.max(k + p);
-            } else if step >= 1200 {
+            } else if step >= 600 {
                 late = late.max(k + p);
             }
         }
         let (k, _) = energy(&w, h);
         println!(
-            "compliance {compliance:e}: max energy 10-20 s {early:.3} J, 20-60 s {late:.3} J, final kinetic {k:.5}"
+            "compliance {compliance:e}: max energy 5-10 s {early:.3} J, 10-20 s {late:.3} J, final kinetic {k:.5}"
         );
         assert!(
             late <= early + 0.01,
@@ -261,9 +268,11 @@ fn hang_cloth(n: u32) -> (f32, f32) {
 fn cloth_pinned_at_two_corners_hangs_without_stretching() {
     let (stretch, low) = hang_cloth(16);
     // 0.07 % measured.
-    assert!(stretch < 0.005, "stretch {stretch}");
+    assert!(stretch < 1e-3, "stretch {stretch}");
+    // 2 m of cloth hanging from 3 m: its lowest point 1 m up, a little higher as the free
+    // corners swing in (measured 1.014 m).
     assert!(
-        (low - 1.0).abs() < 0.05,
+        (low - 1.0).abs() < 0.02,
         "the cloth should hang straight down, lowest {low}"
     );
 }
@@ -273,10 +282,10 @@ fn a_64x64_cloth_pinned_at_two_corners_hangs_without_stretching() {
     // One Gauss-Seidel pass per sub-step rang this cloth apart (> 100 % stretch); two passes
     // and tethers to both pins hang it.
     let (stretch, low) = hang_cloth(64);
-    // 0.40 % measured.
-    assert!(stretch < 0.005, "stretch {stretch}");
+    // README: "stretches less than 0.5 %" (measured 0.40 %).
+    assert!(stretch < 4.5e-3, "stretch {stretch}");
     assert!(
-        (low - 1.0).abs() < 0.05,
+        (low - 1.0).abs() < 0.02,
         "the cloth should hang straight down, lowest {low}"
     );
 }
@@ -315,7 +324,14 @@ fn a_soft_ball_pushes_a_rigid_box() {
     let p = w.transform(bx).unwrap().p;
     let c = w.soft_body(h).unwrap().center();
     println!("push: box moved {:.3} m, ball centre x {:.3}", p.x - 1.0, c.x);
-    assert!(p.x > 1.25, "the box should be pushed along +x: {}", p.x);
+    // The 5 kg ball at 4 m/s brings 40 J; friction (μ 0.6) on the 2.5 kg box takes
+    // 14.7 J per metre, so the ball's energy alone could push it at most 2.7 m. Measured:
+    // the box moved 1.197 m.
+    assert!(
+        p.x - 1.0 > 1.1 && p.x - 1.0 < 2.7,
+        "the box was pushed {} m along +x",
+        p.x - 1.0
+    );
     assert!(c.x < p.x, "the ball stays behind the box");
 }
 
@@ -341,7 +357,8 @@ fn static_box(w: &mut World, p: Vec3, half: Vec3) {
 #[test]
 fn a_rigid_box_dropped_on_a_soft_ball_dents_it_and_rests_on_it() {
     let dent = drop_box_on_ball(500.0);
-    assert!(dent > 0.015, "the ball should be dented: {dent}");
+    // README: the box "dents it 25 mm" (measured 24.6 mm).
+    assert!((dent - 0.025).abs() < 1.5e-3, "dent {} mm", 1000.0 * dent);
 }
 
 /// A 3.2 kg box dropped on the 642-vertex ball of gas `pressure`: checks that it comes to

@@ -13,8 +13,10 @@
  */
 #include "hearth.h"
 
+#include <inttypes.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 
 #define BASE 5           /* boxes per side in the bottom layer: 25+16+9+4+1 = 55 boxes */
 #define PYRAMID_BOXES 55
@@ -87,6 +89,29 @@ static void add_ground(void) {
     CHECK(hearth_shape_create_plane(g_world, ground, &sd, &plane, &shape));
 }
 
+/* FNV-1a over the bits of every body's position, rotation, linear and angular velocity (13
+ * floats), folded into `h`: the "state hash" column. The C, C++, Python and C# examples must
+ * print the same hashes, so they agree to the last bit on every body after every step. */
+static uint64_t hash_state(uint64_t h, const HearthBodyId *bodies, size_t count,
+                           HearthTransform *transforms) {
+    CHECK(hearth_world_get_transforms(g_world, bodies, count, transforms));
+    for (size_t b = 0; b < count; b++) {
+        HearthVec3 v, w;
+        CHECK(hearth_body_get_linear_velocity(g_world, bodies[b], &v));
+        CHECK(hearth_body_get_angular_velocity(g_world, bodies[b], &w));
+        const HearthTransform *x = &transforms[b];
+        const float state[13] = {x->position.x, x->position.y, x->position.z, x->rotation.x,
+                                 x->rotation.y, x->rotation.z, x->rotation.w, v.x, v.y, v.z,
+                                 w.x, w.y, w.z};
+        for (size_t i = 0; i < 13; i++) {
+            uint32_t bits;
+            memcpy(&bits, &state[i], sizeof bits);
+            h = (h ^ bits) * UINT64_C(0x100000001b3);
+        }
+    }
+    return h;
+}
+
 int main(int argc, char **argv) {
     if (hearth_version() != HEARTH_VERSION) {
         fprintf(stderr, "error: header version %u, library version %u\n", (unsigned)HEARTH_VERSION,
@@ -125,7 +150,8 @@ int main(int argc, char **argv) {
     printf("Hearth %u.%u.%u C example: pyramid of %d boxes (base %d) + pile of %d spheres/boxes\n",
            (unsigned)HEARTH_VERSION_MAJOR, (unsigned)HEARTH_VERSION_MINOR,
            (unsigned)HEARTH_VERSION_PATCH, PYRAMID_BOXES, BASE, PILE_BODIES);
-    printf("%8s %14s %8s\n", "t [s]", "top box y [m]", "awake");
+    printf("%8s %14s %16s %8s\n", "t [s]", "top box y [m]", "state hash", "awake");
+    uint64_t hash = UINT64_C(0xcbf29ce484222325);
 
     HearthTransform transforms[MAX_BODIES]; /* caller-owned, filled in one call per report */
     /* With a path argument, record the run for the browser viewer (viewer/index.html). */
@@ -137,6 +163,7 @@ int main(int argc, char **argv) {
     int awake = (int)count;
     for (int step = 1; step <= STEPS; step++) {
         CHECK(hearth_world_step(g_world, DT));
+        hash = hash_state(hash, bodies, count, transforms); /* after every step */
         if (step % REPORT_EVERY != 0) {
             continue;
         }
@@ -148,7 +175,8 @@ int main(int argc, char **argv) {
             awake += is_awake ? 1 : 0;
         }
         double t = (double)((float)step * DT);
-        printf("%8.2f %14.3f %4d/%d\n", t, (double)transforms[top].position.y, awake, (int)count);
+        printf("%8.2f %14.3f %016" PRIx64 " %4d/%d\n", t, (double)transforms[top].position.y, hash,
+               awake, (int)count);
     }
 
     if (argc > 1) {

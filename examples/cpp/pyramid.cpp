@@ -13,7 +13,10 @@
  */
 #include "hearth.hpp"
 
+#include <cinttypes>
+#include <cstdint>
 #include <cstdio>
+#include <cstring>
 #include <stdexcept>
 #include <vector>
 
@@ -31,6 +34,25 @@ hearth::Body add_box(hearth::World &world, hearth::Vec3 p) {
     hearth::Body body = world.create_body(hearth::BodyType::Dynamic, p);
     body.add(hearth::box(hearth::vec3(0.5f, 0.5f, 0.5f)));
     return body;
+}
+
+// FNV-1a over the bits of every body's position, rotation, linear and angular velocity (13
+// floats), folded into `h`: the "state hash" column, as in pyramid.c.
+std::uint64_t hash_state(std::uint64_t h, hearth::World &world, const std::vector<hearth::BodyId> &bodies,
+                         std::vector<hearth::Transform> &transforms) {
+    world.transforms(bodies, transforms);
+    for (std::size_t b = 0; b < bodies.size(); b++) {
+        const auto body = world.body(bodies[b]);
+        const hearth::Transform &x = transforms[b];
+        const hearth::Vec3 v = body.linear_velocity(), w = body.angular_velocity();
+        for (float f : {x.position.x, x.position.y, x.position.z, x.rotation.x, x.rotation.y, x.rotation.z,
+                        x.rotation.w, v.x, v.y, v.z, w.x, w.y, w.z}) {
+            std::uint32_t bits;
+            std::memcpy(&bits, &f, sizeof bits);
+            h = (h ^ bits) * 0x100000001b3ull;
+        }
+    }
+    return h;
 }
 
 hearth::Body add_sphere(hearth::World &world, hearth::Vec3 p) {
@@ -69,12 +91,14 @@ int run() {
     std::printf("Hearth %u.%u.%u C++ example: pyramid of %d boxes (base %d) + pile of %d spheres/boxes\n",
                 (unsigned)HEARTH_VERSION_MAJOR, (unsigned)HEARTH_VERSION_MINOR, (unsigned)HEARTH_VERSION_PATCH,
                 PYRAMID_BOXES, BASE, PILE_BODIES);
-    std::printf("%8s %14s %8s\n", "t [s]", "top box y [m]", "awake");
+    std::printf("%8s %14s %16s %8s\n", "t [s]", "top box y [m]", "state hash", "awake");
+    std::uint64_t hash = 0xcbf29ce484222325ull;
 
     std::vector<hearth::Transform> transforms(bodies.size()); // filled in one call per report
     int awake = (int)bodies.size();
     for (int step = 1; step <= STEPS; step++) {
         world.step(DT);
+        hash = hash_state(hash, world, bodies, transforms); // after every step
         if (step % REPORT_EVERY != 0) {
             continue;
         }
@@ -84,7 +108,8 @@ int run() {
             awake += world.body(id).is_awake() ? 1 : 0;
         }
         const double t = (double)((float)step * DT);
-        std::printf("%8.2f %14.3f %4d/%d\n", t, (double)transforms[top].position.y, awake, (int)bodies.size());
+        std::printf("%8.2f %14.3f %016" PRIx64 " %4d/%d\n", t, (double)transforms[top].position.y, hash, awake,
+                    (int)bodies.size());
     }
     return awake;
 }

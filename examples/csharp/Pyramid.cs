@@ -43,6 +43,26 @@ internal static class Pyramid
         return body;
     }
 
+    // FNV-1a over the bits of every body's position, rotation, linear and angular velocity (13
+    // floats), folded into h: the "state hash" column, as in pyramid.c.
+    private static ulong HashState(ulong h, World world, BodyId[] bodies, Transform[] transforms, int count)
+    {
+        world.GetTransforms(bodies, transforms, count);
+        for (int b = 0; b < count; b++)
+        {
+            var body = world.GetBody(bodies[b]);
+            Transform x = transforms[b];
+            Vec3 v = body.LinearVelocity, w = body.AngularVelocity;
+            float[] state = { x.Position.X, x.Position.Y, x.Position.Z, x.Rotation.X, x.Rotation.Y,
+                              x.Rotation.Z, x.Rotation.W, v.X, v.Y, v.Z, w.X, w.Y, w.Z };
+            foreach (float f in state)
+            {
+                h = unchecked((h ^ BitConverter.ToUInt32(BitConverter.GetBytes(f), 0)) * 0x100000001b3UL);
+            }
+        }
+        return h;
+    }
+
     private static Body AddSphere(World world, Vec3 p)
     {
         Body body = DynamicBody(world, p);
@@ -121,13 +141,15 @@ internal static class Pyramid
 
                 Console.WriteLine("Hearth {0}.{1}.{2} C# example: pyramid of {3} boxes (base {4}) + pile of {5} spheres/boxes",
                     Native.VersionMajor, Native.VersionMinor, Native.VersionPatch, PyramidBoxes, Base, PileBodies);
-                Console.WriteLine("{0,8} {1,14} {2,8}", "t [s]", "top box y [m]", "awake");
+                Console.WriteLine("{0,8} {1,14} {2,16} {3,8}", "t [s]", "top box y [m]", "state hash", "awake");
+                ulong hash = 0xcbf29ce484222325UL;
 
                 var transforms = new Transform[MaxBodies]; // caller-owned, filled in one call per report
                 awake = count;
                 for (int step = 1; step <= Steps; step++)
                 {
                     world.Step(Dt);
+                    hash = HashState(hash, world, bodies, transforms, count); // after every step
                     if (step % ReportEvery != 0)
                     {
                         continue;
@@ -139,7 +161,8 @@ internal static class Pyramid
                         awake += world.GetBody(bodies[b]).IsAwake ? 1 : 0;
                     }
                     float t = (float)((float)step * Dt); // rounded to float as in C
-                    Console.WriteLine("{0} {1} {2,4}/{3}", Fixed(t, 2, 8), Fixed(transforms[top].Position.Y, 3, 14), awake, count);
+                    Console.WriteLine("{0} {1} {2} {3,4}/{4}", Fixed(t, 2, 8), Fixed(transforms[top].Position.Y, 3, 14),
+                        hash.ToString("x16", CultureInfo.InvariantCulture), awake, count);
                 }
             }
         }

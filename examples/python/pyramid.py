@@ -36,6 +36,16 @@ STEPS = 1800  # 30 s
 REPORT_EVERY = 180
 
 
+def hash_state(h, bodies, transforms):
+    """FNV-1a over the bits of every body's position, rotation, linear and angular velocity
+    (13 floats), folded into h: the "state hash" column, as in pyramid.c."""
+    for b, body in enumerate(bodies):
+        state = list(transforms[7 * b : 7 * b + 7]) + list(body.linear_velocity) + list(body.angular_velocity)
+        for bits in struct.unpack("<13I", struct.pack("<13f", *state)):
+            h = ((h ^ bits) * 0x100000001B3) & 0xFFFFFFFFFFFFFFFF
+    return h
+
+
 def main():
     with hearth.World() as world:  # gravity -9.81 y, defaults of hearth_world_def_default()
         ground = world.create_body()  # static by default
@@ -72,20 +82,23 @@ def main():
             f"Hearth {hearth.VERSION_MAJOR}.{hearth.VERSION_MINOR}.{hearth.VERSION_PATCH} Python example: "
             f"pyramid of {PYRAMID_BOXES} boxes (base {BASE}) + pile of {PILE_BODIES} spheres/boxes"
         )
-        print("%8s %14s %8s" % ("t [s]", "top box y [m]", "awake"))
+        print("%8s %14s %16s %8s" % ("t [s]", "top box y [m]", "state hash", "awake"))
+        state_hash = 0xCBF29CE484222325
 
         ids = hearth.body_ids(bodies)  # built once, reused every report
         transforms = None  # caller-owned, filled in one call per report
         awake = len(bodies)
         for step in range(1, STEPS + 1):
             world.step(DT)
+            transforms = world.get_transforms(ids, out=transforms)
+            state_hash = hash_state(state_hash, bodies, transforms)  # after every step
             if step % REPORT_EVERY != 0:
                 continue
             transforms = world.get_transforms(ids, out=transforms)
             awake = sum(1 for body in bodies if body.is_awake)
             t = f32(step * DT)
             top_y = transforms[7 * top + 1]  # 7 floats per transform: position x, y, z, rotation
-            print("%8.2f %14.3f %4d/%d" % (t, top_y, awake, len(bodies)))
+            print("%8.2f %14.3f %016x %4d/%d" % (t, top_y, state_hash, awake, len(bodies)))
 
     if awake != 0:
         print(f"error: {awake} bodies still awake after {STEPS} steps", file=sys.stderr)

@@ -322,6 +322,10 @@ unsafe fn drive_step(world: *mut HearthWorld, dt: f32) -> Result<(), Failure> {
     handle.phase.set(PHASE_FORCES);
     super::callback::run_force_callbacks(world, dt);
     handle.phase.set(PHASE_CORE);
+    #[cfg(test)]
+    if tests::PANIC_MID_STEP.with(Cell::get) {
+        panic!("test hook: a panic injected between the force and collision stages");
+    }
     (*core).collide_step(dt);
     handle.phase.set(PHASE_CONTACTS);
     super::callback::run_contact_callbacks(world, dt);
@@ -442,6 +446,13 @@ pub unsafe extern "C" fn hearth_world_get_transforms(
 mod tests {
     use super::*;
 
+    thread_local! {
+        /// Test-only hook (compiled into unit tests only, never into the library or the
+        /// header): makes `drive_step` panic after the force stage, while the core holds the
+        /// world half stepped.
+        pub(super) static PANIC_MID_STEP: Cell<bool> = const { Cell::new(false) };
+    }
+
     #[test]
     fn a_world_that_panicked_mid_step_refuses_further_steps() {
         let def = hearth_world_def_default();
@@ -449,11 +460,24 @@ mod tests {
         unsafe {
             assert_eq!(hearth_world_create(&def, &mut world), HEARTH_OK);
             assert_eq!(hearth_world_step(world, 1.0 / 60.0), HEARTH_OK);
-            // What the step's own panic guard records when the engine panics mid-step.
-            (*world).poisoned.set(true);
-            assert_eq!(hearth_world_step(world, 1.0 / 60.0), HEARTH_ERROR_PANIC);
+            // A real panic inside the step, caught by the step's own guard.
+            let hook = std::panic::take_hook();
+            std::panic::set_hook(Box::new(|_| {})); // keep the expected panic off the output
+            PANIC_MID_STEP.with(|p| p.set(true));
+            let r = hearth_world_step(world, 1.0 / 60.0);
+            PANIC_MID_STEP.with(|p| p.set(false));
+            std::panic::set_hook(hook);
+            assert_eq!(r, HEARTH_ERROR_PANIC);
             let msg = with_last_error(|m| m.to_string());
-            assert!(msg.contains("panicked"), "{msg}");
+            assert!(msg.contains("injected"), "the panic's own message: {msg}");
+            assert!((*world).poisoned.get(), "the guard poisons the world");
+            assert!(!(*world).locked.get(), "the lock is released after the panic");
+            // The hook is off now, yet the world refuses every later step.
+            for _ in 0..2 {
+                assert_eq!(hearth_world_step(world, 1.0 / 60.0), HEARTH_ERROR_PANIC);
+                let msg = with_last_error(|m| m.to_string());
+                assert!(msg.contains("panicked in an earlier step"), "{msg}");
+            }
             // Reads still work, and the world can be destroyed.
             let mut g = HearthVec3::default();
             assert_eq!(hearth_world_get_gravity(world, &mut g), HEARTH_OK);

@@ -159,6 +159,19 @@ pub fn assert_prints_like_the_c_pyramid(output: &str, language: &str, out: &Path
     assert!(c_lines[0].contains(" C example: "), "{}", c_lines[0]);
     let first = c_lines[0].replacen(" C example: ", &format!(" {language} example: "), 1);
     assert_eq!(lines[0], first, "first line");
+    // Every report carries the running hash of every body's full state (transform and
+    // velocities, bit for bit, after every step): equal lines mean equal runs.
+    assert!(c_lines[1].contains("state hash"), "{}", c_lines[1]);
+    let reports = c_lines
+        .iter()
+        .filter(|l| l.trim_start().starts_with(|c: char| c.is_ascii_digit()));
+    for l in reports {
+        let hash = l.split_whitespace().nth(2).unwrap_or_default(); // t, top y, hash, awake
+        assert!(
+            hash.len() == 16 && hash.chars().all(|c| c.is_ascii_hexdigit()),
+            "no state hash in {l:?}"
+        );
+    }
     for (i, (c, other)) in c_lines.iter().zip(&lines).enumerate().skip(1) {
         assert_eq!(c, other, "line {} differs\nC:\n{c_out}\n{language}:\n{output}", i + 1);
     }

@@ -499,6 +499,21 @@ internal static class HearthTests
 
     // ---- SafeHandle and lifetime ------------------------------------------------------------
 
+    // In its own method so no local keeps a world reachable from the caller's frame.
+    [System.Runtime.CompilerServices.MethodImpl(System.Runtime.CompilerServices.MethodImplOptions.NoInlining)]
+    private static WeakReference[] MakeUndisposedWorlds(int n)
+    {
+        var refs = new WeakReference[n];
+        for (int i = 0; i < n; i++)
+        {
+            var w = new World();
+            DynamicBox(w, Vec3.Zero, 0.5f);
+            w.Step(Dt);
+            refs[i] = new WeakReference(w.Handle, true);
+        }
+        return refs;
+    }
+
     private static void TestDisposal()
     {
         var world = new World();
@@ -512,17 +527,27 @@ internal static class HearthTests
         Throws<ObjectDisposedException>(() => Native.hearth_world_step(handle, Dt), "raw call with the closed handle");
         world.Dispose(); // twice is fine
 
-        // Worlds nobody disposes are destroyed by the handle's finalizer.
-        for (int i = 0; i < 50; i++)
+        // Worlds nobody disposes are destroyed by the handle's finalizer: a long weak reference
+        // (one that survives finalization) to each handle is dead only once the finalizer ran
+        // ReleaseHandle (hearth_world_destroy) and the handle was reclaimed.
+        // Made on a thread that has ended, so Mono's conservative scan of this thread's stack
+        // cannot find a stale pointer to the last one.
+        WeakReference[] handles = null;
+        var maker = new System.Threading.Thread(() => { handles = MakeUndisposedWorlds(50); });
+        maker.Start();
+        maker.Join();
+        // The collector and the finalizer thread run when they will: give them up to 100 rounds.
+        int alive = handles.Length;
+        for (int round = 0; round < 100 && alive > 0; round++)
         {
-            var w = new World();
-            DynamicBox(w, Vec3.Zero, 0.5f);
-            w.Step(Dt);
+            GC.Collect();
+            GC.WaitForPendingFinalizers();
+            GC.Collect();
+            alive = 0;
+            foreach (var h in handles) alive += h.IsAlive ? 1 : 0;
+            if (alive > 0) System.Threading.Thread.Sleep(10);
         }
-        GC.Collect();
-        GC.WaitForPendingFinalizers();
-        GC.Collect();
-        Ensure(true, "finalized worlds");
+        Ensure(alive == 0, "finalizers destroyed every undisposed world (" + alive + " of 50 left)");
 
         // A failed creation leaves no handle behind.
         WorldDef bad = WorldDef.Default();
