@@ -723,12 +723,14 @@ pub fn solve(world: &mut World, dt: f32) {
         // Soft, biased sweeps push overlap out and damp; positions move; a rigid relax sweep
         // removes the push velocity. Sweeps alternate direction through each manifold's points.
         crate::dynamics::joints::solver::solve(joints, vel, states, h, true);
+        crate::dynamics::joints::solver::guard(joints, vel, limits);
         for k in 0..settings.velocity_iterations {
             contact_wide::solve(vel, batches, inv_h, (sub + k) % 2 == 0, Some(&soft));
         }
         integrate_wide::positions(eight, vel, states, &paths.moving, h, limits);
         integrate_general_positions(vel, states, sims, &paths.general, h, limits);
         crate::dynamics::joints::solver::solve(joints, vel, states, h, false);
+        crate::dynamics::joints::solver::guard(joints, vel, limits);
         contact_wide::solve(vel, batches, inv_h, sub % 2 == 1, None);
     }
     if scratch.bounces {

@@ -153,6 +153,9 @@ ID_CONVERSIONS(HearthJointId, joint_id)
 ID_CONVERSIONS(HearthGeneratorId, gen_id)
 ID_CONVERSIONS(HearthParticleId, particle_id)
 ID_CONVERSIONS(HearthSoftBodyId, soft_id)
+ID_CONVERSIONS(HearthHullId, hull_id)
+ID_CONVERSIONS(HearthMeshId, mesh_id)
+ID_CONVERSIONS(HearthHeightfieldId, hf_id)
 #define TO_ID(x) id_of((x).index, (x).generation)
 static Id id_of(uint32_t index, uint32_t generation) {
     Id r;
@@ -163,16 +166,18 @@ static Id id_of(uint32_t index, uint32_t generation) {
 static int id_eq(Id a, Id b) { return a.index == b.index && a.generation == b.generation; }
 static const Id NULL_ID = {0, 0};
 
-enum { K_BODY, K_SHAPE, K_JOINT, K_GEN, K_PARTICLE, K_SOFT, K_COUNT };
-static const int KIND_MAX[K_COUNT] = {40, 60, 24, 24, 300, 3};
+enum { K_BODY, K_SHAPE, K_JOINT, K_GEN, K_PARTICLE, K_SOFT, K_HULL, K_MESH, K_HF, K_COUNT };
+static const int KIND_MAX[K_COUNT] = {40, 60, 24, 24, 300, 3, 4, 3, 3};
 #define MAX_LIVE 300
 #define DEAD_RING 64
 #define MAX_ATTACH 16
 
 typedef struct {
     Id id;
-    uint32_t meta;   /* body and joint and generator type; soft body vertex count */
-    Id a, b;         /* a shape's body; a joint's bodies (b null: the world) */
+    uint32_t meta;   /* body and joint and generator type; soft body vertex count; a shape's
+                      * geometry kind (0 primitive, else K_HULL, K_MESH, K_HF); a mesh's
+                      * triangle count */
+    Id a, b;         /* a shape's body and geometry; a joint's bodies (b null: the world) */
     Id att_bodies[MAX_ATTACH];
     int n_att_bodies;
     Id att_particles[MAX_ATTACH];
@@ -2549,6 +2554,233 @@ static void op_record(FWorld *fw) {
     }
 }
 
+/* ------------------------------------------------------------------------ shared geometry */
+/* Shapes using geometry `id` of kind `kind` (tracked: a body's destruction drops its shapes). */
+static int geometry_users(FWorld *fw, int kind, Id id) {
+    int n = 0;
+    for (int i = 0; i < fw->n[K_SHAPE]; i++)
+        n += fw->live[K_SHAPE][i].meta == (uint32_t)kind && id_eq(fw->live[K_SHAPE][i].b, id);
+    return n;
+}
+
+static HearthVec3 g_geo_points[9 * 9]; /* a mesh grid of 8 × 8 cells, or a hull cloud of up to 47 */
+static uint32_t g_geo_indices[6 * 8 * 8 + 3];
+static float g_geo_heights[9 * 9];
+static uint8_t g_geo_holes[8 * 8];
+
+static void op_geometry_create(FWorld *fw) {
+    FAULTS(F_NULL_WORLD, F_NULL_IN, F_NULL_OUT, F_COOKIE, F_NUMBER);
+    HearthWorld *w = W(fw, f);
+    HearthResult e = f == F_NULL_WORLD || f == F_NULL_IN || f == F_NULL_OUT ? HEARTH_ERROR_NULL_POINTER
+                     : f == F_NUMBER || f == F_COOKIE                       ? HEARTH_ERROR_INVALID_ARGUMENT
+                                                                            : HEARTH_OK;
+    const char *field = NULL;
+    switch (rnd(3)) {
+    case 0: {
+        if (full(fw, K_HULL)) return;
+        /* A box's corners (never degenerate) and points inside and on it. */
+        HearthVec3 half = vec(flog(0.01f, 5), flog(0.01f, 5), flog(0.01f, 5));
+        size_t n = 8 + rnd(40);
+        for (size_t i = 0; i < n; i++) {
+            float sx = i < 8 ? ((i & 1) ? 1.0f : -1.0f) : frange(-1, 1);
+            float sy = i < 8 ? ((i & 2) ? 1.0f : -1.0f) : frange(-1, 1);
+            float sz = i < 8 ? ((i & 4) ? 1.0f : -1.0f) : frange(-1, 1);
+            g_geo_points[i] = vec(sx * half.x, sy * half.y, sz * half.z);
+        }
+        mark("hearth_hull_def_default");
+        HearthHullDef d = hearth_hull_def_default();
+        if (chance(30)) d.convex_radius = frange(0, 0.05f);
+        if (f == F_COOKIE) d.internal_value ^= 1u + rnd(0xFFFF);
+        if (f == F_NUMBER) {
+            switch (rnd(4)) {
+            case 0: g_geo_points[rnd((uint32_t)n)].y = nonfinite(); break;
+            case 1: n = 3; break;
+            case 2: for (size_t i = 0; i < n; i++) g_geo_points[i].z = 0.0f; break; /* coplanar */
+            default: d.convex_radius = chance(50) ? -0.1f : nonfinite(); field = "convex_radius"; break;
+            }
+        }
+        HearthHullId out;
+        memset(&out, SENTINEL, sizeof out);
+        int null_def = f == F_NULL_IN && chance(50);
+        CALL(hearth_hull_create(w, null_def ? NULL : &d, f == F_NULL_IN && !null_def ? NULL : g_geo_points, n,
+                                f == F_NULL_OUT ? NULL : &out),
+             e, field, &out, sizeof out);
+        if (r == HEARTH_OK) add(fw, K_HULL, TO_ID(out));
+        break;
+    }
+    case 1: {
+        if (full(fw, K_MESH)) return;
+        /* A bumpy grid of c × c cells, two triangles each, maybe one degenerate triangle. */
+        uint32_t c = 1 + rnd(8);
+        float cell = flog(0.1f, 10);
+        size_t nv = (size_t)(c + 1) * (c + 1), ni = 0;
+        for (uint32_t i = 0; i <= c; i++)
+            for (uint32_t k = 0; k <= c; k++) g_geo_points[i * (c + 1) + k] = vec(k * cell, frange(-0.2f, 0.2f) * cell, i * cell);
+        for (uint32_t i = 0; i < c; i++)
+            for (uint32_t k = 0; k < c; k++) {
+                uint32_t a = i * (c + 1) + k, b = a + 1, cc = a + c + 1, dd = cc + 1;
+                uint32_t t[6] = {a, cc, dd, a, dd, b};
+                for (int j = 0; j < 6; j++) g_geo_indices[ni++] = t[j];
+            }
+        int degenerate = chance(30);
+        if (degenerate) { g_geo_indices[ni++] = 0; g_geo_indices[ni++] = 0; g_geo_indices[ni++] = 1; }
+        if (f == F_NUMBER) {
+            switch (rnd(3)) {
+            case 0: g_geo_points[rnd((uint32_t)nv)].x = nonfinite(); break;
+            case 1: g_geo_indices[rnd((uint32_t)ni)] = (uint32_t)nv + rnd(5); break;
+            default: ni -= 1 + rnd(2); field = "index_count"; break;
+            }
+        }
+        if (f == F_COOKIE) e = HEARTH_OK; /* no def */
+        HearthMeshId out;
+        memset(&out, SENTINEL, sizeof out);
+        int null_v = f == F_NULL_IN && chance(50);
+        CALL(hearth_mesh_create(w, null_v ? NULL : g_geo_points, nv, f == F_NULL_IN && !null_v ? NULL : g_geo_indices, ni,
+                                f == F_NULL_OUT ? NULL : &out),
+             e, field, &out, sizeof out);
+        if (r == HEARTH_OK) {
+            Obj *o = add(fw, K_MESH, TO_ID(out));
+            o->meta = 2 * c * c;
+            o->n_att_bodies = degenerate;
+        }
+        break;
+    }
+    default: {
+        if (full(fw, K_HF)) return;
+        uint32_t rows = 2 + rnd(8), cols = 2 + rnd(8);
+        for (uint32_t i = 0; i < rows * cols; i++) g_geo_heights[i] = frange(-1, 1);
+        int holes = chance(30);
+        for (uint32_t i = 0; i < (rows - 1) * (cols - 1); i++) g_geo_holes[i] = (uint8_t)chance(20);
+        if (f == F_NUMBER) {
+            switch (rnd(3)) {
+            case 0: g_geo_heights[rnd(rows * cols)] = nonfinite(); break;
+            case 1: rows = chance(50) ? 1 : 40000; field = "rows"; break;
+            default: holes = 1; g_geo_holes[rnd((rows - 1) * (cols - 1))] = 2 + (uint8_t)rnd(200); field = "holes"; break;
+            }
+        }
+        if (f == F_COOKIE) e = HEARTH_OK;
+        if (f == F_NULL_IN && chance(50)) { f = F_NONE; holes = 0; e = HEARTH_OK; } /* NULL holes: none */
+        HearthHeightfieldId out;
+        memset(&out, SENTINEL, sizeof out);
+        CALL(hearth_heightfield_create(w, rows, cols, f == F_NULL_IN ? NULL : g_geo_heights, holes ? g_geo_holes : NULL,
+                                       f == F_NULL_OUT ? NULL : &out),
+             e, field, &out, sizeof out);
+        if (r == HEARTH_OK) add(fw, K_HF, TO_ID(out));
+        break;
+    }
+    }
+}
+
+static void op_geometry_other(FWorld *fw) {
+    FAULTS(F_NULL_WORLD, F_ID, F_NULL_OUT);
+    int kind = K_HULL + (int)rnd(3);
+    Obj *o = pick(fw, kind);
+    if (!o && f != F_ID) return;
+    Id id = f == F_ID ? bad_id(fw, kind) : o->id;
+    HearthWorld *w = W(fw, f);
+    HearthResult e = f == F_NULL_WORLD ? HEARTH_ERROR_NULL_POINTER : f == F_ID ? HEARTH_ERROR_INVALID_ID : HEARTH_OK;
+    uint32_t count;
+    memset(&count, SENTINEL, sizeof count);
+    uint32_t *po = f == F_NULL_OUT ? NULL : &count;
+    HearthResult read_e = f == F_NULL_OUT ? HEARTH_ERROR_NULL_POINTER : e;
+    if (chance(50)) {
+        /* Reads. */
+        if (kind == K_HULL) {
+            CALL(hearth_hull_get_vertex_count(w, hull_id(id), po), read_e, NULL, &count, sizeof count);
+            if (r == HEARTH_OK && (count < 4 || count > 255)) fail("hull", "vertex count outside 4..=255");
+        } else if (kind == K_MESH) {
+            if (chance(50)) {
+                CALL(hearth_mesh_get_triangle_count(w, mesh_id(id), po), read_e, NULL, &count, sizeof count);
+                if (r == HEARTH_OK && count != o->meta) fail("mesh", "triangle count differs from the grid's");
+            } else {
+                CALL(hearth_mesh_get_degenerate_count(w, mesh_id(id), po), read_e, NULL, &count, sizeof count);
+                if (r == HEARTH_OK && count != (uint32_t)o->n_att_bodies) fail("mesh", "degenerate count differs");
+            }
+        } else {
+            /* A heightfield has no reads: destroy a stale one instead. */
+            if (f == F_NULL_OUT) return;
+            if (f == F_NONE) return;
+            CALL(hearth_heightfield_destroy(w, hf_id(id)), e, NULL, NULL, 0);
+        }
+        return;
+    }
+    if (f == F_NULL_OUT) return;
+    /* Destroy: refused while shapes use it. */
+    if (f == F_NONE && geometry_users(fw, kind, id) > 0) e = HEARTH_ERROR_INVALID_ARGUMENT;
+    HearthResult res;
+    if (kind == K_HULL) {
+        CALL(hearth_hull_destroy(w, hull_id(id)), e, NULL, NULL, 0);
+        res = r;
+    } else if (kind == K_MESH) {
+        CALL(hearth_mesh_destroy(w, mesh_id(id)), e, NULL, NULL, 0);
+        res = r;
+    } else {
+        CALL(hearth_heightfield_destroy(w, hf_id(id)), e, NULL, NULL, 0);
+        res = r;
+    }
+    if (res == HEARTH_OK) {
+        bury(kind, id);
+        drop_at(fw, kind, (int)(o - fw->live[kind]));
+    }
+}
+
+static void op_geometry_shape(FWorld *fw) {
+    if (full(fw, K_SHAPE) || fw->n[K_BODY] == 0) return;
+    FAULTS(F_ID, F_NUMBER);
+    int kind = K_HULL + (int)rnd(3);
+    Obj *g = pick(fw, kind);
+    if (!g && f != F_ID) return;
+    Obj *body = pick(fw, K_BODY);
+    if (f == F_ID && kind != K_HULL && body->meta == HEARTH_BODY_DYNAMIC) return; /* two faults */
+    HearthBodyId b = body_id(body->id);
+    Id gid = f == F_ID ? bad_id(fw, kind) : g->id;
+    mark("hearth_shape_def_default");
+    HearthShapeDef sd = hearth_shape_def_default();
+    sd.density = good_density();
+    const char *field = NULL;
+    HearthResult e = HEARTH_OK;
+    if (f == F_ID) e = HEARTH_ERROR_INVALID_ID;
+    else if (kind != K_HULL && body->meta == HEARTH_BODY_DYNAMIC) e = HEARTH_ERROR_INVALID_ARGUMENT;
+    else if (f == F_NUMBER) { e = HEARTH_ERROR_INVALID_ARGUMENT; field = "scale"; }
+    HearthTransform local = xf(chance(60) ? vec(0, 0, 0) : vec(frange(-1, 1), frange(-1, 1), frange(-1, 1)), quat_any());
+    HearthShapeId out;
+    memset(&out, SENTINEL, sizeof out);
+    HearthResult res;
+    if (kind == K_HULL) {
+        HearthHullShape h;
+        h.hull = hull_id(gid);
+        h.local = local;
+        h.scale = f == F_NUMBER ? (chance(50) ? -flog(0.1f, 2) : chance(50) ? 0.0f : nonfinite()) : flog(0.5f, 2);
+        CALL(hearth_shape_create_hull(fw->w, b, &sd, &h, &out), e, field, &out, sizeof out);
+        res = r;
+    } else {
+        HearthVec3 scale = vec(flog(0.5f, 2), flog(0.5f, 2), flog(0.5f, 2));
+        if (f == F_NUMBER) scale = spoil3(scale, chance(50) ? -1.0f : nonfinite());
+        if (kind == K_MESH) {
+            HearthMeshShape m;
+            m.mesh = mesh_id(gid);
+            m.local = local;
+            m.scale = scale;
+            CALL(hearth_shape_create_mesh(fw->w, b, &sd, &m, &out), e, field, &out, sizeof out);
+            res = r;
+        } else {
+            HearthHeightfieldShape hs;
+            hs.heightfield = hf_id(gid);
+            hs.local = local;
+            hs.scale = scale;
+            CALL(hearth_shape_create_heightfield(fw->w, b, &sd, &hs, &out), e, field, &out, sizeof out);
+            res = r;
+        }
+    }
+    if (res == HEARTH_OK) {
+        Obj *o = add(fw, K_SHAPE, TO_ID(out));
+        o->a = TO_ID(b);
+        o->meta = (uint32_t)kind;
+        o->b = gid;
+        check_state(fw, "after a shape of shared geometry was added");
+    }
+}
+
 static void op_step(FWorld *fw) { (void)fw; op_world_step(); }
 static void op_create_world(FWorld *fw) { (void)fw; op_world_create(); }
 static void op_destroy_world(FWorld *fw) { (void)fw; if (chance(30)) op_world_destroy(); }
@@ -2575,6 +2807,9 @@ static const Op OPS[] = {
     {"soft_create", op_soft_create, 1},
     {"soft_other", op_soft_other, 4},
     {"record", op_record, 1},
+    {"geometry_create", op_geometry_create, 2},
+    {"geometry_other", op_geometry_other, 2},
+    {"geometry_shape", op_geometry_shape, 2},
 };
 #define NOPS ((int)(sizeof OPS / sizeof OPS[0]))
 

@@ -623,6 +623,41 @@ pub fn solve(set: &mut JointSet, vel: &mut [Velocity], states: &[BodyState], h: 
     }
 }
 
+/// After a sweep: a joint whose block was ill-conditioned beyond what f32 and f64 can carry
+/// (a 10 km × 1 mm capsule's inertia jointed to a heavy body at 100 km from the origin, found
+/// by the API fuzzer) can leave a body with a non-finite or absurd velocity (4e35 m/s, NaN
+/// rad/s). Such a body is brought back within the speed limits (NaN components dropped) and
+/// the joint's accumulated impulses, which would warm-start the blow-up again, are cleared.
+/// Velocities within 100 times the limits are left alone: the sweeps may overshoot the
+/// limits on the way and the integration caps them, and capping here would bias the solve.
+pub fn guard(set: &mut JointSet, vel: &mut [Velocity], limits: (f32, f32)) {
+    let sane = |u: &Velocity| {
+        u.v.is_finite()
+            && u.w.is_finite()
+            && u.v.length_squared() <= (100.0 * limits.0).powi(2)
+            && u.w.length_squared() <= (100.0 * limits.1).powi(2)
+    };
+    for c in set.list.iter_mut() {
+        let mut reset = false;
+        for k in [c.ia, c.ib] {
+            let u = &mut vel[k as usize];
+            if k != 0 && !sane(u) {
+                *u = Velocity::new(clamp_length(u.v, limits.0), clamp_length(u.w, limits.1));
+                reset = true;
+            }
+        }
+        let i = &c.imp;
+        let finite = i.linear.is_finite()
+            && i.angular.is_finite()
+            && [i.axial, i.motor, i.lower, i.upper, i.cone]
+                .iter()
+                .all(|x| x.is_finite());
+        if reset || !finite {
+            c.imp = Impulses::default();
+        }
+    }
+}
+
 /// After the sub-steps: keeps the impulses for the next step, records the applied force and
 /// torque (impulse per sub-step over the sub-step) and breaks joints past their thresholds.
 pub fn store(world: &mut World, h: f32) {
