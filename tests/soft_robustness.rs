@@ -102,6 +102,9 @@ fn max_strain(s: &SoftBody, rest: &mesh::SoftMesh) -> f32 {
     worst
 }
 
+/// README: the skin "stays within 1 % of its rest edge lengths up to nRT 1,600 J" (the
+/// header: "within 1 % ... up to nRT 1600 J"). Measured worst stretch over 4 s: 0.80 % at
+/// 400 J, 0.58 % at 800 J, 0.45 % at 1600 J (1.7 % at 6400 J, beyond the claim).
 #[test]
 fn the_default_skin_stays_within_one_percent_of_its_rest_lengths_up_to_nrt_1600() {
     let rest = mesh::icosphere(BALL_RADIUS, 3);
@@ -449,6 +452,11 @@ const END_INSIDE: f32 = 0.5 * R;
 /// of 10.6 kg on the default ball).
 const RANDOM_INSIDE: f32 = 2.0 * R;
 
+/// README: "a rigid body 20× its mass dropped on it from 0.3 m gets no more than 1.5 cm
+/// inside the skin and pushes no vertex more than 1 cm into the ground"; the header: "a
+/// 40 kg box dropped 0.3 m on a 2 kg, 642-vertex ball of nRT 400 J". `INSIDE` is 1.5 vertex
+/// radii, 1.5 cm; measured 7.8 mm (plane) and 9.4 mm (static box) inside, 0.0 mm into the
+/// ground.
 #[test]
 fn a_box_twenty_times_the_ball_s_mass_does_not_get_in_or_push_the_skin_through_the_ground() {
     for ground in [Ground::Plane, Ground::StaticBox] {
