@@ -1388,25 +1388,35 @@ fn extreme_body(w: &mut World, rng: &mut Rng, p: Vec3) -> BodyHandle {
 /// seed 3 call 407).
 #[test]
 fn joints_between_extreme_mass_ratios_stay_finite_and_within_the_limits() {
-    for seed in 0..40u64 {
-        let mut rng = Rng(0x701A_7000 + seed);
+    run_joint_chains(0x701A_7000, 40, 64, (0.3, Vec3::splat(99_000.0)), extreme_body);
+}
+
+/// Seeded chains of 2 to 4 joints of random kinds between bodies from `make`, anchored to
+/// the world at the origin or (with probability `far.0`) at `far.1`, under random gravity
+/// up to 1e4 m/s², 1 to `max_substeps` sub-steps and a random step: 120 steps finite and
+/// within the speed limits.
+fn run_joint_chains(
+    seed0: u64,
+    seeds: u64,
+    max_substeps: u32,
+    far: (f32, Vec3),
+    make: fn(&mut World, &mut Rng, Vec3) -> BodyHandle,
+) {
+    for seed in 0..seeds {
+        let mut rng = Rng(seed0 + seed);
         let mut w = World::new(WorldSettings {
             enable_sleep: false,
-            substeps: 1 + rng.below(64),
+            substeps: 1 + rng.below(max_substeps),
             gravity: rng.vec(1.0).normalize_or_zero() * log_range(&mut rng, 1.0, 1e4),
             ..Default::default()
         })
         .unwrap();
-        let origin = if rng.chance(0.3) {
-            Vec3::splat(99_000.0)
-        } else {
-            Vec3::ZERO
-        };
+        let origin = if rng.chance(far.0) { far.1 } else { Vec3::ZERO };
         let mut unmeasured = false;
         let mut bodies = Vec::new();
         for link in 0..2 + rng.below(3) {
             let at = origin + rng.vec(3.0);
-            let b = extreme_body(&mut w, &mut rng, at);
+            let b = make(&mut w, &mut rng, at);
             let kind = random_kind(&mut rng, &mut unmeasured);
             let def = match bodies.last() {
                 Some(&prev) if link > 0 && rng.chance(0.8) => random_joint(&mut rng, kind, prev, Some(b), Vec3::ZERO),
@@ -1472,37 +1482,11 @@ fn extreme_shaped_body(w: &mut World, rng: &mut Rng, p: Vec3) -> BodyHandle {
 /// body back within the limits and clears the joint's impulses.
 #[test]
 fn joints_between_extreme_shapes_stay_finite_and_within_the_limits() {
-    for seed in 0..60u64 {
-        let mut rng = Rng(0xE57A_5000 + seed);
-        let mut w = World::new(WorldSettings {
-            enable_sleep: false,
-            substeps: 1 + rng.below(16),
-            gravity: rng.vec(1.0).normalize_or_zero() * log_range(&mut rng, 1.0, 1e4),
-            ..Default::default()
-        })
-        .unwrap();
-        let origin = if rng.chance(0.5) {
-            Vec3::new(99_990.0, -99_990.0, 0.0)
-        } else {
-            Vec3::ZERO
-        };
-        let mut unmeasured = false;
-        let mut bodies = Vec::new();
-        for link in 0..2 + rng.below(3) {
-            let at = origin + rng.vec(3.0);
-            let b = extreme_shaped_body(&mut w, &mut rng, at);
-            let kind = random_kind(&mut rng, &mut unmeasured);
-            let def = match bodies.last() {
-                Some(&prev) if link > 0 && rng.chance(0.8) => random_joint(&mut rng, kind, prev, Some(b), Vec3::ZERO),
-                _ => random_joint(&mut rng, kind, b, None, at),
-            };
-            w.create_joint(&def).unwrap();
-            bodies.push(b);
-        }
-        let dt = log_range(&mut rng, 1e-3, 0.1);
-        for step in 0..120 {
-            w.step(dt).unwrap();
-            assert_bounded(&w, &bodies, &[], &format!("seed {seed} step {step}"));
-        }
-    }
+    run_joint_chains(
+        0xE57A_5000,
+        60,
+        16,
+        (0.5, Vec3::new(99_990.0, -99_990.0, 0.0)),
+        extreme_shaped_body,
+    );
 }
