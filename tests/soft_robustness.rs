@@ -492,10 +492,35 @@ fn a_box_twenty_times_the_ball_s_mass_squeezing_it_in_a_crate_does_not_get_in_or
         o.end_speed,
     );
     check_held(&d, &o, INSIDE);
-    // At rest on the flattened ball (centre 0.223 m, 0.016 m/s measured after 10 s), not on
-    // the ground (0.1 m).
+    // Not on the ground (0.1 m): 0.192 m and 0.027 m/s measured after 10 s. The box bounces
+    // about 0.8 m off the gas ball and tumbles before it settles, so where it ends depends on
+    // the last bit of the rigid integration (see the next test for the depth).
     assert!(o.end_y > 0.15, "the box should rest on the ball: {o:?}");
     assert!(o.end_speed < 0.05, "the box should come to rest: {o:?}");
+}
+
+#[test]
+fn a_tumbling_box_in_a_crate_does_not_get_in_from_any_of_several_nearby_heights() {
+    // The crate drop is chaotic: the box bounces off the gas ball, tumbles, and its corners
+    // hit the skin at up to 2.8 m/s. Drop heights 0.1 mm apart give unrelated tumbles, so
+    // the bound must hold for each, not for one lucky trajectory. Before face contacts kept
+    // a corner deeper than half an edge (it moves up to its reach within a step), corners got
+    // 35, 44 and 84 mm in over these heights; 13.2 mm is the deepest measured now.
+    for dh in [0.0f32, 1.0e-4, -1.0e-4, 1.0e-3, 2.0e-3] {
+        let mut d = heavy_box(Ground::Plane, true);
+        d.height += dh;
+        let o = drop(&d, 600);
+        println!(
+            "crate drop from {:.4} m: deepest inside the skin {:.1} mm ({:.1} mm at the end), vertex into the \
+             ground {:.1} mm, box ends at {:.3} m",
+            d.height,
+            1000.0 * o.inside,
+            1000.0 * o.end_inside,
+            1000.0 * o.through,
+            o.end_y,
+        );
+        check_held(&d, &o, INSIDE);
+    }
 }
 
 #[test]
