@@ -1490,3 +1490,89 @@ fn joints_between_extreme_shapes_stay_finite_and_within_the_limits() {
         extreme_shaped_body,
     );
 }
+
+/// The heaviest round bodies the ranges allow (spheres and capsules up to 5 km of 1e5 kg/m³,
+/// 1e14–1e17 kg) rolling and spinning on the ground and on kinematic bodies stay finite and
+/// within the limits (seeded). Their angular entries in the rolling-resistance rows are near
+/// 1e-21, whose 2×2 determinant (1e-42) is below f32's normal range: its inverse overflowed
+/// to infinity and the sweep to NaN, also on the kinematic body (API fuzzer, seeds 11 and 12).
+#[test]
+fn the_heaviest_rolling_bodies_stay_finite() {
+    for seed in 0..12u64 {
+        let mut rng = Rng(0x4EA7_0000 + seed);
+        let mut w = World::new(WorldSettings {
+            enable_sleep: false,
+            ..Default::default()
+        })
+        .unwrap();
+        let ground = w.create_body(&BodyDef::default()).unwrap();
+        w.create_shape(
+            ground,
+            &ShapeDef::default(),
+            &Geometry::Plane {
+                normal: Vec3::Y,
+                offset: 0.0,
+            },
+        )
+        .unwrap();
+        let radius = log_range(&mut rng, 100.0, 5000.0);
+        let platform = w
+            .create_body(&BodyDef {
+                body_type: BodyType::Kinematic,
+                transform: Transform::new(Vec3::new(3.0 * radius, radius, 0.0), Quat::IDENTITY),
+                ..Default::default()
+            })
+            .unwrap();
+        w.create_shape(
+            platform,
+            &ShapeDef::default(),
+            &Geometry::Box {
+                center: Vec3::ZERO,
+                rotation: Quat::IDENTITY,
+                half_extents: Vec3::new(radius, 1.0, radius),
+            },
+        )
+        .unwrap();
+        w.set_angular_velocity(platform, rng.vec(1.0)).unwrap();
+        let heavy = ShapeDef {
+            density: 1e5,
+            ..Default::default()
+        };
+        let mut bodies = vec![platform];
+        for (i, at) in [
+            Vec3::new(0.0, radius, 0.0),
+            Vec3::new(3.0 * radius, 2.0 * radius + 1.0, 0.0),
+        ]
+        .into_iter()
+        .enumerate()
+        {
+            let b = w
+                .create_body(&BodyDef {
+                    body_type: BodyType::Dynamic,
+                    transform: Transform::new(at, rng.quat()),
+                    angular_velocity: rng.vec(2.0),
+                    linear_velocity: rng.vec(5.0),
+                    ..Default::default()
+                })
+                .unwrap();
+            let g = if i == 0 || rng.chance(0.5) {
+                Geometry::Sphere {
+                    center: Vec3::ZERO,
+                    radius,
+                }
+            } else {
+                Geometry::Capsule {
+                    a: Vec3::new(-radius, 0.0, 0.0),
+                    b: Vec3::new(radius, 0.0, 0.0),
+                    radius,
+                }
+            };
+            w.create_shape(b, &heavy, &g).unwrap();
+            bodies.push(b);
+        }
+        for step in 0..120 {
+            w.step(1.0 / 60.0).unwrap();
+            assert_bounded(&w, &bodies, &[], &format!("seed {seed} step {step}"));
+        }
+    }
+}

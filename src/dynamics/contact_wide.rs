@@ -982,8 +982,13 @@ fn refresh_batch<L: Lanes, const N: usize, const SB: bool>(states: &[BodyState],
                 *slot = *slot + w.tangents[i].dot(f.irb[j]);
             }
         }
-        let inv_det = safe_inverse(k[0] * k[2] - k[1] * k[1]);
-        let mass = [k[2] * inv_det, -(k[1] * inv_det), k[0] * inv_det];
+        // Inverted at unit scale: a body of 1e14 kg has angular entries near 1e-21, whose
+        // determinant (1e-42) is below f32's normal range, and its inverse overflowed to
+        // infinity (then NaN in the sweep; found by the API fuzzer).
+        let s = safe_inverse(k[0] + k[2]);
+        let (k0, k1, k2) = (k[0] * s, k[1] * s, k[2] * s);
+        let inv_det = safe_inverse(k0 * k2 - k1 * k1) * s;
+        let mass = [k2 * inv_det, -(k1 * inv_det), k0 * inv_det];
         for (m, x) in f.rolling_mass.iter_mut().zip(mass) {
             *m = L::select(keep, *m, x);
         }
