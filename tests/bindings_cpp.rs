@@ -139,7 +139,9 @@ fn unreal_conversion_header_passes() {
 #[test]
 fn unreal_simulation_core_passes() {
     // HearthSimulation.h and HearthShapes.h: frame-rate independent forces, interpolation,
-    // kinematic bodies, gameplay moves, gravity, throttled errors, collision elements.
+    // kinematic bodies, gameplay moves, gravity, throttled errors, collision elements, convex
+    // elements as hulls, complex collision as meshes (winding), landscapes as heightfields, and
+    // the shared-geometry cache.
     let flags = unreal_flags();
     let flags: Vec<&str> = flags.iter().map(String::as_str).collect();
     let exe = build(

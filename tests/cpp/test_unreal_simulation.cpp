@@ -18,7 +18,16 @@
 //   round trips through Unreal units never do;
 // * gravity followed from the host; repeated errors throttled;
 // * simple-collision elements (spheres, boxes, capsules, scaled and rotated) become the
-//   shapes Unreal describes (corners, end points, masses from g/cm³).
+//   shapes Unreal describes (corners, end points, masses from g/cm³);
+// * shared geometry: a convex element becomes a hull (a 1 m cube of 1 g/cm³ weighs 1000 kg,
+//   scaled uniformly or not; it rests on the ground at 0.5 m), complex collision a mesh (a box
+//   rests on a converted floor at its analytic height; Unreal's winding faces up after the
+//   handedness flip, the reversed winding down, mirrored scales flip it back), a landscape a
+//   heightfield (a box rests on a converted sloped landscape at its analytic distance, axes
+//   and spacing as Unreal's, and falls off past its edge); the cache shares one geometry
+//   between components of one asset and destroys it after its last user; bad input is
+//   reported through the error callback with nothing cached; a seeded randomized pile of
+//   converted hulls on a converted bumpy landscape stays finite, bounded and on it.
 //
 // Built by tests/bindings_cpp.rs with -std=c++17 -Wall -Wextra -Wpedantic -Wshadow -Werror
 // (Unreal builds treat shadowing as an error) and run under valgrind with HEARTH_VALGRIND=1.
@@ -852,6 +861,414 @@ static void test_shapes_from_elements() {
     CHECK_NEAR(m, 2.0 * 1000.0 * 4.0 / 3.0 * M_PI * 0.25 * 0.25 * 0.25, 0.05);
 }
 
+// ---- shared geometry: hulls, meshes, heightfields
+
+/** Settings that report every error (no throttling), to count them. */
+static Core::FSimulationSettings every_error() {
+    Core::FSimulationSettings s;
+    s.ErrorIntervalSeconds = 0.0;
+    return s;
+}
+
+/** The eight corners of an axis-aligned box of half extents (cm) about c (Unreal). */
+static std::vector<FVector> corners_cm(FVector c, double hx, double hy, double hz) {
+    std::vector<FVector> v;
+    for (int i = 0; i < 8; i++) {
+        v.push_back(FVector(c.X + ((i & 1) ? hx : -hx), c.Y + ((i & 2) ? hy : -hy), c.Z + ((i & 4) ? hz : -hz)));
+    }
+    return v;
+}
+
+static HearthBodyId add_static(Core::FSimulation &sim, HearthTransform pose = at(0, 0, 0)) {
+    HearthBodyDef bd = hearth_body_def_default();
+    bd.transform = pose;
+    return sim.AddBody(bd);
+}
+static HearthBodyId add_dynamic(Core::FSimulation &sim, HearthTransform pose) {
+    HearthBodyDef bd = hearth_body_def_default();
+    bd.type = HEARTH_BODY_DYNAMIC;
+    bd.transform = pose;
+    return sim.AddBody(bd);
+}
+static void run(Core::FSimulation &sim, double seconds) {
+    for (int i = 0; i < (int)std::lround(seconds / H); i++) {
+        sim.Advance(H);
+    }
+}
+static uint32_t hull_vertices(Core::FSimulation &sim, const void *asset, int32_t element, HearthResult &result) {
+    uint32_t index = 0, generation = 0, count = 0;
+    if (!sim.GetGeometryId(asset, element, Core::FSimulation::EGeometry::Hull, index, generation)) {
+        result = HEARTH_ERROR_INVALID_ID;
+        return 0;
+    }
+    result = hearth_hull_get_vertex_count(sim.GetWorld(), HearthHullId{index, generation}, &count);
+    return count;
+}
+
+static void test_convex_elements_become_hulls() {
+    const FVector one(1, 1, 1);
+    const std::vector<FVector> cube = corners_cm(FVector(0, 0, 0), 50, 50, 50); // 1 m cube
+    HearthShapeDef water = hearth_shape_def_default();
+    water.density = HC::ToHearthDensity(1.0); // 1000 kg/m³
+
+    // Points: Unreal cm, component space, scale baked only when not uniform.
+    HearthShapes::FGeometryScale g;
+    CHECK(HearthShapes::ConvexScale(FVector(2, 2, 2), g) && g.Scale.x == 2.0f && g.BakeX == 1.0 && g.BakeZ == 1.0);
+    CHECK(HearthShapes::ConvexScale(FVector(-2, 2, 2), g) && g.Scale.x == 2.0f && g.BakeX == -1.0);
+    CHECK(HearthShapes::ConvexScale(FVector(1, 2, 3), g) && g.Scale.x == 1.0f && g.BakeY == 2.0 && g.BakeZ == 3.0);
+    CHECK(!HearthShapes::ConvexScale(FVector(1, 0, 1), g) && !HearthShapes::ConvexScale(FVector(1, NAN, 1), g));
+    std::vector<HearthVec3> pts;
+    CHECK(HearthShapes::ConvexScale(FVector(1, 2, 3), g));
+    const FVector p(10, 20, 30);
+    HearthShapes::ConvertPoints(&p, 1, g, pts);
+    CHECK(pts.size() == 1 && std::fabs(pts[0].x - 0.1f) < 1e-7f && std::fabs(pts[0].y - 0.9f) < 1e-6f &&
+          std::fabs(pts[0].z - 0.4f) < 1e-7f); // (X, Z, Y) · scale / 100
+
+    Core::FSimulation sim;
+    ErrorLog log;
+    sim.SetErrorCallback(&ErrorLog::Receive, &log);
+    CHECK(sim.Create(world_def(EARTH_G), every_error()));
+    int asset_a = 0, asset_b = 0; // stand-ins for two UStaticMesh assets
+    // Mass: 1 m³ at 1000 kg/m³, uniform scale 2 (8000 kg), non-uniform (2, 1, 1) baked (2000 kg).
+    const struct {
+        FVector scale;
+        double mass;
+    } cases[] = {{one, 1000.0}, {FVector(2, 2, 2), 8000.0}, {FVector(2, 1, 1), 2000.0}, {FVector(-1, 1, 1), 1000.0}};
+    for (const auto &c : cases) {
+        const HearthBodyId b = add_dynamic(sim, at(0, 50, 0));
+        CHECK(sim.AddHull(b, water, &asset_a, 0, cube.data(), cube.size(), c.scale));
+        float m = 0;
+        CHECK(sim.GetMass(b, m));
+        CHECK(std::fabs(m - c.mass) <= 1e-3 * c.mass);
+    }
+    // (1,1,1) and (2,2,2) share the unbaked hull; (2,1,1) and (-1,1,1) bake their own.
+    CHECK(sim.GetGeometryCount() == 3);
+    CHECK(sim.GetGeometryUsers(&asset_a, 0, Core::FSimulation::EGeometry::Hull) == 4);
+    CHECK(log.messages.empty());
+
+    // Bad input through the error path, nothing cached: three points, a NaN, a zero scale.
+    const HearthBodyId bad = add_dynamic(sim, at(0, 60, 0));
+    CHECK(!sim.AddHull(bad, water, &asset_b, 0, cube.data(), 3, one));
+    CHECK(log.messages.size() == 1 && log.messages[0].find("hearth_hull_create failed: HEARTH_ERROR_INVALID_ARGUMENT") == 0);
+    std::vector<FVector> nan_cube = cube;
+    nan_cube[3].Y = NAN;
+    CHECK(!sim.AddHull(bad, water, &asset_b, 1, nan_cube.data(), nan_cube.size(), one));
+    CHECK(log.messages.size() == 2);
+    CHECK(!sim.AddHull(bad, water, &asset_b, 0, cube.data(), cube.size(), FVector(1, 0, 1)));
+    CHECK(log.messages.size() == 3 && log.messages[2].find("AddHull: every component of the scale") == 0);
+    CHECK(sim.GetGeometryCount() == 3);
+    // A shape that fails after its hull was built releases it: a bad shape def.
+    HearthShapeDef broken = water;
+    broken.density = -1.0f;
+    CHECK(!sim.AddHull(bad, broken, &asset_b, 0, cube.data(), cube.size(), one));
+    CHECK(log.messages.size() == 4 && log.messages[3].find("hearth_shape_create_hull failed") == 0);
+    CHECK(sim.GetGeometryCount() == 3);
+    sim.Destroy();
+    CHECK(sim.GetGeometryCount() == 0);
+    log.messages.clear();
+
+    // Rest: a converted 1 m cube falls onto the ground and rests at 0.5 m (± 5 mm).
+    CHECK(sim.Create(world_def(EARTH_G), every_error()));
+    add_ground(sim);
+    const HearthBodyId die = add_dynamic(sim, at(0, 1.2, 0));
+    CHECK(sim.AddHull(die, water, &asset_a, 0, cube.data(), cube.size(), one));
+    run(sim, 3.0);
+    CHECK_NEAR(stepped(sim, die).position.y, 0.5, 0.005);
+    CHECK(log.messages.empty());
+}
+
+static void test_cache_shares_and_releases() {
+    const FVector one(1, 1, 1);
+    const std::vector<FVector> cube = corners_cm(FVector(0, 0, 0), 50, 50, 50);
+    const std::vector<FVector> wedge = {FVector(0, 0, 0), FVector(100, 0, 0), FVector(0, 100, 0), FVector(0, 0, 100)};
+    Core::FSimulation sim;
+    ErrorLog log;
+    sim.SetErrorCallback(&ErrorLog::Receive, &log);
+    CHECK(sim.Create(world_def(ZERO_G), every_error()));
+    const HearthShapeDef sd = hearth_shape_def_default();
+    int mesh_asset = 0;
+    // Two components of one static mesh with two convex elements: two hulls, two users each.
+    const HearthBodyId a = add_dynamic(sim, at(0, 0, 0));
+    const HearthBodyId b = add_dynamic(sim, at(5, 0, 0));
+    for (HearthBodyId body : {a, b}) {
+        CHECK(sim.AddHull(body, sd, &mesh_asset, 0, cube.data(), cube.size(), one));
+        CHECK(sim.AddHull(body, sd, &mesh_asset, 1, wedge.data(), wedge.size(), one));
+    }
+    CHECK(sim.GetGeometryCount() == 2);
+    uint32_t ia = 0, ga = 0;
+    CHECK(sim.GetGeometryId(&mesh_asset, 0, Core::FSimulation::EGeometry::Hull, ia, ga));
+    CHECK(sim.GetGeometryUsers(&mesh_asset, 0, Core::FSimulation::EGeometry::Hull) == 2);
+    HearthResult r = HEARTH_OK;
+    CHECK(hull_vertices(sim, &mesh_asset, 0, r) == 8 && r == HEARTH_OK);
+    CHECK(hull_vertices(sim, &mesh_asset, 1, r) == 4 && r == HEARTH_OK);
+    // Hearth refuses to destroy a hull in use: the cache must not try before the last user goes.
+    CHECK(hearth_hull_destroy(sim.GetWorld(), HearthHullId{ia, ga}) == HEARTH_ERROR_INVALID_ARGUMENT);
+    // The first component goes: the hulls stay for the second.
+    CHECK(sim.RemoveBody(a));
+    CHECK(sim.GetGeometryCount() == 2);
+    CHECK(sim.GetGeometryUsers(&mesh_asset, 0, Core::FSimulation::EGeometry::Hull) == 1);
+    uint32_t count = 0;
+    CHECK(hearth_hull_get_vertex_count(sim.GetWorld(), HearthHullId{ia, ga}, &count) == HEARTH_OK && count == 8);
+    // The last goes: both hulls are destroyed in Hearth too.
+    CHECK(sim.RemoveBody(b));
+    CHECK(sim.GetGeometryCount() == 0);
+    CHECK(hearth_hull_get_vertex_count(sim.GetWorld(), HearthHullId{ia, ga}, &count) == HEARTH_ERROR_INVALID_ID);
+    // A body destroyed behind the simulation's back releases its uses when it is dropped.
+    const HearthBodyId c = add_dynamic(sim, at(0, 0, 0));
+    CHECK(sim.AddHull(c, sd, &mesh_asset, 0, cube.data(), cube.size(), one));
+    CHECK(hearth_body_destroy(sim.GetWorld(), c) == HEARTH_OK);
+    CHECK(sim.Advance(H) == 1);
+    CHECK(!sim.HasBody(c) && sim.GetGeometryCount() == 0);
+    // Geometry used by a shape made outside the cache: the cache's release is refused by
+    // Hearth, reported, and the entry kept (retried later) rather than leaking a stale id.
+    const HearthBodyId d = add_dynamic(sim, at(0, 0, 0));
+    CHECK(sim.AddHull(d, sd, &mesh_asset, 0, cube.data(), cube.size(), one));
+    CHECK(sim.GetGeometryId(&mesh_asset, 0, Core::FSimulation::EGeometry::Hull, ia, ga));
+    const HearthBodyId outside = add_dynamic(sim, at(3, 0, 0));
+    const HearthHullShape foreign{HearthHullId{ia, ga}, at(0, 0, 0), 1.0f};
+    HearthShapeId foreign_shape{0, 0};
+    CHECK(hearth_shape_create_hull(sim.GetWorld(), outside, &sd, &foreign, &foreign_shape) == HEARTH_OK);
+    const size_t before = log.messages.size();
+    CHECK(sim.RemoveBody(d));
+    CHECK(log.messages.size() == before + 1 && log.messages.back().find("hearth_hull_destroy failed") == 0);
+    CHECK(sim.GetGeometryCount() == 1);
+    CHECK(hearth_shape_destroy(sim.GetWorld(), foreign_shape) == HEARTH_OK);
+    const HearthBodyId e = add_dynamic(sim, at(0, 0, 0));
+    CHECK(sim.AddHull(e, sd, &mesh_asset, 0, cube.data(), cube.size(), one)); // reuses the kept hull
+    CHECK(sim.GetGeometryCount() == 1);
+    CHECK(sim.RemoveBody(e) && sim.GetGeometryCount() == 0);
+}
+
+/** A floor quad at height z (cm), ±half (cm), wound as Unreal winds a face seen from +Z:
+ * front normal (C − A) × (B − A) up. */
+static void floor_quad(double z, double half, std::vector<FVector> &v, std::vector<uint32_t> &idx, bool face_up) {
+    v = {FVector(-half, -half, z), FVector(half, -half, z), FVector(half, half, z), FVector(-half, half, z)};
+    idx = face_up ? std::vector<uint32_t>{0, 2, 1, 0, 3, 2} : std::vector<uint32_t>{0, 1, 2, 0, 2, 3};
+}
+
+static void test_complex_collision_becomes_a_mesh() {
+    // Unreal's front: (C − A) × (B − A) points up for the face-up quad.
+    std::vector<FVector> v;
+    std::vector<uint32_t> idx;
+    floor_quad(20, 200, v, idx, true);
+    for (size_t t = 0; t < idx.size(); t += 3) {
+        const FVector n = FVector::CrossProduct(v[idx[t + 2]] - v[idx[t]], v[idx[t + 1]] - v[idx[t]]);
+        CHECK(n.Z > 0);
+    }
+    // After conversion, Hearth's front (B − A) × (C − A) points up (+y), as it must.
+    HearthShapes::FGeometryScale g;
+    std::vector<HearthVec3> pts;
+    std::vector<uint32_t> hidx;
+    const FVector mirrors[] = {FVector(1, 1, 1), FVector(-1, 1, 1), FVector(-1, -1, 1), FVector(2, -3, 0.5)};
+    for (const FVector &m : mirrors) {
+        CHECK(HearthShapes::MeshScale(m, g));
+        HearthShapes::ConvertPoints(v.data(), v.size(), g, pts);
+        HearthShapes::ConvertIndices(idx.data(), idx.size(), g, hidx);
+        for (size_t t = 0; t < hidx.size(); t += 3) {
+            const HearthVec3 &A = pts[hidx[t]], &B = pts[hidx[t + 1]], &C = pts[hidx[t + 2]];
+            const HearthVec3 n = HC::Cross(HearthVec3{B.x - A.x, B.y - A.y, B.z - A.z},
+                                           HearthVec3{C.x - A.x, C.y - A.y, C.z - A.z});
+            CHECK(n.y > 0); // still facing up, mirrored or not
+        }
+    }
+    CHECK(HearthShapes::MeshScale(FVector(2, -3, 0.5), g) && g.Scale.x == 2.0f && g.Scale.y == 0.5f &&
+          g.Scale.z == 3.0f);
+
+    // Physics: a 0.4 m box dropped on each converted floor. The floor's height is 20 cm times
+    // the Z scale, on a static body at the origin; the box rests with its centre 0.2 m above.
+    const struct {
+        FVector scale;
+        bool face_up;
+        double floor; // m, or NAN when the box must fall through (floor facing down)
+    } cases[] = {{FVector(1, 1, 1), true, 0.2},   {FVector(1, 1, 2), true, 0.4},  {FVector(-1, 1, 1), true, 0.2},
+                 {FVector(1, -2, 0.5), true, 0.1}, {FVector(1, 1, 1), false, NAN}};
+    for (const auto &c : cases) {
+        Core::FSimulation sim;
+        ErrorLog log;
+        sim.SetErrorCallback(&ErrorLog::Receive, &log);
+        CHECK(sim.Create(world_def(EARTH_G), every_error()));
+        floor_quad(20, 200, v, idx, c.face_up);
+        int asset = 0;
+        const HearthBodyId ground = add_static(sim);
+        CHECK(sim.AddMesh(ground, hearth_shape_def_default(), &asset, v.data(), v.size(), idx.data(), idx.size(),
+                          c.scale));
+        const HearthBodyId box = add_box(sim, at(0.3, 1.2, -0.4), HearthVec3{0.2f, 0.2f, 0.2f}, 10.0, true);
+        run(sim, 3.0);
+        const double y = stepped(sim, box).position.y;
+        if (std::isnan(c.floor)) {
+            CHECK(y < -1.0); // a floor facing down does not hold it: this is what a winding error does
+        } else {
+            CHECK_NEAR(y, c.floor + 0.2, 0.005);
+        }
+        CHECK(log.messages.empty());
+    }
+
+    // Sharing and errors: one mesh for two floors of one asset; refused on a dynamic body
+    // (reported, nothing cached); a bad index reported.
+    Core::FSimulation sim;
+    ErrorLog log;
+    sim.SetErrorCallback(&ErrorLog::Receive, &log);
+    CHECK(sim.Create(world_def(EARTH_G), every_error()));
+    floor_quad(0, 200, v, idx, true);
+    int asset = 0, other = 0;
+    const HearthBodyId f1 = add_static(sim), f2 = add_static(sim, at(10, 0, 0));
+    CHECK(sim.AddMesh(f1, hearth_shape_def_default(), &asset, v.data(), v.size(), idx.data(), idx.size(), FVector(1, 1, 1)));
+    CHECK(sim.AddMesh(f2, hearth_shape_def_default(), &asset, v.data(), v.size(), idx.data(), idx.size(), FVector(3, 3, 3)));
+    CHECK(sim.GetGeometryCount() == 1 && sim.GetGeometryUsers(&asset, -1, Core::FSimulation::EGeometry::Mesh) == 2);
+    const HearthBodyId dyn = add_dynamic(sim, at(0, 5, 0));
+    CHECK(!sim.AddMesh(dyn, hearth_shape_def_default(), &other, v.data(), v.size(), idx.data(), idx.size(), FVector(1, 1, 1)));
+    CHECK(log.messages.size() == 1 && log.messages[0].find("hearth_shape_create_mesh failed: HEARTH_ERROR_INVALID_ARGUMENT") == 0);
+    CHECK(sim.GetGeometryCount() == 1);
+    idx[4] = 9;
+    CHECK(!sim.AddMesh(f1, hearth_shape_def_default(), &other, v.data(), v.size(), idx.data(), idx.size(), FVector(1, 1, 1)));
+    CHECK(log.messages.size() == 2 && log.messages[1].find("hearth_mesh_create failed") == 0);
+    CHECK(sim.GetGeometryCount() == 1);
+    CHECK(sim.RemoveBody(f1) && sim.GetGeometryCount() == 1);
+    CHECK(sim.RemoveBody(f2) && sim.GetGeometryCount() == 0);
+}
+
+static void test_landscape_becomes_a_heightfield() {
+    // A plane landscape h = 0.1·X + 0.05·Y (cm), 9 × 7 samples 100 cm apart, scaled (1, 1, 1):
+    // Hearth's plane y = 0.1·x + 0.05·z. A box dropped at (3, ·, 2) m rests with its centre
+    // one half extent from the plane along its normal.
+    const uint32_t sx = 9, sy = 7;
+    std::vector<float> h(sx * sy);
+    for (uint32_t y = 0; y < sy; y++) {
+        for (uint32_t x = 0; x < sx; x++) {
+            h[y * sx + x] = (float)(0.1 * (x * 100.0) + 0.05 * (y * 100.0));
+        }
+    }
+    std::vector<float> out;
+    HearthVec3 scale{0, 0, 0};
+    CHECK(HearthShapes::MakeHeightfield(sx, sy, h.data(), 100.0, 100.0, FVector(2, 3, 4), out, scale));
+    CHECK(scale.x == 2.0f && scale.y == 4.0f && scale.z == 3.0f);
+    CHECK(std::fabs(out[2 * sx + 3] - 0.4f) < 1e-6f); // sample (x 3, y 2): 30 + 10 cm
+    CHECK(!HearthShapes::MakeHeightfield(1, sy, h.data(), 100.0, 100.0, FVector(1, 1, 1), out, scale));
+    CHECK(!HearthShapes::MakeHeightfield(sx, sy, h.data(), 0.0, 100.0, FVector(1, 1, 1), out, scale));
+    CHECK(!HearthShapes::MakeHeightfield(sx, sy, h.data(), 100.0, 100.0, FVector(-1, 1, 1), out, scale));
+    {
+        Core::FSimulation sim;
+        ErrorLog log;
+        sim.SetErrorCallback(&ErrorLog::Receive, &log);
+        CHECK(sim.Create(world_def(EARTH_G), every_error()));
+        int landscape = 0;
+        const HearthBodyId ground = add_static(sim);
+        CHECK(sim.AddHeightfield(ground, hearth_shape_def_default(), &landscape, sx, sy, h.data(), nullptr, 100.0,
+                                 100.0, FVector(1, 1, 1)));
+        const HearthBodyId box = add_box(sim, at(3.0, 1.5, 2.0), HearthVec3{0.2f, 0.2f, 0.2f}, 10.0, true);
+        run(sim, 3.0);
+        const HearthVec3 p = stepped(sim, box).position;
+        const double n = std::sqrt(1.0 + 0.01 + 0.0025);
+        CHECK_NEAR((p.y - 0.1 * p.x - 0.05 * p.z) / n, 0.2, 0.005);
+        // With X and Y swapped the plane would be y = 0.05·x + 0.1·z: 0.05 m off here.
+        CHECK(std::fabs((p.y - 0.05 * p.x - 0.1 * p.z) / n - 0.2) > 0.02);
+        CHECK(log.messages.empty());
+    }
+    // Flat at 50 cm, 5 × 5 samples 100 cm apart, component scale (2, 1, 2), placed 0.5 m up:
+    // 8 m by 4 m at 1.5 m high. A box inside rests at 1.7 m; one past the X edge (x = 9 m) falls off.
+    {
+        const uint32_t n = 5;
+        std::vector<float> flat(n * n, 50.0f);
+        Core::FSimulation sim;
+        ErrorLog log;
+        sim.SetErrorCallback(&ErrorLog::Receive, &log);
+        CHECK(sim.Create(world_def(EARTH_G), every_error()));
+        int landscape = 0;
+        const HearthBodyId ground = add_static(sim);
+        // Placed 0.5 m up in the body's frame (Local), as a landscape's collision component
+        // sits at its offset in the actor's frame.
+        CHECK(sim.AddHeightfield(ground, hearth_shape_def_default(), &landscape, n, n, flat.data(), nullptr, 100.0,
+                                 100.0, FVector(2, 1, 2), at(0, 0.5, 0)));
+        const HearthBodyId in = add_box(sim, at(7.5, 2.0, 3.5), HearthVec3{0.2f, 0.2f, 0.2f}, 10.0, true);
+        const HearthBodyId off = add_box(sim, at(9.0, 2.0, 2.0), HearthVec3{0.2f, 0.2f, 0.2f}, 10.0, true);
+        const HearthBodyId off_z = add_box(sim, at(2.0, 2.0, 4.5), HearthVec3{0.2f, 0.2f, 0.2f}, 10.0, true);
+        run(sim, 3.0);
+        CHECK_NEAR(stepped(sim, in).position.y, 1.7, 0.005);
+        CHECK(stepped(sim, off).position.y < -1.0);
+        CHECK(stepped(sim, off_z).position.y < -1.0); // Unreal Y spans 4 m: Hearth z past 4 m is off
+        // Errors: NaN height (Hearth), a hole flag of 2 (Hearth), a mirrored scale (the core).
+        flat[7] = NAN;
+        int other = 0;
+        CHECK(!sim.AddHeightfield(ground, hearth_shape_def_default(), &other, n, n, flat.data(), nullptr, 100.0, 100.0,
+                                  FVector(1, 1, 1)));
+        CHECK(log.messages.size() == 1 && log.messages[0].find("hearth_heightfield_create failed") == 0);
+        flat[7] = 0.0f;
+        std::vector<uint8_t> holes((n - 1) * (n - 1), 0);
+        holes[3] = 2;
+        CHECK(!sim.AddHeightfield(ground, hearth_shape_def_default(), &other, n, n, flat.data(), holes.data(), 100.0,
+                                  100.0, FVector(1, 1, 1)));
+        CHECK(log.messages.size() == 2);
+        CHECK(!sim.AddHeightfield(ground, hearth_shape_def_default(), &other, n, n, flat.data(), nullptr, 100.0, 100.0,
+                                  FVector(1, -1, 1)));
+        CHECK(log.messages.size() == 3 && log.messages[2].find("AddHeightfield: a landscape needs") == 0);
+        CHECK(sim.GetGeometryCount() == 1);
+        CHECK(sim.RemoveBody(ground) && sim.GetGeometryCount() == 0);
+    }
+}
+
+/** Seeded randomized: random convex elements (8–20 points in a random box), random uniform
+ * and non-uniform scales, dropped on a converted bumpy landscape: everything stays finite,
+ * slower than free fall from the drop height, and above the lowest ground. */
+static void test_random_hulls_on_landscape() {
+    const uint32_t n = 17;
+    std::vector<float> h(n * n);
+    for (uint32_t y = 0; y < n; y++) {
+        for (uint32_t x = 0; x < n; x++) {
+            h[y * n + x] = (float)(30.0 * std::sin(0.7 * x) * std::cos(0.5 * y)); // ±30 cm
+        }
+    }
+    Core::FSimulation sim;
+    ErrorLog log;
+    sim.SetErrorCallback(&ErrorLog::Receive, &log);
+    CHECK(sim.Create(world_def(EARTH_G), every_error()));
+    const HearthBodyId ground = add_static(sim);
+    int landscape = 0;
+    CHECK(sim.AddHeightfield(ground, hearth_shape_def_default(), &landscape, n, n, h.data(), nullptr, 100.0, 100.0,
+                             FVector(1, 1, 1)));
+    int assets[4] = {0, 0, 0, 0};
+    std::vector<std::vector<FVector>> clouds(4);
+    for (auto &cloud : clouds) {
+        const double ex = rnd(15, 40), ey = rnd(15, 40), ez = rnd(15, 40);
+        const int count = 8 + (int)rnd(0, 12.99);
+        for (int i = 0; i < count; i++) {
+            cloud.push_back(FVector(rnd(-ex, ex), rnd(-ey, ey), rnd(-ez, ez)));
+        }
+        for (const FVector &c : corners_cm(FVector(0, 0, 0), ex, ey, ez)) { // never flat
+            cloud.push_back(c * 0.9);
+        }
+    }
+    std::vector<HearthBodyId> bodies;
+    for (int i = 0; i < 30; i++) {
+        const int a = (int)rnd(0, 3.99);
+        const double u = rnd(0.5, 1.5);
+        const FVector s = (i % 2) ? FVector(u, u, u) : FVector(rnd(0.5, 1.5), rnd(0.5, 1.5), rnd(0.5, 1.5));
+        const HearthBodyId b = add_dynamic(sim, HearthTransform{HearthVec3{(float)rnd(3, 13), (float)rnd(1.5, 4),
+                                                                           (float)rnd(3, 13)},
+                                                                HC::ToHearthQuat(rnd_quat())});
+        CHECK(sim.AddHull(b, hearth_shape_def_default(), &assets[a], 0, clouds[a].data(), clouds[a].size(), s));
+        bodies.push_back(b);
+    }
+    CHECK(sim.GetGeometryCount() <= 1 + 4 + 15); // uniform scales share their asset's hull
+    bool finite = true, bounded = true, above = true;
+    for (int frame = 0; frame < 240; frame++) {
+        sim.Advance(H);
+        for (HearthBodyId b : bodies) {
+            const HearthTransform t = stepped(sim, b);
+            const HearthVec3 v = velocity(sim, b);
+            finite = finite && finite3(t.position) && finite3(v);
+            bounded = bounded && std::sqrt(v.x * v.x + v.y * v.y + v.z * v.z) < std::sqrt(2.0 * 9.81 * 4.5) + 1.0;
+            const bool inside = t.position.x > 0.5 && t.position.x < 15.5 && t.position.z > 0.5 && t.position.z < 15.5;
+            above = above && (!inside || t.position.y > -0.35);
+        }
+    }
+    CHECK(finite && bounded && above);
+    CHECK(log.messages.empty());
+    for (HearthBodyId b : bodies) {
+        CHECK(sim.RemoveBody(b));
+    }
+    CHECK(sim.GetGeometryCount() == 1); // only the landscape's heightfield is left
+}
+
 int main() {
     test_force_lasts_for_its_frame();
     test_force_at_random_frame_rates();
@@ -866,6 +1283,11 @@ int main() {
     test_errors_are_throttled();
     test_version_compatibility();
     test_shapes_from_elements();
+    test_convex_elements_become_hulls();
+    test_cache_shares_and_releases();
+    test_complex_collision_becomes_a_mesh();
+    test_landscape_becomes_a_heightfield();
+    test_random_hulls_on_landscape();
     std::printf("test_unreal_simulation: %d passed, %d failed\n", g_passed, g_failed);
     return g_failed == 0 ? 0 : 1;
 }

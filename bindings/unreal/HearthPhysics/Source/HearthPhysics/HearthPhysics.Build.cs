@@ -14,8 +14,10 @@ public class HearthPhysics : ModuleRules
 	{
 		PCHUsage = PCHUsageMode.UseExplicitOrSharedPCHs;
 		PublicDependencyModuleNames.AddRange(new string[] { "Core", "CoreUObject", "Engine" });
-		// PhysicsCore: FKAggregateGeom (the simple-collision elements); Projects: IPluginManager.
-		PrivateDependencyModuleNames.AddRange(new string[] { "PhysicsCore", "Projects" });
+		// PhysicsCore: FKAggregateGeom (the simple-collision elements), FTriMeshCollisionData;
+		// Landscape: ALandscapeProxy and its heightfield collision components; Projects:
+		// IPluginManager.
+		PrivateDependencyModuleNames.AddRange(new string[] { "PhysicsCore", "Landscape", "Projects" });
 
 		string HearthRoot = Path.Combine(PluginDirectory, "Source", "ThirdParty", "hearth");
 		PublicIncludePaths.Add(Path.Combine(HearthRoot, "include"));

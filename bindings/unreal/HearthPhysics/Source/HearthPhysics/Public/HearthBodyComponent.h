@@ -1,5 +1,7 @@
-// UHearthBodyComponent - gives its owner a Hearth body made of the simple-collision elements of
-// the owner's root primitive, and keeps actor and body in step in both directions.
+// UHearthBodyComponent - gives its owner a Hearth body made of the collision of the owner's root
+// primitive (its simple-collision spheres, boxes, capsules and convex elements; on static and
+// kinematic bodies optionally its complex collision, the triangles) or, on a landscape, of its
+// height data; and keeps actor and body in step in both directions.
 // NOT COMPILED in the Hearth repository (no Unreal Engine there); see ../../../README.md.
 //
 // All values in and out are Unreal's: centimetres, kg, seconds, forces in kg·cm/s² (Unreal's
@@ -55,6 +57,13 @@ public:
 	/** Friction at rest (at least Friction). */
 	UPROPERTY(EditAnywhere, BlueprintReadOnly, Category = "Hearth", meta = (ClampMin = "0"))
 	float StaticFriction = 0.6f;
+
+	/** Static and kinematic bodies: collide by the static mesh's triangles (its complex
+	 * collision, one shared Hearth mesh per asset) instead of its simple-collision elements.
+	 * Also on when the mesh's Collision Complexity is "Use Complex Collision As Simple".
+	 * Ignored on dynamic bodies (a triangle mesh has no volume, so no mass). */
+	UPROPERTY(EditAnywhere, BlueprintReadOnly, Category = "Hearth")
+	bool bUseComplexCollision = false;
 
 	/** Bounciness, 0 to 1; two touching bodies take the larger. */
 	UPROPERTY(EditAnywhere, BlueprintReadOnly, Category = "Hearth", meta = (ClampMin = "0", ClampMax = "1"))
@@ -164,6 +173,14 @@ private:
 	HearthCore::FSimulation* GetSimulation() const;
 	/** One shape per simple-collision element of the primitive's body setup; returns the count. */
 	int32 CreateShapes(HearthCore::FSimulation& Simulation, UPrimitiveComponent* Primitive);
+	/** The primitive's complex collision (its triangles) as one mesh shape; true when made. */
+	bool CreateMeshShape(HearthCore::FSimulation& Simulation, UPrimitiveComponent* Primitive, const HearthShapeDef& Material);
+	/** One heightfield shape per collision component of a landscape; returns the count. */
+	int32 CreateLandscapeShapes(HearthCore::FSimulation& Simulation, class ALandscapeProxy* Landscape);
+	/** BeginPlay for a landscape actor: a static body of its collision components' heights. */
+	void BeginPlayLandscape(UHearthWorldSubsystem& Subsystem, class ALandscapeProxy* Landscape);
+	/** The shape material from the component's properties. */
+	HearthShapeDef MakeMaterial() const;
 
 	HearthBodyId Body{0, 0};
 	bool bWarnedMoveKinematic = false;

@@ -43,14 +43,24 @@
 // (FErrorThrottle) and then reported with their count, so a failing step cannot flood the
 // log at 60 Hz. A world that stopped after an internal error (HEARTH_ERROR_PANIC) is not
 // stepped again.
+//
+// Shared geometry (hulls, meshes, heightfields) is built once per asset and instanced: AddHull,
+// AddMesh and AddHeightfield look the asset up in a small cache (keyed by the asset's
+// identity, the element's index and the scale baked into the geometry) and create it only on a
+// miss, so two components of one static mesh share one hull or mesh. Each cache entry counts
+// the bodies' shapes using it; removing a body (its shapes go with it) releases its uses, and
+// the geometry is destroyed when its last user is gone, after the shapes (Hearth refuses to
+// destroy geometry in use). A shape that fails to be created releases what it acquired.
 // ---------------------------------------------------------------------------------------
 #pragma once
 
 #include "HearthConversion.h"
+#include "HearthShapes.h"
 #include "hearth.h"
 
 #include <cmath>
 #include <cstdint>
+#include <cstddef>
 #include <cstdio>
 #include <string>
 #include <vector>
@@ -201,6 +211,8 @@ public:
         Previous.clear();
         Current.clear();
         SlotByIndex.clear();
+        Geometry.clear(); // the world freed it
+        GeometryUses.clear();
         Accumulator.Reset();
         StepCount = 0;
         TeleportCount = 0;
@@ -266,6 +278,156 @@ public:
         HearthShapeId Shape{0, 0};
         return World &&
                Check(hearth_shape_create_capsule(World, Body, &Def, &Capsule, &Shape), "hearth_shape_create_capsule");
+    }
+
+    // ---- shared geometry (see the header comment)
+
+    /** The kinds of shared geometry the cache holds. */
+    enum class EGeometry : uint32_t { Hull = 0, Mesh = 1, Heightfield = 2 };
+
+    /**
+     * A convex element (FKConvexElem::VertexData, cm, in the component's frame) of the asset
+     * Asset (any pointer identifying it: the UStaticMesh or its UBodySetup) as a hull shape
+     * on Body, under the component's scale (HearthShapes::ConvexScale: uniform in the shape,
+     * non-uniform baked). The hull is built on the first use of (Asset, ElementIndex, baked
+     * scale) and shared after that. Returns false, reporting why, on failure.
+     */
+    template <class V>
+    bool AddHull(HearthBodyId Body, const HearthShapeDef &Def, const void *Asset, int32_t ElementIndex,
+                 const V *VerticesCm, size_t VertexCount, const V &Scale3D) {
+        HearthShapes::FGeometryScale Bake;
+        if (!HasBody(Body) || !CheckScale(HearthShapes::ConvexScale(Scale3D, Bake), "AddHull", Scale3D)) {
+            return false;
+        }
+        const FGeometryKey Key{Asset, ElementIndex, EGeometry::Hull, Bake.BakeX, Bake.BakeY, Bake.BakeZ};
+        int32_t Entry = Find(Key);
+        if (Entry < 0) {
+            HearthShapes::ConvertPoints(VerticesCm, VertexCount, Bake, Points);
+            const HearthHullDef HullDef = hearth_hull_def_default();
+            HearthHullId Hull{0, 0};
+            if (!Check(hearth_hull_create(World, &HullDef, Points.data(), Points.size(), &Hull), "hearth_hull_create")) {
+                return false;
+            }
+            Entry = Insert(Key, Hull.index, Hull.generation);
+        }
+        const HearthHullShape Shape{HearthHullId{Geometry[Entry].Index, Geometry[Entry].Generation},
+                                    HearthTransform{HearthVec3{0.0f, 0.0f, 0.0f}, HearthQuat{0.0f, 0.0f, 0.0f, 1.0f}},
+                                    Bake.Scale.x};
+        HearthShapeId Id{0, 0};
+        return Use(Body, Entry,
+                   Check(hearth_shape_create_hull(World, Body, &Def, &Shape, &Id), "hearth_shape_create_hull"));
+    }
+
+    /**
+     * An asset's triangles (complex collision: vertices in cm in the component's frame and
+     * three indices per triangle in Unreal's winding, as FTriMeshCollisionData holds them) as
+     * a mesh shape on a static or kinematic Body, under the component's per-axis scale
+     * (mirroring baked; HearthShapes::MeshScale, ConvertIndices). Built on the first use of
+     * (Asset, scale signs), shared after that. Returns false, reporting why, on failure.
+     */
+    template <class V>
+    bool AddMesh(HearthBodyId Body, const HearthShapeDef &Def, const void *Asset, const V *VerticesCm,
+                 size_t VertexCount, const uint32_t *Indices, size_t IndexCount, const V &Scale3D) {
+        HearthShapes::FGeometryScale Bake;
+        if (!HasBody(Body) || !CheckScale(HearthShapes::MeshScale(Scale3D, Bake), "AddMesh", Scale3D)) {
+            return false;
+        }
+        const FGeometryKey Key{Asset, -1, EGeometry::Mesh, Bake.BakeX, Bake.BakeY, Bake.BakeZ};
+        int32_t Entry = Find(Key);
+        if (Entry < 0) {
+            HearthShapes::ConvertPoints(VerticesCm, VertexCount, Bake, Points);
+            if (Indices != nullptr) {
+                HearthShapes::ConvertIndices(Indices, IndexCount, Bake, TriangleIndices);
+            }
+            HearthMeshId Mesh{0, 0};
+            if (!Check(hearth_mesh_create(World, Points.data(), Points.size(),
+                                          Indices != nullptr ? TriangleIndices.data() : nullptr, IndexCount, &Mesh),
+                       "hearth_mesh_create")) {
+                return false;
+            }
+            Entry = Insert(Key, Mesh.index, Mesh.generation);
+        }
+        const HearthMeshShape Shape{HearthMeshId{Geometry[Entry].Index, Geometry[Entry].Generation},
+                                    HearthTransform{HearthVec3{0.0f, 0.0f, 0.0f}, HearthQuat{0.0f, 0.0f, 0.0f, 1.0f}},
+                                    Bake.Scale};
+        HearthShapeId Id{0, 0};
+        return Use(Body, Entry,
+                   Check(hearth_shape_create_mesh(World, Body, &Def, &Shape, &Id), "hearth_shape_create_mesh"));
+    }
+
+    /**
+     * A landscape's heights (SizeX × SizeY samples, row-major with X fastest, cm in the
+     * component's frame, SpacingXCm and SpacingYCm apart; Holes NULL or (SizeX − 1)(SizeY − 1)
+     * row-major cell flags, 1 for a hole) as a heightfield shape on a static or kinematic
+     * Body, under the component's (positive) scale (HearthShapes::MakeHeightfield), placed by
+     * Local in the body's frame (a landscape's collision components sit at their offsets in
+     * the landscape actor's frame). Built on the first use of Asset (the landscape collision
+     * component), shared after that.
+     */
+    template <class V>
+    bool AddHeightfield(HearthBodyId Body, const HearthShapeDef &Def, const void *Asset, uint32_t SizeX,
+                        uint32_t SizeY, const float *HeightsCm, const uint8_t *Holes, double SpacingXCm,
+                        double SpacingYCm, const V &Scale3D,
+                        const HearthTransform &Local = HearthTransform{HearthVec3{0.0f, 0.0f, 0.0f},
+                                                                       HearthQuat{0.0f, 0.0f, 0.0f, 1.0f}}) {
+        if (!HasBody(Body)) {
+            return false;
+        }
+        HearthVec3 Scale{1.0f, 1.0f, 1.0f};
+        if (!HearthShapes::MakeHeightfield(SizeX, SizeY, HeightsCm, SpacingXCm, SpacingYCm, Scale3D, Heights, Scale)) {
+            char Message[256];
+            std::snprintf(Message, sizeof Message,
+                          "AddHeightfield: a landscape needs at least 2 x 2 samples (got %u x %u), heights, spacing "
+                          "above 0 (got %g, %g cm) and a scale of at least 1e-4 on every axis (got %g, %g, %g)",
+                          static_cast<unsigned>(SizeX), static_cast<unsigned>(SizeY), SpacingXCm, SpacingYCm,
+                          static_cast<double>(Scale3D.X), static_cast<double>(Scale3D.Y),
+                          static_cast<double>(Scale3D.Z));
+            ReportError("AddHeightfield", Message);
+            return false;
+        }
+        const FGeometryKey Key{Asset, -1, EGeometry::Heightfield, 1.0, 1.0, 1.0};
+        int32_t Entry = Find(Key);
+        if (Entry < 0) {
+            HearthHeightfieldId Field{0, 0};
+            if (!Check(hearth_heightfield_create(World, SizeY, SizeX, Heights.data(), Holes, &Field),
+                       "hearth_heightfield_create")) {
+                return false;
+            }
+            Entry = Insert(Key, Field.index, Field.generation);
+        }
+        const HearthHeightfieldShape Shape{
+            HearthHeightfieldId{Geometry[Entry].Index, Geometry[Entry].Generation}, Local, Scale};
+        HearthShapeId Id{0, 0};
+        return Use(Body, Entry,
+                   Check(hearth_shape_create_heightfield(World, Body, &Def, &Shape, &Id),
+                         "hearth_shape_create_heightfield"));
+    }
+
+    /** How many hulls, meshes and heightfields the cache holds. */
+    int GetGeometryCount() const { return static_cast<int>(Geometry.size()); }
+    /** The shapes using the cached geometry of (Asset, ElementIndex (-1 for meshes and
+     * heightfields), Kind, any bake); 0 when none is cached. */
+    int GetGeometryUsers(const void *Asset, int32_t ElementIndex, EGeometry Kind) const {
+        int Users = 0;
+        for (const FGeometry &G : Geometry) {
+            if (G.Key.Asset == Asset && G.Key.Element == ElementIndex && G.Key.Kind == Kind) {
+                Users += G.Users;
+            }
+        }
+        return Users;
+    }
+    /** The id (index, generation) of the first cached geometry of (Asset, ElementIndex, Kind);
+     * false when none. Ids are HearthHullId, HearthMeshId or HearthHeightfieldId by Kind. */
+    bool GetGeometryId(const void *Asset, int32_t ElementIndex, EGeometry Kind, uint32_t &OutIndex,
+                       uint32_t &OutGeneration) const {
+        for (const FGeometry &G : Geometry) {
+            if (G.Key.Asset == Asset && G.Key.Element == ElementIndex && G.Key.Kind == Kind) {
+                OutIndex = G.Index;
+                OutGeneration = G.Generation;
+                return true;
+            }
+        }
+        return false;
     }
 
     /** Destroys the body and stops tracking it. */
@@ -626,6 +788,7 @@ private:
     }
     /** Stops tracking the body in slot At (swap-remove: the arrays stay dense for the bulk read). */
     void Forget(size_t At) {
+        ReleaseGeometry(Ids[At]); // its shapes are gone with it
         const size_t Last = Bodies.size() - 1;
         SlotByIndex[Ids[At].index] = -1;
         if (At != Last) {
@@ -707,6 +870,106 @@ private:
                   "hearth_world_get_transforms");
         }
     }
+
+    struct FGeometryKey {
+        const void *Asset;
+        int32_t Element;
+        EGeometry Kind;
+        double BakeX, BakeY, BakeZ;
+        bool operator==(const FGeometryKey &O) const {
+            return Asset == O.Asset && Element == O.Element && Kind == O.Kind && BakeX == O.BakeX &&
+                   BakeY == O.BakeY && BakeZ == O.BakeZ;
+        }
+    };
+    struct FGeometry {
+        FGeometryKey Key;
+        uint32_t Index, Generation; // the Hearth id, of the kind Key.Kind
+        int Users;                  // shapes created through this cache that use it
+    };
+
+    int32_t Find(const FGeometryKey &Key) const {
+        for (size_t i = 0; i < Geometry.size(); ++i) {
+            if (Geometry[i].Key == Key) {
+                return static_cast<int32_t>(i);
+            }
+        }
+        return -1;
+    }
+    int32_t Insert(const FGeometryKey &Key, uint32_t Index, uint32_t Generation) {
+        Geometry.push_back(FGeometry{Key, Index, Generation, 0});
+        return static_cast<int32_t>(Geometry.size() - 1);
+    }
+    /** After a shape creation on Body with the geometry in Entry: counts the use when it
+     * succeeded, or destroys the geometry if nothing uses it. Returns bCreated. */
+    bool Use(HearthBodyId Body, int32_t Entry, bool bCreated) {
+        if (bCreated) {
+            Geometry[static_cast<size_t>(Entry)].Users += 1;
+            GeometryUses.push_back(FUse{Body, Geometry[static_cast<size_t>(Entry)].Key});
+        } else {
+            DropIfUnused(static_cast<size_t>(Entry));
+        }
+        return bCreated;
+    }
+    /** Destroys the geometry in Entry when no shape uses it; Hearth refusing (shapes created
+     * outside the cache use it) is reported and the entry kept, to be retried. */
+    void DropIfUnused(size_t Entry) {
+        const FGeometry G = Geometry[Entry];
+        if (G.Users > 0) {
+            return;
+        }
+        bool bDestroyed = false;
+        switch (G.Key.Kind) {
+        case EGeometry::Hull:
+            bDestroyed = Check(hearth_hull_destroy(World, HearthHullId{G.Index, G.Generation}), "hearth_hull_destroy");
+            break;
+        case EGeometry::Mesh:
+            bDestroyed = Check(hearth_mesh_destroy(World, HearthMeshId{G.Index, G.Generation}), "hearth_mesh_destroy");
+            break;
+        case EGeometry::Heightfield:
+            bDestroyed = Check(hearth_heightfield_destroy(World, HearthHeightfieldId{G.Index, G.Generation}),
+                               "hearth_heightfield_destroy");
+            break;
+        }
+        if (bDestroyed) {
+            Geometry.erase(Geometry.begin() + static_cast<std::ptrdiff_t>(Entry));
+        }
+    }
+    /** Releases the geometry uses of a body that is gone (with its shapes). */
+    void ReleaseGeometry(HearthBodyId Body) {
+        for (size_t i = GeometryUses.size(); i-- > 0;) {
+            const FUse U = GeometryUses[i];
+            if (U.Body.index != Body.index || U.Body.generation != Body.generation) {
+                continue;
+            }
+            GeometryUses.erase(GeometryUses.begin() + static_cast<std::ptrdiff_t>(i));
+            const int32_t Entry = Find(U.Key);
+            if (Entry >= 0) {
+                Geometry[static_cast<size_t>(Entry)].Users -= 1;
+                DropIfUnused(static_cast<size_t>(Entry));
+            }
+        }
+    }
+    template <class V> bool CheckScale(bool bOk, const char *What, const V &Scale3D) {
+        if (!bOk) {
+            char Message[192];
+            std::snprintf(Message, sizeof Message,
+                          "%s: every component of the scale must be finite and at least 1e-4 in size, got (%g, %g, %g)",
+                          What, static_cast<double>(Scale3D.X), static_cast<double>(Scale3D.Y),
+                          static_cast<double>(Scale3D.Z));
+            ReportError(What, Message);
+        }
+        return bOk;
+    }
+
+    struct FUse {
+        HearthBodyId Body;
+        FGeometryKey Key;
+    };
+    std::vector<FGeometry> Geometry;    // a handful of assets: linear search
+    std::vector<FUse> GeometryUses;     // one per shape created through the cache
+    std::vector<HearthVec3> Points;     // scratch for conversions
+    std::vector<uint32_t> TriangleIndices;
+    std::vector<float> Heights;
 
     HearthWorld *World = nullptr;
     FSimulationSettings Settings;
