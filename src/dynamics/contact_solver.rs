@@ -206,6 +206,7 @@ pub struct LaneImpulses {
 pub fn store_rolling(r: &ContactRef, rolling: Vec3, contacts: &mut Pool<Contact>) {
     if let Some(ci) = r.contact() {
         let (_, _, friction) = contacts.at_mut(ci).child_impulses_mut(r.child as usize);
+        let rolling = if rolling.is_finite() { rolling } else { Vec3::ZERO };
         friction.rolling = if r.swapped { -rolling } else { rolling };
     }
 }
@@ -217,11 +218,19 @@ pub fn store(r: &ContactRef, out: &LaneImpulses, contacts: &mut Pool<Contact>) {
         return;
     };
     let (count, impulses, friction) = contacts.at_mut(ci).child_impulses_mut(r.child as usize);
+    // A diverged lane (see `solver::guard_velocities`) must not warm-start the next step.
+    let finite = out.normal[..count].iter().all(|n| n.is_finite()) && out.tangent.is_finite() && out.twist.is_finite();
     for (imp, &n) in impulses[..count].iter_mut().zip(&out.normal) {
-        imp.normal = n;
+        imp.normal = if finite { n } else { 0.0 };
     }
-    friction.tangent = if r.swapped { -out.tangent } else { out.tangent };
-    friction.twist = out.twist;
+    friction.tangent = if !finite {
+        Vec3::ZERO
+    } else if r.swapped {
+        -out.tangent
+    } else {
+        out.tangent
+    };
+    friction.twist = if finite { out.twist } else { 0.0 };
     friction.sliding = out.sliding;
 }
 

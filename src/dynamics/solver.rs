@@ -727,11 +727,13 @@ pub fn solve(world: &mut World, dt: f32) {
         for k in 0..settings.velocity_iterations {
             contact_wide::solve(vel, batches, inv_h, (sub + k) % 2 == 0, Some(&soft));
         }
+        guard_velocities(vel, limits);
         integrate_wide::positions(eight, vel, states, &paths.moving, h, limits);
         integrate_general_positions(vel, states, sims, &paths.general, h, limits);
         crate::dynamics::joints::solver::solve(joints, vel, states, h, false);
         crate::dynamics::joints::solver::guard(joints, vel, limits);
         contact_wide::solve(vel, batches, inv_h, sub % 2 == 1, None);
+        guard_velocities(vel, limits);
     }
     if scratch.bounces {
         contact_wide::refresh(states, batches, false);
@@ -740,6 +742,22 @@ pub fn solve(world: &mut World, dt: f32) {
     contact_wide::store(batches, &scratch.refs, &mut world.contacts);
     crate::dynamics::joints::solver::store(world, h);
     finalize_bodies(world);
+}
+
+/// After the contact sweeps: a body whose inertia is nearly singular in f32 (a 10 km capsule
+/// 1 mm thick: its two inertias differ by 1e13) can feed its twist and rolling rows back into
+/// its normal rows until the sweep diverges (2e34 N·s, then NaN; API fuzzer seed 17). Such a
+/// body (non-finite, or past 100 times the speed limits) is brought back within the limits
+/// (NaN components dropped); velocities merely past the limits are left to the integration's
+/// caps, as capping inside the solve would bias it. One pass over the bodies per sweep group.
+fn guard_velocities(vel: &mut [Velocity], limits: (f32, f32)) {
+    let (v2, w2) = ((100.0 * limits.0).powi(2), (100.0 * limits.1).powi(2));
+    for u in vel.iter_mut().skip(1) {
+        // `!(x <= max)` is also true for NaN.
+        if !(u.v.length_squared() <= v2) || !(u.w.length_squared() <= w2) {
+            *u = Velocity::new(clamp_length(u.v, limits.0), clamp_length(u.w, limits.1));
+        }
+    }
 }
 
 /// Writes solver results back: transforms, velocities, world inertia; clears forces.
