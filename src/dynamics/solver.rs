@@ -753,8 +753,8 @@ pub fn solve(world: &mut World, dt: f32) {
 fn guard_velocities(vel: &mut [Velocity], limits: (f32, f32)) {
     let (v2, w2) = ((100.0 * limits.0).powi(2), (100.0 * limits.1).powi(2));
     for u in vel.iter_mut().skip(1) {
-        // `!(x <= max)` is also true for NaN.
-        if !(u.v.length_squared() <= v2) || !(u.w.length_squared() <= w2) {
+        let sane = |x: f32, max: f32| x.is_finite() && x <= max;
+        if !sane(u.v.length_squared(), v2) || !sane(u.w.length_squared(), w2) {
             *u = Velocity::new(clamp_length(u.v, limits.0), clamp_length(u.w, limits.1));
         }
     }
