@@ -6,56 +6,14 @@
 mod scenes;
 #[path = "terrain/mod.rs"]
 mod terrain;
+use terrain::{ball, body, cube, material, world};
 
 use hearth::collision::narrow_phase::{collide_triangles, MeshManifolds};
 use hearth::math::{Quat, Transform, Vec3};
-use hearth::world::{World, WorldSettings};
+use hearth::world::World;
 use hearth::{BodyDef, BodyHandle, BodyType, Geometry, ShapeDef};
 
 const DT: f32 = 1.0 / 60.0;
-
-fn world() -> World {
-    World::new(WorldSettings {
-        enable_sleep: false,
-        ..WorldSettings::default()
-    })
-    .unwrap()
-}
-
-fn material(friction: f32) -> ShapeDef {
-    ShapeDef {
-        static_friction: friction,
-        dynamic_friction: friction,
-        ..ShapeDef::default()
-    }
-}
-
-fn body(w: &mut World, p: Vec3, q: Quat, g: Geometry, friction: f32) -> BodyHandle {
-    let b = w
-        .create_body(&BodyDef {
-            body_type: BodyType::Dynamic,
-            transform: Transform::new(p, q),
-            ..Default::default()
-        })
-        .unwrap();
-    w.create_shape(b, &material(friction), &g).unwrap();
-    b
-}
-
-fn cube(h: f32) -> Geometry {
-    Geometry::Box {
-        center: Vec3::ZERO,
-        rotation: Quat::IDENTITY,
-        half_extents: Vec3::splat(h),
-    }
-}
-
-fn ball(r: f32) -> Geometry {
-    Geometry::Sphere {
-        center: Vec3::ZERO,
-        radius: r,
-    }
-}
 
 /// A static heightfield body: `rows × columns` samples, placed and scaled.
 #[allow(clippy::too_many_arguments)]

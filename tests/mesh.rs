@@ -7,6 +7,7 @@
 mod scenes;
 #[path = "terrain/mod.rs"]
 mod terrain;
+use terrain::{ball, body, cube, material, world};
 
 use hearth::collision::aabb::Aabb;
 use hearth::math::{Quat, Transform, Vec3};
@@ -14,49 +15,6 @@ use hearth::world::{LaneWidth, World, WorldSettings};
 use hearth::{BodyDef, BodyHandle, BodyType, Error, Geometry, ShapeDef};
 
 const DT: f32 = 1.0 / 60.0;
-
-fn world() -> World {
-    World::new(WorldSettings {
-        enable_sleep: false,
-        ..WorldSettings::default()
-    })
-    .unwrap()
-}
-
-fn material(friction: f32) -> ShapeDef {
-    ShapeDef {
-        static_friction: friction,
-        dynamic_friction: friction,
-        ..ShapeDef::default()
-    }
-}
-
-fn body(w: &mut World, p: Vec3, q: Quat, g: Geometry, friction: f32) -> BodyHandle {
-    let b = w
-        .create_body(&BodyDef {
-            body_type: BodyType::Dynamic,
-            transform: Transform::new(p, q),
-            ..Default::default()
-        })
-        .unwrap();
-    w.create_shape(b, &material(friction), &g).unwrap();
-    b
-}
-
-fn cube(h: f32) -> Geometry {
-    Geometry::Box {
-        center: Vec3::ZERO,
-        rotation: Quat::IDENTITY,
-        half_extents: Vec3::splat(h),
-    }
-}
-
-fn ball(r: f32) -> Geometry {
-    Geometry::Sphere {
-        center: Vec3::ZERO,
-        radius: r,
-    }
-}
 
 /// A static mesh body from vertices and triangles, placed and scaled.
 fn static_mesh(w: &mut World, v: &[Vec3], t: &[[u32; 3]], local: Transform, scale: Vec3) -> BodyHandle {

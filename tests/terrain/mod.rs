@@ -1,8 +1,10 @@
-//! What the mesh and heightfield tests share: energy, and seeded drops on random terrain.
+//! What the mesh and heightfield tests share: a world, materials, bodies, energy, and seeded
+//! drops on random terrain.
 
 use super::scenes;
+use hearth::math::{Quat, Transform, Vec3};
 use hearth::world::{World, WorldSettings};
-use hearth::BodyHandle;
+use hearth::{BodyDef, BodyHandle, BodyType, Geometry, ShapeDef};
 
 const DT: f32 = 1.0 / 60.0;
 
@@ -68,5 +70,48 @@ pub fn random_drops(heightfield: bool) {
             let limit = if rolls { 1.5 } else { 0.05 };
             assert!(v < limit, "seed {seed}: body {k} (kind {}) still at {v} m/s", k % 4);
         }
+    }
+}
+
+pub fn world() -> World {
+    World::new(WorldSettings {
+        enable_sleep: false,
+        ..WorldSettings::default()
+    })
+    .unwrap()
+}
+
+pub fn material(friction: f32) -> ShapeDef {
+    ShapeDef {
+        static_friction: friction,
+        dynamic_friction: friction,
+        ..ShapeDef::default()
+    }
+}
+
+pub fn body(w: &mut World, p: Vec3, q: Quat, g: Geometry, friction: f32) -> BodyHandle {
+    let b = w
+        .create_body(&BodyDef {
+            body_type: BodyType::Dynamic,
+            transform: Transform::new(p, q),
+            ..Default::default()
+        })
+        .unwrap();
+    w.create_shape(b, &material(friction), &g).unwrap();
+    b
+}
+
+pub fn cube(h: f32) -> Geometry {
+    Geometry::Box {
+        center: Vec3::ZERO,
+        rotation: Quat::IDENTITY,
+        half_extents: Vec3::splat(h),
+    }
+}
+
+pub fn ball(r: f32) -> Geometry {
+    Geometry::Sphere {
+        center: Vec3::ZERO,
+        radius: r,
     }
 }
