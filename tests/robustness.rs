@@ -128,6 +128,22 @@ fn world() -> World {
     .unwrap()
 }
 
+/// `world()` with a static ground plane at y = 0.
+fn world_on_a_plane() -> World {
+    let mut w = world();
+    let ground = w.create_body(&BodyDef::default()).unwrap();
+    w.create_shape(
+        ground,
+        &ShapeDef::default(),
+        &Geometry::Plane {
+            normal: Vec3::Y,
+            offset: 0.0,
+        },
+    )
+    .unwrap();
+    w
+}
+
 /// Kinetic plus gravity potential energy of the bodies.
 fn body_energy(w: &World, bodies: &[BodyHandle]) -> f64 {
     let g = w.settings.gravity;
@@ -1500,21 +1516,7 @@ fn joints_between_extreme_shapes_stay_finite_and_within_the_limits() {
 fn the_heaviest_rolling_bodies_stay_finite() {
     for seed in 0..12u64 {
         let mut rng = Rng(0x4EA7_0000 + seed);
-        let mut w = World::new(WorldSettings {
-            enable_sleep: false,
-            ..Default::default()
-        })
-        .unwrap();
-        let ground = w.create_body(&BodyDef::default()).unwrap();
-        w.create_shape(
-            ground,
-            &ShapeDef::default(),
-            &Geometry::Plane {
-                normal: Vec3::Y,
-                offset: 0.0,
-            },
-        )
-        .unwrap();
+        let mut w = world_on_a_plane();
         let radius = log_range(&mut rng, 100.0, 5000.0);
         let platform = w
             .create_body(&BodyDef {
@@ -1586,21 +1588,7 @@ fn the_heaviest_rolling_bodies_stay_finite() {
 fn the_most_elongated_bodies_stay_finite_in_contact() {
     for seed in 0..16u64 {
         let mut rng = Rng(0xE1_0000 + seed);
-        let mut w = World::new(WorldSettings {
-            enable_sleep: false,
-            ..Default::default()
-        })
-        .unwrap();
-        let ground = w.create_body(&BodyDef::default()).unwrap();
-        w.create_shape(
-            ground,
-            &ShapeDef::default(),
-            &Geometry::Plane {
-                normal: Vec3::Y,
-                offset: 0.0,
-            },
-        )
-        .unwrap();
+        let mut w = world_on_a_plane();
         let platform = w
             .create_body(&BodyDef {
                 body_type: BodyType::Kinematic,
