@@ -36,6 +36,8 @@ RULES = [
     ("geometry", r"^(hearth_hull_\w+|hearth_mesh_\w+|hearth_heightfield_\w+|HearthHull\w*|HearthMesh\w*"
                  r"|HearthHeightfield\w*|HEARTH_MAX_(HULL|MESH|HEIGHTFIELD)_\w+"
                  r"|hearth_shape_create_(hull|mesh|heightfield))$"),
+    ("query", r"^(hearth_world_(cast|overlap)_\w+|hearth_query_\w+|hearth_filter_default|hearth_shape_(set|get)_filter"
+              r"|HearthQuery\w*|HearthRay\w*|HearthFilter|HEARTH_QUERY_\w+)$"),
     ("shape", r"^(hearth_shape_\w+|HearthShape\w*|HearthSphere|HearthBox|HearthCapsule|HearthPlane)$"),
     ("body", r"^(hearth_body_\w+|HearthBody\w*|HEARTH_BODY_\w+)$"),
     ("world", r"^(hearth_world_\w+|HearthWorld\w*|HEARTH_INTEGRATOR_\w+)$"),

@@ -158,6 +158,26 @@
 #define HEARTH_JOINT_SLIDER 4
 
 /**
+ * A query shape kind: a sphere.
+ */
+#define HEARTH_QUERY_SHAPE_SPHERE 0
+
+/**
+ * A query shape kind: a capsule.
+ */
+#define HEARTH_QUERY_SHAPE_CAPSULE 1
+
+/**
+ * A query shape kind: a box.
+ */
+#define HEARTH_QUERY_SHAPE_BOX 2
+
+/**
+ * A query shape kind: a convex hull.
+ */
+#define HEARTH_QUERY_SHAPE_HULL 3
+
+/**
  * Semi-implicit (symplectic) Euler integration (default).
  */
 #define HEARTH_INTEGRATOR_SEMI_IMPLICIT_EULER 0
@@ -1237,6 +1257,192 @@ typedef struct HearthExpiredParticle {
 } HearthExpiredParticle;
 
 /**
+ * A shape's collision filter (Box2D v3's rules). Two shapes with the same non-zero
+ * `group_index` always collide when it is positive and never when it is negative;
+ * otherwise they collide when each one's `category_bits` share a bit with the other's
+ * `mask_bits`. Shapes of one body never collide with each other, and joints with
+ * `collide_connected` off filter their bodies as before.
+ */
+typedef struct HearthFilter {
+    /**
+     * The categories this shape belongs to (usually one bit). Default 1.
+     */
+    uint64_t category_bits;
+    /**
+     * The categories this shape collides with. Default every bit.
+     */
+    uint64_t mask_bits;
+    /**
+     * Collision group: shapes sharing a positive group always collide, a negative one
+     * never; 0 (default) is no group.
+     */
+    int32_t group_index;
+} HearthFilter;
+
+/**
+ * The filter of a query: it reports a shape when `category_bits` shares a bit with the
+ * shape's `mask_bits` and the shape's `category_bits` share a bit with `mask_bits`.
+ */
+typedef struct HearthQueryFilter {
+    /**
+     * The query's categories. Default 1.
+     */
+    uint64_t category_bits;
+    /**
+     * The shape categories the query reports. Default every bit.
+     */
+    uint64_t mask_bits;
+} HearthQueryFilter;
+
+/**
+ * Id of a shape inside its world. All-zero is the null id.
+ */
+typedef struct HearthShapeId {
+    /**
+     * Slot of the shape.
+     */
+    uint32_t index;
+    /**
+     * Generation of the slot (0 only in the null id).
+     */
+    uint32_t generation;
+} HearthShapeId;
+
+/**
+ * A ray's or shape cast's hit. When nothing was hit, `shape` and `body` are the null id
+ * (all zero), `fraction` is 1, `point` is the end of the ray (a shape cast: its end
+ * position) and `normal` is zero.
+ */
+typedef struct HearthRayHit {
+    /**
+     * The shape hit.
+     */
+    struct HearthShapeId shape;
+    /**
+     * Its body.
+     */
+    struct HearthBodyId body;
+    /**
+     * World point on the hit surface.
+     */
+    struct HearthVec3 point;
+    /**
+     * Unit surface normal at `point`, facing the ray (or the moving shape).
+     */
+    struct HearthVec3 normal;
+    /**
+     * Fraction of the translation at the hit, 0..=1.
+     */
+    float fraction;
+} HearthRayHit;
+
+/**
+ * Called for each hit of `hearth_world_cast_ray`, with the hit (valid during the call).
+ * Returns how to go on (Box2D v3's protocol): -1 (any negative value, or NaN) ignores this
+ * hit, 0 stops the cast, a fraction in (0, 1] clips the ray there (return `hit->fraction`
+ * to end with the closest hit), 1 (or more) continues unclipped. Runs on the calling
+ * thread during the call; it may call read functions and queries, while changes to the
+ * world return `HEARTH_ERROR_WORLD_LOCKED`.
+ */
+typedef float (*HearthRayCallback)(void *user_data, const struct HearthRayHit *hit);
+
+/**
+ * One ray: from `origin` along `translation` (the ray ends at `origin + translation`).
+ */
+typedef struct HearthRayInput {
+    struct HearthVec3 origin;
+    struct HearthVec3 translation;
+} HearthRayInput;
+
+/**
+ * Sphere: centre in the body frame (m, each coordinate within ±1e5) and radius (m,
+ * 0.001..=1e4).
+ */
+typedef struct HearthSphere {
+    /**
+     * Centre in the body frame (m).
+     */
+    struct HearthVec3 center;
+    /**
+     * Radius (m, > 0).
+     */
+    float radius;
+} HearthSphere;
+
+/**
+ * Capsule: segment end points `a`, `b` in the body frame (m, within ±1e5, at most 1e4 apart)
+ * and radius (m, 0.001..=1e4).
+ */
+typedef struct HearthCapsule {
+    /**
+     * One end of the segment, in the body frame (m).
+     */
+    struct HearthVec3 a;
+    /**
+     * The other end (m); may equal `a` (a sphere).
+     */
+    struct HearthVec3 b;
+    /**
+     * Radius around the segment (m, > 0).
+     */
+    float radius;
+} HearthCapsule;
+
+/**
+ * Box: centre (m, within ±1e5) and rotation in the body frame, half extents (m, each
+ * 0.001..=1e4).
+ */
+typedef struct HearthBox {
+    /**
+     * Centre in the body frame (m).
+     */
+    struct HearthVec3 center;
+    /**
+     * Rotation in the body frame.
+     */
+    struct HearthQuat rotation;
+    /**
+     * Half the edge lengths along the box's own axes (m, each > 0).
+     */
+    struct HearthVec3 half_extents;
+} HearthBox;
+
+/**
+ * A convex hull instanced by a shape: the hull's points are scaled uniformly by `scale`
+ * (> 0; also the convex radius), then placed by `local` in the body frame.
+ */
+typedef struct HearthHullShape {
+    /**
+     * The hull, from `hearth_hull_create`.
+     */
+    struct HearthHullId hull;
+    /**
+     * Placement of the hull's frame in the body frame.
+     */
+    struct HearthTransform local;
+    /**
+     * Uniform scale (> 0; the scaled hull must span at least 1 mm).
+     */
+    float scale;
+} HearthHullShape;
+
+/**
+ * A shape for shape casts and overlap queries: `type` (`HEARTH_QUERY_SHAPE_*`) says which
+ * member is used; the others are ignored. The shape is placed by the transform passed
+ * with it, as a body places its shapes. Sizes are checked as for shape creation.
+ */
+typedef struct HearthQueryShape {
+    /**
+     * `HEARTH_QUERY_SHAPE_SPHERE`, `_CAPSULE`, `_BOX` or `_HULL`.
+     */
+    uint32_t type;
+    struct HearthSphere sphere;
+    struct HearthCapsule capsule;
+    struct HearthBox box;
+    struct HearthHullShape hull;
+} HearthQueryShape;
+
+/**
  * Receives the next `len` bytes of a recording (`bytes` is valid only during the call).
  * Return 0 when they were written; any other value stops the recording, and the next
  * `hearth_world_step` or `hearth_world_record_stop` reports `HEARTH_ERROR_IO`.
@@ -1324,74 +1530,13 @@ typedef struct HearthShapeDef {
      * radius` rad/s².
      */
     float torsional_friction;
+    /**
+     * Which shapes this one collides with and which queries see it (`HearthFilter`).
+     * Default: category 1, every mask bit, group 0 (collides with everything). Change it
+     * later with `hearth_shape_set_filter`.
+     */
+    struct HearthFilter filter;
 } HearthShapeDef;
-
-/**
- * Sphere: centre in the body frame (m, each coordinate within ±1e5) and radius (m,
- * 0.001..=1e4).
- */
-typedef struct HearthSphere {
-    /**
-     * Centre in the body frame (m).
-     */
-    struct HearthVec3 center;
-    /**
-     * Radius (m, > 0).
-     */
-    float radius;
-} HearthSphere;
-
-/**
- * Id of a shape inside its world. All-zero is the null id.
- */
-typedef struct HearthShapeId {
-    /**
-     * Slot of the shape.
-     */
-    uint32_t index;
-    /**
-     * Generation of the slot (0 only in the null id).
-     */
-    uint32_t generation;
-} HearthShapeId;
-
-/**
- * Box: centre (m, within ±1e5) and rotation in the body frame, half extents (m, each
- * 0.001..=1e4).
- */
-typedef struct HearthBox {
-    /**
-     * Centre in the body frame (m).
-     */
-    struct HearthVec3 center;
-    /**
-     * Rotation in the body frame.
-     */
-    struct HearthQuat rotation;
-    /**
-     * Half the edge lengths along the box's own axes (m, each > 0).
-     */
-    struct HearthVec3 half_extents;
-} HearthBox;
-
-/**
- * Capsule: segment end points `a`, `b` in the body frame (m, within ±1e5, at most 1e4 apart)
- * and radius (m, 0.001..=1e4).
- */
-typedef struct HearthCapsule {
-    /**
-     * One end of the segment, in the body frame (m).
-     */
-    struct HearthVec3 a;
-    /**
-     * The other end (m); may equal `a` (a sphere).
-     */
-    struct HearthVec3 b;
-    /**
-     * Radius around the segment (m, > 0).
-     */
-    float radius;
-} HearthCapsule;
 
 /**
  * Plane (static bodies only), in the body frame: points `p` with
@@ -1409,25 +1554,6 @@ typedef struct HearthPlane {
      */
     float offset;
 } HearthPlane;
-
-/**
- * A convex hull instanced by a shape: the hull's points are scaled uniformly by `scale`
- * (> 0; also the convex radius), then placed by `local` in the body frame.
- */
-typedef struct HearthHullShape {
-    /**
-     * The hull, from `hearth_hull_create`.
-     */
-    struct HearthHullId hull;
-    /**
-     * Placement of the hull's frame in the body frame.
-     */
-    struct HearthTransform local;
-    /**
-     * Uniform scale (> 0; the scaled hull must span at least 1 mm).
-     */
-    float scale;
-} HearthHullShape;
 
 /**
  * A triangle mesh instanced by a shape: scaled per axis by `scale` (each >= 1e-4) in the
@@ -3107,6 +3233,195 @@ HearthResult hearth_world_set_particle_iterations(struct HearthWorld *world,
                                                   uint32_t position_iterations);
 
 /**
+ * The default shape filter: category 1, every mask bit, group 0 (collides with every
+ * shape with the default filter).
+ */
+struct HearthFilter hearth_filter_default(void);
+
+/**
+ * The default query filter: category 1, every mask bit (sees every shape whose mask has
+ * bit 0, so every shape with the default filter). A query that must see every shape
+ * whatever its filter sets both fields to all ones.
+ */
+struct HearthQueryFilter hearth_query_filter_default(void);
+
+/**
+ * Changes a shape's filter. Existing contacts the new filter forbids are removed at once
+ * (their bodies woken); pairs it newly allows are found at the next step (the shape's body
+ * is woken). Every bit pattern and group is valid.
+ *
+ * Errors: `HEARTH_ERROR_NULL_POINTER`, `HEARTH_ERROR_INVALID_ID`, `HEARTH_ERROR_WORLD_LOCKED`.
+ *
+ * # Safety
+ * `world` must be NULL or a live world.
+ */
+HearthResult hearth_shape_set_filter(struct HearthWorld *world,
+                                     struct HearthShapeId shape,
+                                     struct HearthFilter filter);
+
+/**
+ * Reads a shape's filter.
+ *
+ * Errors: `HEARTH_ERROR_NULL_POINTER`, `HEARTH_ERROR_INVALID_ID`.
+ *
+ * # Safety
+ * `world` must be NULL or a live world; `out_filter` NULL or writable.
+ */
+HearthResult hearth_shape_get_filter(const struct HearthWorld *world,
+                                     struct HearthShapeId shape,
+                                     struct HearthFilter *out_filter);
+
+/**
+ * Casts the ray from `origin` along `translation` and writes its nearest hit to
+ * `*out_hit` (with null ids when nothing is hit). Every shape kind is hit, on static,
+ * kinematic, dynamic and sleeping bodies alike, when `filter` accepts it. A ray starting
+ * inside a solid shape (sphere, box, capsule, hull, or below a plane) does not hit that
+ * shape (Box2D v3's rule: a ray cast from inside a character sees past it); triangle
+ * meshes and heightfields are surfaces, hit from either side. The normal faces the ray.
+ *
+ * Errors: `HEARTH_ERROR_NULL_POINTER` (world, filter, out_hit),
+ * `HEARTH_ERROR_INVALID_ARGUMENT` (origin not finite or beyond ±1e5 m; translation not
+ * finite, zero, or longer than 1e6 m).
+ *
+ * # Safety
+ * `world` must be NULL or a live world; `filter` NULL or readable; `out_hit` NULL or
+ * writable.
+ */
+HearthResult hearth_world_cast_ray_closest(const struct HearthWorld *world,
+                                           struct HearthVec3 origin,
+                                           struct HearthVec3 translation,
+                                           const struct HearthQueryFilter *filter,
+                                           struct HearthRayHit *out_hit);
+
+/**
+ * Casts the ray from `origin` along `translation` and calls `callback(user_data, hit)` for
+ * the hits of shapes `filter` accepts (each shape's nearest hit, in no particular order),
+ * going on as the callback returns (see `HearthRayCallback`). Hit rules as
+ * `hearth_world_cast_ray_closest`.
+ *
+ * Errors: `HEARTH_ERROR_NULL_POINTER` (world, filter, callback),
+ * `HEARTH_ERROR_INVALID_ARGUMENT` (as `hearth_world_cast_ray_closest`; checked before any
+ * callback runs).
+ *
+ * # Safety
+ * `world` must be NULL or a live world; `filter` NULL or readable; `callback` safe to call
+ * with `user_data`.
+ */
+HearthResult hearth_world_cast_ray(const struct HearthWorld *world,
+                                   struct HearthVec3 origin,
+                                   struct HearthVec3 translation,
+                                   const struct HearthQueryFilter *filter,
+                                   HearthRayCallback callback,
+                                   void *user_data);
+
+/**
+ * Casts `count` rays (caller-owned `rays`) and writes each one's nearest hit to the
+ * caller-owned `out_hits[i]` (null ids for a miss), as `hearth_world_cast_ray_closest`
+ * would one by one. Every ray is checked first; on any error nothing is written. `count`
+ * 0 succeeds and may pass NULL arrays.
+ *
+ * Errors: `HEARTH_ERROR_NULL_POINTER` (world, filter, or an array with `count > 0`),
+ * `HEARTH_ERROR_INVALID_ARGUMENT` (a ray as in `hearth_world_cast_ray_closest`; the
+ * message names its index).
+ *
+ * # Safety
+ * `rays` must hold `count` rays and `out_hits` room for `count` hits.
+ */
+HearthResult hearth_world_cast_rays(const struct HearthWorld *world,
+                                    const struct HearthRayInput *rays,
+                                    size_t count,
+                                    const struct HearthQueryFilter *filter,
+                                    struct HearthRayHit *out_hits);
+
+/**
+ * Moves a sphere, capsule, box or hull (`shape`, placed by `transform`) along
+ * `translation` and writes the first shape it touches to `*out_hit` (null ids when it
+ * touches none): the fraction of the translation at first contact (0 when it overlaps a
+ * shape at the start), the point on the hit surface and the surface normal facing the
+ * moving shape. The fraction is never past the true time of impact and at most 0.1 mm
+ * (along the normal) before it. Shapes as for the ray casts, `filter` likewise.
+ *
+ * Errors: `HEARTH_ERROR_NULL_POINTER` (world, shape, transform, filter, out_hit),
+ * `HEARTH_ERROR_INVALID_ARGUMENT` (unknown shape type, a size as shape creation refuses
+ * it, NaN/infinite or zero-quaternion transform, translation as for rays),
+ * `HEARTH_ERROR_INVALID_ID` (a hull id not of this world).
+ *
+ * # Safety
+ * Pointers must be NULL or valid.
+ */
+HearthResult hearth_world_cast_shape(const struct HearthWorld *world,
+                                     const struct HearthQueryShape *shape,
+                                     const struct HearthTransform *transform,
+                                     struct HearthVec3 translation,
+                                     const struct HearthQueryFilter *filter,
+                                     struct HearthRayHit *out_hit);
+
+/**
+ * Writes the ids of the shapes that overlap or touch a sphere, capsule, box or hull
+ * (`shape` placed by `transform`), exactly (each shape's own geometry; meshes and
+ * heightfields triangle by triangle), into the caller-owned `out_shapes`, and their number
+ * to `*out_count`. Pass `capacity` 0 (and `out_shapes` NULL) to ask for the count only.
+ * When `capacity` is not 0 but too small, `HEARTH_ERROR_BUFFER_TOO_SMALL` is returned,
+ * `*out_count` receives the number needed and the array is not written. Order: planes
+ * first, then the tree's.
+ *
+ * Errors: `HEARTH_ERROR_NULL_POINTER` (world, shape, transform, filter, out_count, or
+ * out_shapes with `capacity > 0`), `HEARTH_ERROR_INVALID_ARGUMENT` (as
+ * `hearth_world_cast_shape`), `HEARTH_ERROR_INVALID_ID` (hull), `HEARTH_ERROR_BUFFER_TOO_SMALL`.
+ *
+ * # Safety
+ * `out_shapes` must be NULL or hold `capacity` ids; other pointers NULL or valid.
+ */
+HearthResult hearth_world_overlap_shape(const struct HearthWorld *world,
+                                        const struct HearthQueryShape *shape,
+                                        const struct HearthTransform *transform,
+                                        const struct HearthQueryFilter *filter,
+                                        struct HearthShapeId *out_shapes,
+                                        size_t capacity,
+                                        size_t *out_count);
+
+/**
+ * Writes the ids of the shapes whose bounds overlap the box `min`..`max` into the
+ * caller-owned `out_shapes`, count and capacity as `hearth_world_overlap_shape`. The test
+ * uses each shape's tight world bounds as of the last step (or its creation or teleport),
+ * not its geometry, so a shape near a corner of the box may be reported without touching
+ * it; a plane is reported when the box reaches into its half-space.
+ *
+ * Errors: `HEARTH_ERROR_NULL_POINTER` (world, filter, out_count, or out_shapes with
+ * `capacity > 0`), `HEARTH_ERROR_INVALID_ARGUMENT` (a corner not finite or beyond ±1e5 m, or
+ * `min` above `max` on an axis), `HEARTH_ERROR_BUFFER_TOO_SMALL`.
+ *
+ * # Safety
+ * `out_shapes` must be NULL or hold `capacity` ids; other pointers NULL or valid.
+ */
+HearthResult hearth_world_overlap_aabb(const struct HearthWorld *world,
+                                       struct HearthVec3 min,
+                                       struct HearthVec3 max,
+                                       const struct HearthQueryFilter *filter,
+                                       struct HearthShapeId *out_shapes,
+                                       size_t capacity,
+                                       size_t *out_count);
+
+/**
+ * Writes the ids of the solid shapes containing `point` (on the surface counts; triangle
+ * meshes and heightfields contain no point) into the caller-owned `out_shapes`, count and
+ * capacity as `hearth_world_overlap_shape`.
+ *
+ * Errors: `HEARTH_ERROR_NULL_POINTER` (world, filter, out_count, or out_shapes with
+ * `capacity > 0`), `HEARTH_ERROR_INVALID_ARGUMENT` (point not finite or beyond ±1e5 m),
+ * `HEARTH_ERROR_BUFFER_TOO_SMALL`.
+ *
+ * # Safety
+ * `out_shapes` must be NULL or hold `capacity` ids; other pointers NULL or valid.
+ */
+HearthResult hearth_world_overlap_point(const struct HearthWorld *world,
+                                        struct HearthVec3 point,
+                                        const struct HearthQueryFilter *filter,
+                                        struct HearthShapeId *out_shapes,
+                                        size_t capacity,
+                                        size_t *out_count);
+
+/**
  * The default recording settings: no contacts, no callback.
  */
 struct HearthRecordDef hearth_record_def_default(void);
@@ -3171,7 +3486,7 @@ HearthResult hearth_world_record_stop(struct HearthWorld *world);
 
 /**
  * Defaults: density 1000 kg/m³, friction 0.6 (static and dynamic), no bounce, rolling
- * resistance and torsional friction 0.05.
+ * resistance and torsional friction 0.05, the default filter (`hearth_filter_default()`).
  */
 struct HearthShapeDef hearth_shape_def_default(void);
 

@@ -2,6 +2,7 @@
 
 use crate::collision::aabb::Aabb;
 use crate::collision::broad_phase::{aabb_touches_plane, world_plane};
+use crate::collision::filter::should_collide;
 use crate::dynamics::body::NONE;
 use crate::world::World;
 
@@ -110,6 +111,7 @@ impl World {
                 if (body.is_dynamic() || bodies.at(other.body).is_dynamic())
                     // Joints with collide_connected off (issue 5) filter their body pair.
                     && joints.should_collide(shape.body, other.body)
+                    && should_collide(&shape.def.filter, &other.def.filter)
                 {
                     candidates.push((s, t));
                 }
@@ -119,7 +121,10 @@ impl World {
                 for &p in &broad.planes {
                     let plane = shapes.at(p);
                     let (n, d) = world_plane(&plane.geometry, &bodies.at(plane.body).xf);
-                    if aabb_touches_plane(&fat, n, d) && joints.should_collide(shape.body, plane.body) {
+                    if aabb_touches_plane(&fat, n, d)
+                        && joints.should_collide(shape.body, plane.body)
+                        && should_collide(&shape.def.filter, &plane.def.filter)
+                    {
                         candidates.push((s, p));
                     }
                 }

@@ -8,6 +8,7 @@ pub mod generator;
 pub mod geometry;
 pub mod joint;
 pub mod particle;
+pub mod query;
 pub mod record;
 pub mod shape;
 pub mod soft;

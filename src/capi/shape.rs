@@ -1,6 +1,7 @@
 //! Shape exports: material defaults and one create function per geometry.
 
 use super::error::*;
+use super::query::HearthFilter;
 use super::types::*;
 use super::validate::{self, DEF_COOKIE};
 use super::world::{world_mut, world_ref, HearthWorld};
@@ -46,10 +47,14 @@ pub struct HearthShapeDef {
     /// ball spinning in place on a level floor slows at `5/2 · torsional_friction · g /
     /// radius` rad/s².
     pub torsional_friction: f32,
+    /// Which shapes this one collides with and which queries see it (`HearthFilter`).
+    /// Default: category 1, every mask bit, group 0 (collides with everything). Change it
+    /// later with `hearth_shape_set_filter`.
+    pub filter: HearthFilter,
 }
 
 /// Defaults: density 1000 kg/m³, friction 0.6 (static and dynamic), no bounce, rolling
-/// resistance and torsional friction 0.05.
+/// resistance and torsional friction 0.05, the default filter (`hearth_filter_default()`).
 #[no_mangle]
 pub extern "C" fn hearth_shape_def_default() -> HearthShapeDef {
     let d = ShapeDef::default();
@@ -62,6 +67,7 @@ pub extern "C" fn hearth_shape_def_default() -> HearthShapeDef {
         internal_value: DEF_COOKIE,
         rolling_resistance: d.rolling_resistance,
         torsional_friction: d.torsional_friction,
+        filter: d.filter.into(),
     }
 }
 
@@ -75,6 +81,7 @@ fn shape_def(d: &HearthShapeDef) -> Result<ShapeDef, Failure> {
         user_data: d.user_data,
         rolling_resistance: d.rolling_resistance,
         torsional_friction: d.torsional_friction,
+        filter: d.filter.into(),
     })
 }
 

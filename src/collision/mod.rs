@@ -11,15 +11,19 @@
 //! * `mesh` — triangle meshes: BVH, active edges.
 //! * `heightfield` — terrain grids with holes and a min/max pyramid.
 //! * `gjk` — distance and closest points between convex cores given by support functions.
+//! * `filter` — category, mask and group filtering of shape pairs and queries.
+//! * `query` — ray casts, shape casts and overlap queries against the world.
 
 pub mod aabb;
 pub mod broad_phase;
 pub mod contact;
 pub mod dynamic_tree;
+pub mod filter;
 pub mod geometry_store;
 pub mod gjk;
 pub mod heightfield;
 pub mod hull;
 pub mod mesh;
 pub mod narrow_phase;
+pub mod query;
 pub mod shape;

@@ -422,6 +422,9 @@ pub struct ShapeDef {
     /// spinning in place on a level floor slows at `5/2 · torsional_friction · g / radius`
     /// rad/s².
     pub torsional_friction: f32,
+    /// Which shapes this one collides with and which queries see it
+    /// ([`crate::collision::filter`]). Default: category 1, every mask bit, no group.
+    pub filter: crate::collision::filter::Filter,
 }
 
 /// Largest accepted `ShapeDef::rolling_resistance`: a lever as long as the radius.
@@ -439,6 +442,7 @@ impl Default for ShapeDef {
             user_data: 0,
             rolling_resistance: ShapeDef::DEFAULT_ROLLING_RESISTANCE,
             torsional_friction: ShapeDef::DEFAULT_TORSIONAL_FRICTION,
+            filter: crate::collision::filter::Filter::DEFAULT,
         }
     }
 }

@@ -2781,6 +2781,228 @@ static void op_geometry_shape(FWorld *fw) {
     }
 }
 
+/* --------------------------------------------------------------------------- queries */
+static HearthQueryFilter any_query_filter(void) {
+    mark("hearth_query_filter_default");
+    HearthQueryFilter q = hearth_query_filter_default();
+    if (chance(30)) {
+        q.category_bits = next_u64();
+        q.mask_bits = next_u64();
+    }
+    return q;
+}
+
+static HearthRayHit g_query_hits[8];
+static HearthShapeId g_query_ids[16];
+
+static float query_callback(void *user_data, const HearthRayHit *hit) {
+    int *calls = (int *)user_data;
+    (*calls)++;
+    if (!(hit->fraction >= 0.0f && hit->fraction <= 1.0f)) fail("cast_ray", "fraction outside [0, 1]");
+    switch (rnd(4)) {
+    case 0: return -1.0f;
+    case 1: return 0.0f;
+    case 2: return hit->fraction;
+    default: return 1.0f;
+    }
+}
+
+/* A query shape of every kind; `bad` spoils a size (returns the word the message names) or
+ * the type code. */
+static const char *query_shape(FWorld *fw, HearthQueryShape *s, Fault f, int *hull_ok) {
+    memset(s, 0, sizeof *s);
+    *hull_ok = 1;
+    s->type = rnd(4);
+    s->sphere.radius = flog(0.01f, 3);
+    s->capsule.a = vec(0, -0.5f, 0);
+    s->capsule.b = vec(0, 0.5f, 0);
+    s->capsule.radius = flog(0.01f, 1);
+    s->box.rotation = quat_any();
+    s->box.half_extents = vec(flog(0.01f, 2), flog(0.01f, 2), flog(0.01f, 2));
+    s->hull.local = xf(vec(0, 0, 0), quat_any());
+    s->hull.scale = frange(0.5f, 2);
+    if (s->type == HEARTH_QUERY_SHAPE_HULL) {
+        Obj *h = f == F_ID ? NULL : pick(fw, K_HULL);
+        if (h) s->hull.hull = hull_id(h->id);
+        else {
+            s->hull.hull = hull_id(bad_id(fw, K_HULL));
+            *hull_ok = 0;
+        }
+    }
+    if (f == F_CODE) { s->type = 4 + rnd(100); return NULL; }
+    if (f == F_NUMBER) {
+        switch (s->type) {
+        case HEARTH_QUERY_SHAPE_SPHERE: s->sphere.radius = chance(50) ? -1.0f : nonfinite(); return "radius";
+        case HEARTH_QUERY_SHAPE_CAPSULE: s->capsule.radius = chance(50) ? 0.0f : nonfinite(); return "radius";
+        case HEARTH_QUERY_SHAPE_BOX: s->box.half_extents.y = chance(50) ? -0.5f : nonfinite(); return "half_extents";
+        default: s->hull.scale = chance(50) ? -1.0f : nonfinite(); return "scale";
+        }
+    }
+    return NULL;
+}
+
+static void op_query(FWorld *fw) {
+    FAULTS(F_NONE, F_NULL_WORLD, F_NULL_IN, F_NULL_OUT, F_NUMBER, F_CODE, F_ID);
+    HearthQueryFilter qf = any_query_filter();
+    const HearthQueryFilter *pf = f == F_NULL_IN ? NULL : &qf;
+    HearthVec3 o = chance(70) ? vec(frange(-10, 10), frange(-2, 10), frange(-10, 10)) : good_position();
+    HearthVec3 t = scale3(dir3(), flog(1e-3f, 100));
+    const char *field = NULL;
+    int which = (int)rnd(9);
+    /* Faults a call cannot have are no faults. */
+    if ((f == F_CODE || f == F_ID) && which != 3 && which != 4 && which != 7 && which != 8) f = F_NONE;
+    if (f == F_NUMBER && (which == 7 || which == 8)) f = F_NONE;
+    if (f == F_NUMBER && which != 3 && which != 4) {
+        if (which == 5) { o = bad_position(); field = "aabb min"; }
+        else if (which == 6) { o = bad_position(); field = "point"; }
+        else if (chance(50)) { o = bad_position(); field = "origin"; }
+        else { t = chance(50) ? vec(0, 0, 0) : spoil3(t, nonfinite()); field = "translation"; }
+    }
+    HearthResult expected = f == F_NULL_WORLD || f == F_NULL_IN || f == F_NULL_OUT ? HEARTH_ERROR_NULL_POINTER
+                          : f == F_NUMBER || f == F_CODE                         ? HEARTH_ERROR_INVALID_ARGUMENT
+                                                                                 : HEARTH_OK;
+    switch (which) {
+    case 0: {
+        HearthRayHit h;
+        memset(&h, SENTINEL, sizeof h);
+        CALL(hearth_world_cast_ray_closest(W(fw, f), o, t, pf, f == F_NULL_OUT ? NULL : &h), expected, field, &h,
+             sizeof h);
+        if (r == HEARTH_OK && !(h.fraction >= 0.0f && h.fraction <= 1.0f && finite3(h.point)))
+            fail("cast_ray_closest", "a hit outside [0, 1] or not finite");
+        break;
+    }
+    case 1: {
+        int calls = 0;
+        CALL(hearth_world_cast_ray(W(fw, f), o, t, pf, f == F_NULL_OUT ? NULL : query_callback, &calls), expected,
+             field, NULL, 0);
+        if (r != HEARTH_OK && calls) fail("cast_ray", "called back although it failed");
+        break;
+    }
+    case 2: {
+        HearthRayInput rays[8];
+        size_t n = 1 + rnd(8);
+        for (size_t i = 0; i < n; i++) {
+            rays[i].origin = vec(frange(-10, 10), frange(-2, 10), frange(-10, 10));
+            rays[i].translation = scale3(dir3(), flog(1e-3f, 100));
+        }
+        if (f == F_NUMBER) {
+            size_t k = rnd((uint32_t)n);
+            rays[k].origin = o;
+            rays[k].translation = t;
+            field = "rays[";
+        }
+        memset(g_query_hits, SENTINEL, sizeof g_query_hits);
+        CALL(hearth_world_cast_rays(W(fw, f), f == F_NULL_IN && chance(50) ? NULL : rays, n,
+                                    f == F_NULL_IN ? (pf ? pf : NULL) : pf, f == F_NULL_OUT ? NULL : g_query_hits),
+             expected, field, g_query_hits, sizeof g_query_hits);
+        if (r == HEARTH_OK)
+            for (size_t i = 0; i < n; i++)
+                if (!(g_query_hits[i].fraction >= 0.0f && g_query_hits[i].fraction <= 1.0f))
+                    fail("cast_rays", "a fraction outside [0, 1]");
+        break;
+    }
+    case 3:
+    case 4: {
+        HearthQueryShape s;
+        int hull_ok;
+        const char *sfield = query_shape(fw, &s, f, &hull_ok);
+        if (f == F_NUMBER) field = sfield;
+        if (expected == HEARTH_OK && !hull_ok) expected = HEARTH_ERROR_INVALID_ID;
+        if (f == F_ID && hull_ok) expected = HEARTH_OK;
+        HearthTransform x = xf(o, quat_any());
+        if (which == 3) {
+            HearthRayHit h;
+            memset(&h, SENTINEL, sizeof h);
+            CALL(hearth_world_cast_shape(W(fw, f), f == F_NULL_IN && chance(50) ? NULL : &s, &x, t,
+                                         f == F_NULL_IN ? NULL : pf, f == F_NULL_OUT ? NULL : &h),
+                 expected, field, &h, sizeof h);
+            if (r == HEARTH_OK && !(h.fraction >= 0.0f && h.fraction <= 1.0f)) fail("cast_shape", "fraction");
+        } else {
+            size_t count = 0;
+            size_t cap = chance(30) ? 0 : rnd(16);
+            memset(g_query_ids, SENTINEL, sizeof g_query_ids);
+            {
+                CALL(hearth_world_overlap_shape(fw->w, &s, &x, &qf, NULL, 0, &count),
+                     expected == HEARTH_ERROR_INVALID_ID || f == F_NUMBER || f == F_CODE ? expected : HEARTH_OK, field,
+                     NULL, 0);
+                if (r != HEARTH_OK) break;
+            }
+            HearthResult e2 = expected != HEARTH_OK ? expected : cap > 0 && cap < count ? HEARTH_ERROR_BUFFER_TOO_SMALL : HEARTH_OK;
+            size_t got = 0;
+            CALL(hearth_world_overlap_shape(W(fw, f), f == F_NULL_IN && chance(50) ? NULL : &s, &x,
+                                            f == F_NULL_IN ? NULL : pf, cap ? g_query_ids : NULL, cap,
+                                            f == F_NULL_OUT ? NULL : &got),
+                 e2, field, g_query_ids, sizeof g_query_ids);
+            if (r == HEARTH_OK && got != count) fail("overlap_shape", "a different count the second time");
+        }
+        break;
+    }
+    case 5:
+    case 6: {
+        size_t count = 0, got = 0;
+        size_t cap = chance(30) ? 0 : rnd(16);
+        /* The upper corner within the range too (a corner past it is a bad number). */
+        HearthVec3 hi = vec(fminf(o.x + flog(0.01f, 10), MAX_COORDINATE), fminf(o.y + flog(0.01f, 10), MAX_COORDINATE),
+                            fminf(o.z + flog(0.01f, 10), MAX_COORDINATE));
+        if (f == F_NUMBER || f == F_NULL_IN) { /* the counting call would fail the same way */
+            memset(g_query_ids, SENTINEL, sizeof g_query_ids);
+            if (which == 5) {
+                CALL(hearth_world_overlap_aabb(W(fw, f), o, hi, pf, cap ? g_query_ids : NULL, cap, &got), expected,
+                     field, g_query_ids, sizeof g_query_ids);
+            } else {
+                CALL(hearth_world_overlap_point(W(fw, f), o, pf, cap ? g_query_ids : NULL, cap, &got), expected,
+                     field, g_query_ids, sizeof g_query_ids);
+            }
+            break;
+        }
+        if (which == 5) {
+            CALL(hearth_world_overlap_aabb(fw->w, o, hi, &qf, NULL, 0, &count), HEARTH_OK, NULL, NULL, 0);
+        } else {
+            CALL(hearth_world_overlap_point(fw->w, o, &qf, NULL, 0, &count), HEARTH_OK, NULL, NULL, 0);
+        }
+        HearthResult e2 = expected != HEARTH_OK ? expected : cap > 0 && cap < count ? HEARTH_ERROR_BUFFER_TOO_SMALL : HEARTH_OK;
+        memset(g_query_ids, SENTINEL, sizeof g_query_ids);
+        if (which == 5) {
+            CALL(hearth_world_overlap_aabb(W(fw, f), o, hi, pf, cap ? g_query_ids : NULL, cap,
+                                           f == F_NULL_OUT ? NULL : &got),
+                 e2, field, g_query_ids, sizeof g_query_ids);
+            (void)r;
+        } else {
+            CALL(hearth_world_overlap_point(W(fw, f), o, pf, cap ? g_query_ids : NULL, cap,
+                                            f == F_NULL_OUT ? NULL : &got),
+                 e2, field, g_query_ids, sizeof g_query_ids);
+            (void)r;
+        }
+        break;
+    }
+    case 7: {
+        Obj *s = f == F_ID ? NULL : pick(fw, K_SHAPE);
+        if (f == F_NULL_IN || f == F_NULL_OUT) f = F_NONE;
+        HearthShapeId id = s ? shape_id(s->id) : shape_id(bad_id(fw, K_SHAPE));
+        mark("hearth_filter_default");
+        HearthFilter flt = hearth_filter_default();
+        flt.category_bits = chance(50) ? 1ull << rnd(64) : next_u64();
+        flt.mask_bits = chance(30) ? ~0ull : next_u64();
+        flt.group_index = (int32_t)rnd(7) - 3;
+        HearthResult e = f == F_NULL_WORLD ? HEARTH_ERROR_NULL_POINTER : s ? HEARTH_OK : HEARTH_ERROR_INVALID_ID;
+        CALL(hearth_shape_set_filter(W(fw, f), id, flt), e, NULL, NULL, 0);
+        (void)r;
+        break;
+    }
+    default: {
+        Obj *s = f == F_ID ? NULL : pick(fw, K_SHAPE);
+        if (f == F_NULL_IN) f = F_NONE;
+        HearthShapeId id = s ? shape_id(s->id) : shape_id(bad_id(fw, K_SHAPE));
+        HearthFilter out;
+        memset(&out, SENTINEL, sizeof out);
+        HearthResult e = f == F_NULL_WORLD || f == F_NULL_OUT ? HEARTH_ERROR_NULL_POINTER : s ? HEARTH_OK : HEARTH_ERROR_INVALID_ID;
+        CALL(hearth_shape_get_filter(W(fw, f), id, f == F_NULL_OUT ? NULL : &out), e, NULL, &out, sizeof out);
+        (void)r;
+        break;
+    }
+    }
+}
+
 static void op_step(FWorld *fw) { (void)fw; op_world_step(); }
 static void op_create_world(FWorld *fw) { (void)fw; op_world_create(); }
 static void op_destroy_world(FWorld *fw) { (void)fw; if (chance(30)) op_world_destroy(); }
@@ -2810,6 +3032,7 @@ static const Op OPS[] = {
     {"geometry_create", op_geometry_create, 2},
     {"geometry_other", op_geometry_other, 2},
     {"geometry_shape", op_geometry_shape, 2},
+    {"query", op_query, 4},
 };
 #define NOPS ((int)(sizeof OPS / sizeof OPS[0]))
 
