@@ -84,6 +84,11 @@ using HullDef = HearthHullDef;
 using HullShape = HearthHullShape;
 using MeshShape = HearthMeshShape;
 using HeightfieldShape = HearthHeightfieldShape;
+using Filter = HearthFilter;
+using QueryFilter = HearthQueryFilter;
+using QueryShape = HearthQueryShape;
+using RayInput = HearthRayInput;
+using RayHit = HearthRayHit;
 using ParticleDef = HearthParticleDef;
 using BurstDef = HearthBurstDef;
 using ExpiredParticle = HearthExpiredParticle;
@@ -142,6 +147,50 @@ inline HeightfieldShape heightfield_shape(HeightfieldId heightfield, Vec3 scale 
                                           Transform local = Transform{Vec3{0, 0, 0}, quat_identity()}) noexcept {
     return HeightfieldShape{heightfield, local, scale};
 }
+
+// Collision filters and query shapes.
+/** The default shape filter (category 1, every mask bit, group 0). */
+inline Filter filter_default() noexcept { return hearth_filter_default(); }
+inline Filter filter(uint64_t category_bits, uint64_t mask_bits = ~0ull, int32_t group_index = 0) noexcept {
+    Filter f = hearth_filter_default();
+    f.category_bits = category_bits;
+    f.mask_bits = mask_bits;
+    f.group_index = group_index;
+    return f;
+}
+/** A query filter; the defaults are hearth_query_filter_default(). */
+inline QueryFilter query_filter(uint64_t category_bits = 1, uint64_t mask_bits = ~0ull) noexcept {
+    QueryFilter f = hearth_query_filter_default();
+    f.category_bits = category_bits;
+    f.mask_bits = mask_bits;
+    return f;
+}
+inline QueryShape query_shape(Sphere s) noexcept {
+    QueryShape q{};
+    q.type = HEARTH_QUERY_SHAPE_SPHERE;
+    q.sphere = s;
+    return q;
+}
+inline QueryShape query_shape(Capsule c) noexcept {
+    QueryShape q{};
+    q.type = HEARTH_QUERY_SHAPE_CAPSULE;
+    q.capsule = c;
+    return q;
+}
+inline QueryShape query_shape(Box b) noexcept {
+    QueryShape q{};
+    q.type = HEARTH_QUERY_SHAPE_BOX;
+    q.box = b;
+    return q;
+}
+inline QueryShape query_shape(HullShape h) noexcept {
+    QueryShape q{};
+    q.type = HEARTH_QUERY_SHAPE_HULL;
+    q.hull = h;
+    return q;
+}
+/** True when a ray or cast hit something (a miss has the null shape id). */
+inline bool is_hit(const RayHit &h) noexcept { return !(h.shape.index == 0 && h.shape.generation == 0); }
 
 // Link ends of springs, rods and cables.
 inline LinkEnd link_world(Vec3 point) noexcept { return LinkEnd{BodyId{0, 0}, ParticleId{0, 0}, point}; }
@@ -619,6 +668,10 @@ public:
         return P::template value<BasicBody<P>>(r, BasicBody<P>(world_, b));
     }
     Ret<void> destroy() const { return P::check(hearth_shape_destroy(world_, id_)); }
+    /** The shape's collision filter. */
+    Ret<Filter> filter() const { HEARTH_CPP_READ(Filter, hearth_shape_get_filter(world_, id_, &out)); }
+    /** Changes the filter; pairs are re-evaluated at the next step. */
+    Ret<void> set_filter(const Filter &f) const { return P::check(hearth_shape_set_filter(world_, id_, f)); }
 
 private:
     HearthWorld *world_ = nullptr;
@@ -1126,6 +1179,74 @@ public:
     Ret<Joint> create_joint(const SliderJointDef &def) const {
         return joint_from(hearth_joint_create_slider, def);
     }
+    // Queries (they change nothing). A miss has the null shape id (see is_hit).
+    /** The nearest hit of the ray from `origin` along `translation`. */
+    Ret<RayHit> cast_ray_closest(Vec3 origin, Vec3 translation, const QueryFilter &f = query_filter()) const {
+        HEARTH_CPP_READ(RayHit, hearth_world_cast_ray_closest(world_, origin, translation, &f, &out));
+    }
+    /** Calls `fn(const RayHit &) -> float` for the hits (-1 ignore, 0 stop, a fraction clips,
+     * 1 continue). An exception thrown by `fn` stops the cast and is rethrown here. */
+    template <class Fn> Ret<void> cast_ray(Vec3 origin, Vec3 translation, Fn &&fn, const QueryFilter &f = query_filter()) const {
+        struct Ctx {
+            Fn *fn;
+#if HEARTH_CPP_EXCEPTIONS
+            std::exception_ptr error;
+#endif
+        } ctx;
+        ctx.fn = &fn;
+        auto trampoline = [](void *user, const HearthRayHit *hit) noexcept -> float {
+            Ctx *c = static_cast<Ctx *>(user);
+#if HEARTH_CPP_EXCEPTIONS
+            try {
+                return static_cast<float>((*c->fn)(*hit));
+            } catch (...) {
+                c->error = std::current_exception();
+                return 0.0f;
+            }
+#else
+            return static_cast<float>((*c->fn)(*hit));
+#endif
+        };
+        const HearthResult r = hearth_world_cast_ray(world_, origin, translation, &f, trampoline, &ctx);
+#if HEARTH_CPP_EXCEPTIONS
+        if (ctx.error) {
+            std::rethrow_exception(ctx.error);
+        }
+#endif
+        return P::check(r);
+    }
+    /** Casts `rays` into the caller-owned `out` (at least as long), nearest hit each. */
+    Ret<void> cast_rays(Span<const RayInput> rays, Span<RayHit> out, const QueryFilter &f = query_filter()) const {
+        if (out.size() < rays.size()) {
+            return P::fail(Code::BufferTooSmall, "hearth.hpp: cast_rays: output shorter than the rays");
+        }
+        return P::check(hearth_world_cast_rays(world_, rays.data(), rays.size(), &f, out.data()));
+    }
+    /** Moves `shape` (query_shape(...)) from `at` along `translation`: the first hit. */
+    Ret<RayHit> cast_shape(const QueryShape &shape, const Transform &at, Vec3 translation,
+                           const QueryFilter &f = query_filter()) const {
+        HEARTH_CPP_READ(RayHit, hearth_world_cast_shape(world_, &shape, &at, translation, &f, &out));
+    }
+    /** The shapes overlapping `shape` at `at`. */
+    Ret<std::vector<Shape>> overlap_shape(const QueryShape &shape, const Transform &at,
+                                          const QueryFilter &f = query_filter()) const {
+        return overlap([&](ShapeId *ids, size_t cap, size_t *n) {
+            return hearth_world_overlap_shape(world_, &shape, &at, &f, ids, cap, n);
+        });
+    }
+    /** The shapes whose bounds overlap the box `lower`..`upper`. */
+    Ret<std::vector<Shape>> overlap_aabb(Vec3 lower, Vec3 upper, const QueryFilter &f = query_filter()) const {
+        return overlap([&](ShapeId *ids, size_t cap, size_t *n) {
+            return hearth_world_overlap_aabb(world_, lower, upper, &f, ids, cap, n);
+        });
+    }
+    /** The solid shapes containing `point`. */
+    Ret<std::vector<Shape>> overlap_point(Vec3 point, const QueryFilter &f = query_filter()) const {
+        return overlap([&](ShapeId *ids, size_t cap, size_t *n) {
+            return hearth_world_overlap_point(world_, point, &f, ids, cap, n);
+        });
+    }
+
     /** The joints that broke in the last step. */
     Ret<std::vector<Joint>> broken_joints() const {
         size_t n = 0;
@@ -1250,6 +1371,20 @@ public:
     }
 
 protected:
+    /** Count, then fill: the ids an overlap query reports, as handles. */
+    template <class Fn> Ret<std::vector<Shape>> overlap(Fn fn) const {
+        size_t n = 0;
+        HearthResult r = fn(nullptr, 0, &n);
+        std::vector<ShapeId> ids(r == HEARTH_OK ? n : 0);
+        if (r == HEARTH_OK && n > 0) {
+            r = fn(ids.data(), ids.size(), &n);
+        }
+        std::vector<Shape> out;
+        for (const ShapeId &id : ids) {
+            out.push_back(Shape(world_, id));
+        }
+        return P::template value<std::vector<Shape>>(r, std::move(out));
+    }
     template <class Fn, class Def> Ret<Joint> joint_from(Fn fn, const Def &def) const {
         JointId id{};
         const HearthResult r = fn(world_, &def, &id);

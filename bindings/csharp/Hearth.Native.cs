@@ -51,6 +51,19 @@ namespace Hearth
         Dynamic = 2,
     }
 
+    /// <summary>HEARTH_QUERY_SHAPE_*: which member of a QueryShape is used.</summary>
+    public enum QueryShapeType : uint
+    {
+        /// <summary>HEARTH_QUERY_SHAPE_SPHERE.</summary>
+        Sphere = 0,
+        /// <summary>HEARTH_QUERY_SHAPE_CAPSULE.</summary>
+        Capsule = 1,
+        /// <summary>HEARTH_QUERY_SHAPE_BOX.</summary>
+        Box = 2,
+        /// <summary>HEARTH_QUERY_SHAPE_HULL.</summary>
+        Hull = 3,
+    }
+
     /// <summary>HEARTH_GENERATOR_*: generator type codes (Generator.Type).</summary>
     public enum GeneratorType : uint
     {
@@ -126,6 +139,13 @@ namespace Hearth
     /// </summary>
     [UnmanagedFunctionPointer(CallingConvention.Cdecl)]
     public delegate int RecordWriteFn(IntPtr userData, IntPtr bytes, UIntPtr len);
+
+    /// <summary>
+    /// HearthRayCallback: <c>float (*)(void *user_data, const HearthRayHit *hit)</c>; returns -1 to
+    /// ignore the hit, 0 to stop, a fraction to clip the ray, 1 to continue. World.CastRay builds it.
+    /// </summary>
+    [UnmanagedFunctionPointer(CallingConvention.Cdecl)]
+    public delegate float RayCallback(IntPtr userData, ref RayHit hit);
 
     /// <summary>A 3D vector of <c>float</c> (metres, m/s, N, ... by context).</summary>
     [StructLayout(LayoutKind.Sequential)]
@@ -846,6 +866,75 @@ namespace Hearth
         public float RollingResistance;
         /// <summary>Torsional (spin) friction, 0..=1. Default 0.05: a torque against relative spin about the contact normal of up to torsional_friction × radius × normal force. The pair uses the larger value.</summary>
         public float TorsionalFriction;
+        /// <summary>Which shapes this one collides with and which queries see it. Default: Filter.Default().</summary>
+        public Filter Filter;
+    }
+
+    /// <summary>A shape's collision filter (Box2D's rules): the same positive GroupIndex always collides, the same negative one never; otherwise each CategoryBits must share a bit with the other's MaskBits.</summary>
+    [StructLayout(LayoutKind.Sequential)]
+    public struct Filter
+    {
+        /// <summary>hearth_filter_default(): category 1, every mask bit, group 0.</summary>
+        public static Filter Default() { return Native.hearth_filter_default(); }
+
+        public ulong CategoryBits;
+        public ulong MaskBits;
+        public int GroupIndex;
+
+        public Filter(ulong categoryBits, ulong maskBits, int groupIndex) { CategoryBits = categoryBits; MaskBits = maskBits; GroupIndex = groupIndex; }
+    }
+
+    /// <summary>The filter of a query: reports a shape when CategoryBits shares a bit with its mask and its category shares a bit with MaskBits.</summary>
+    [StructLayout(LayoutKind.Sequential)]
+    public struct QueryFilter
+    {
+        /// <summary>hearth_query_filter_default(): category 1, every mask bit.</summary>
+        public static QueryFilter Default() { return Native.hearth_query_filter_default(); }
+
+        public ulong CategoryBits;
+        public ulong MaskBits;
+
+        public QueryFilter(ulong categoryBits, ulong maskBits) { CategoryBits = categoryBits; MaskBits = maskBits; }
+    }
+
+    /// <summary>One ray of World.CastRays: from Origin along Translation.</summary>
+    [StructLayout(LayoutKind.Sequential)]
+    public struct RayInput
+    {
+        public Vec3 Origin;
+        public Vec3 Translation;
+
+        public RayInput(Vec3 origin, Vec3 translation) { Origin = origin; Translation = translation; }
+    }
+
+    /// <summary>A ray's or shape cast's hit; a miss has the null Shape id (see IsHit).</summary>
+    [StructLayout(LayoutKind.Sequential)]
+    public struct RayHit
+    {
+        public ShapeId Shape;
+        public BodyId Body;
+        public Vec3 Point;
+        public Vec3 Normal;
+        public float Fraction;
+
+        /// <summary>False for a miss (null shape id).</summary>
+        public bool IsHit { get { return !Shape.IsNull; } }
+    }
+
+    /// <summary>A shape for shape casts and overlaps: Type says which member is used.</summary>
+    [StructLayout(LayoutKind.Sequential)]
+    public struct QueryShape
+    {
+        public QueryShapeType Type;
+        public Sphere Sphere;
+        public Capsule Capsule;
+        public Box Box;
+        public HullShape Hull;
+
+        public static QueryShape Of(Sphere s) { var q = default(QueryShape); q.Type = QueryShapeType.Sphere; q.Sphere = s; return q; }
+        public static QueryShape Of(Capsule c) { var q = default(QueryShape); q.Type = QueryShapeType.Capsule; q.Capsule = c; return q; }
+        public static QueryShape Of(Box b) { var q = default(QueryShape); q.Type = QueryShapeType.Box; q.Box = b; return q; }
+        public static QueryShape Of(HullShape h) { var q = default(QueryShape); q.Type = QueryShapeType.Hull; q.Hull = h; return q; }
     }
 
     /// <summary>Sphere: centre in the body frame and radius (m, &gt; 0).</summary>
@@ -1688,6 +1777,39 @@ namespace Hearth
 
         [DllImport(Lib, CallingConvention = CallingConvention.Cdecl)]
         public static extern Result hearth_shape_get_body(WorldHandle world, ShapeId shape, out BodyId outBody);
+
+        [DllImport(Lib, CallingConvention = CallingConvention.Cdecl)]
+        public static extern Filter hearth_filter_default();
+
+        [DllImport(Lib, CallingConvention = CallingConvention.Cdecl)]
+        public static extern QueryFilter hearth_query_filter_default();
+
+        [DllImport(Lib, CallingConvention = CallingConvention.Cdecl)]
+        public static extern Result hearth_shape_set_filter(WorldHandle world, ShapeId shape, Filter filter);
+
+        [DllImport(Lib, CallingConvention = CallingConvention.Cdecl)]
+        public static extern Result hearth_shape_get_filter(WorldHandle world, ShapeId shape, out Filter outFilter);
+
+        [DllImport(Lib, CallingConvention = CallingConvention.Cdecl)]
+        public static extern Result hearth_world_cast_ray_closest(WorldHandle world, Vec3 origin, Vec3 translation, ref QueryFilter filter, out RayHit outHit);
+
+        [DllImport(Lib, CallingConvention = CallingConvention.Cdecl)]
+        public static extern Result hearth_world_cast_ray(WorldHandle world, Vec3 origin, Vec3 translation, ref QueryFilter filter, RayCallback callback, IntPtr userData);
+
+        [DllImport(Lib, CallingConvention = CallingConvention.Cdecl)]
+        public static extern Result hearth_world_cast_rays(WorldHandle world, [In] RayInput[] rays, UIntPtr count, ref QueryFilter filter, [Out] RayHit[] outHits);
+
+        [DllImport(Lib, CallingConvention = CallingConvention.Cdecl)]
+        public static extern Result hearth_world_cast_shape(WorldHandle world, ref QueryShape shape, ref Transform transform, Vec3 translation, ref QueryFilter filter, out RayHit outHit);
+
+        [DllImport(Lib, CallingConvention = CallingConvention.Cdecl)]
+        public static extern Result hearth_world_overlap_shape(WorldHandle world, ref QueryShape shape, ref Transform transform, ref QueryFilter filter, [Out] ShapeId[] outShapes, UIntPtr capacity, out UIntPtr outCount);
+
+        [DllImport(Lib, CallingConvention = CallingConvention.Cdecl)]
+        public static extern Result hearth_world_overlap_aabb(WorldHandle world, Vec3 min, Vec3 max, ref QueryFilter filter, [Out] ShapeId[] outShapes, UIntPtr capacity, out UIntPtr outCount);
+
+        [DllImport(Lib, CallingConvention = CallingConvention.Cdecl)]
+        public static extern Result hearth_world_overlap_point(WorldHandle world, Vec3 point, ref QueryFilter filter, [Out] ShapeId[] outShapes, UIntPtr capacity, out UIntPtr outCount);
 
         [DllImport(Lib, CallingConvention = CallingConvention.Cdecl)]
         public static extern SoftBodyDef hearth_soft_body_def_default();

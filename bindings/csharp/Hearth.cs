@@ -913,6 +913,118 @@ namespace Hearth
             return result;
         }
 
+        // ---- queries (they change nothing) ------------------------------------------------
+
+        /// <summary>hearth_world_cast_ray_closest: the nearest hit (IsHit false for a miss).</summary>
+        public RayHit CastRayClosest(Vec3 origin, Vec3 translation, QueryFilter filter)
+        {
+            RayHit hit;
+            Check(Native.hearth_world_cast_ray_closest(Handle, origin, translation, ref filter, out hit), "hearth_world_cast_ray_closest");
+            return hit;
+        }
+
+        /// <summary>CastRayClosest with the default query filter.</summary>
+        public RayHit CastRayClosest(Vec3 origin, Vec3 translation) { return CastRayClosest(origin, translation, QueryFilter.Default()); }
+
+        /// <summary>
+        /// hearth_world_cast_ray: calls <paramref name="onHit"/> for the hits; it returns -1 to
+        /// ignore, 0 to stop, a fraction to clip, 1 to continue. An exception thrown by it stops
+        /// the cast and is rethrown here.
+        /// </summary>
+        public void CastRay(Vec3 origin, Vec3 translation, QueryFilter filter, Func<RayHit, float> onHit)
+        {
+            var state = new RayCastState { OnHit = onHit };
+            GCHandle handle = GCHandle.Alloc(state);
+            Result r;
+            try
+            {
+                r = Native.hearth_world_cast_ray(Handle, origin, translation, ref filter, RayTrampolineDelegate, GCHandle.ToIntPtr(handle));
+            }
+            finally
+            {
+                handle.Free();
+            }
+            if (state.Failure != null)
+            {
+                throw state.Failure;
+            }
+            Check(r, "hearth_world_cast_ray");
+        }
+
+        private sealed class RayCastState
+        {
+            public Func<RayHit, float> OnHit;
+            public Exception Failure;
+        }
+
+        // A static trampoline (IL2CPP needs one); the handler arrives through user_data.
+        private static readonly RayCallback RayTrampolineDelegate = RayTrampoline;
+
+        [MonoPInvokeCallback(typeof(RayCallback))]
+        private static float RayTrampoline(IntPtr userData, ref RayHit hit)
+        {
+            var state = (RayCastState)GCHandle.FromIntPtr(userData).Target;
+            try
+            {
+                return state.OnHit(hit);
+            }
+            catch (Exception e)
+            {
+                state.Failure = e;
+                return 0f;
+            }
+        }
+
+        /// <summary>hearth_world_cast_rays into the caller-owned <paramref name="hits"/> (at least as long as <paramref name="rays"/>).</summary>
+        public void CastRays(RayInput[] rays, RayHit[] hits, QueryFilter filter)
+        {
+            if (hits.Length < rays.Length)
+            {
+                throw new ArgumentException("hits is shorter than rays");
+            }
+            Check(Native.hearth_world_cast_rays(Handle, rays, (UIntPtr)(uint)rays.Length, ref filter, hits), "hearth_world_cast_rays");
+        }
+
+        /// <summary>hearth_world_cast_shape: the first hit of <paramref name="shape"/> moved from <paramref name="at"/> along <paramref name="translation"/>.</summary>
+        public RayHit CastShape(QueryShape shape, Transform at, Vec3 translation, QueryFilter filter)
+        {
+            RayHit hit;
+            Check(Native.hearth_world_cast_shape(Handle, ref shape, ref at, translation, ref filter, out hit), "hearth_world_cast_shape");
+            return hit;
+        }
+
+        private delegate Result OverlapCall(ShapeId[] buffer, UIntPtr capacity, out UIntPtr count);
+
+        private ShapeId[] Overlap(OverlapCall call, string name)
+        {
+            UIntPtr count;
+            Check(call(null, UIntPtr.Zero, out count), name);
+            var ids = new ShapeId[(int)(ulong)count];
+            if (ids.Length > 0)
+            {
+                Check(call(ids, (UIntPtr)(uint)ids.Length, out count), name);
+            }
+            return ids;
+        }
+
+        /// <summary>hearth_world_overlap_shape: the shapes overlapping <paramref name="shape"/> at <paramref name="at"/>.</summary>
+        public ShapeId[] OverlapShape(QueryShape shape, Transform at, QueryFilter filter)
+        {
+            return Overlap((ShapeId[] b, UIntPtr c, out UIntPtr n) => Native.hearth_world_overlap_shape(Handle, ref shape, ref at, ref filter, b, c, out n), "hearth_world_overlap_shape");
+        }
+
+        /// <summary>hearth_world_overlap_aabb: the shapes whose bounds overlap the box.</summary>
+        public ShapeId[] OverlapAabb(Vec3 min, Vec3 max, QueryFilter filter)
+        {
+            return Overlap((ShapeId[] b, UIntPtr c, out UIntPtr n) => Native.hearth_world_overlap_aabb(Handle, min, max, ref filter, b, c, out n), "hearth_world_overlap_aabb");
+        }
+
+        /// <summary>hearth_world_overlap_point: the solid shapes containing the point.</summary>
+        public ShapeId[] OverlapPoint(Vec3 point, QueryFilter filter)
+        {
+            return Overlap((ShapeId[] b, UIntPtr c, out UIntPtr n) => Native.hearth_world_overlap_point(Handle, point, ref filter, b, c, out n), "hearth_world_overlap_point");
+        }
+
         // ---- particles ---------------------------------------------------------------------
 
         /// <summary>hearth_particle_create; start the def from ParticleDef.Default().</summary>
@@ -1387,6 +1499,18 @@ namespace Hearth
         public void Destroy()
         {
             HearthException.Check(Native.hearth_shape_destroy(World.Handle, Id), "hearth_shape_destroy");
+        }
+
+        /// <summary>hearth_shape_get_filter / hearth_shape_set_filter (pairs re-evaluated at the next step).</summary>
+        public Filter Filter
+        {
+            get
+            {
+                Filter f;
+                HearthException.Check(Native.hearth_shape_get_filter(World.Handle, Id, out f), "hearth_shape_get_filter");
+                return f;
+            }
+            set { HearthException.Check(Native.hearth_shape_set_filter(World.Handle, Id, value), "hearth_shape_set_filter"); }
         }
 
         public bool Equals(Shape other) { return ReferenceEquals(World, other.World) && Id == other.Id; }

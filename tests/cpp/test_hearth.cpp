@@ -892,6 +892,60 @@ static void test_geometry() {
     CHECK_THROWS(mesh.triangle_count(), hearth::Code::InvalidId);
 }
 
+// Queries and filters: a ray hits a sphere at d - r, a sphere cast onto the plane stops at
+// (d - r)/|v|, overlaps, the callback protocol and an exception from the callback, filters.
+static void test_queries_and_filters() {
+    hearth::World w = make_world(true);
+    add_ground(w);
+    hearth::Body ball = w.create_body(hearth::BodyType::Static, hearth::vec3(0, 2, 0));
+    hearth::Shape s = ball.add(hearth::sphere(0.5f));
+    hearth::RayHit h = w.cast_ray_closest(hearth::vec3(-4, 2, 0), hearth::vec3(10, 0, 0));
+    CHECK(hearth::is_hit(h) && hearth::same_id(h.shape, s.id()));
+    CHECK_NEAR(h.fraction, 0.35, 1e-5);
+    CHECK(!hearth::is_hit(w.cast_ray_closest(hearth::vec3(-4, 9, 0), hearth::vec3(10, 0, 0))));
+    int calls = 0;
+    w.cast_ray(hearth::vec3(-4, 2, 0), hearth::vec3(0, -10, 0), [&](const hearth::RayHit &) {
+        calls++;
+        return 1.0f;
+    });
+    w.cast_ray(hearth::vec3(-4, 2, 0), hearth::vec3(10, -10, 0), [&](const hearth::RayHit &) {
+        calls++;
+        return 1.0f;
+    });
+    CHECK(calls == 2); // the plane, once per ray
+    bool thrown = false;
+    try {
+        w.cast_ray(hearth::vec3(-4, 2, 0), hearth::vec3(10, 0, 0),
+                   [](const hearth::RayHit &) -> float { throw std::runtime_error("from the callback"); });
+    } catch (const std::runtime_error &e) {
+        thrown = std::string(e.what()) == "from the callback";
+    }
+    CHECK(thrown);
+    hearth::RayInput rays[2] = {{hearth::vec3(-4, 2, 0), hearth::vec3(10, 0, 0)}, {hearth::vec3(9, 9, 9), hearth::vec3(1, 0, 0)}};
+    hearth::RayHit hits[2];
+    w.cast_rays(rays, hits);
+    CHECK(hearth::is_hit(hits[0]) && !hearth::is_hit(hits[1]));
+    hearth::RayHit c = w.cast_shape(hearth::query_shape(hearth::sphere(0.5f)), hearth::transform(hearth::vec3(5, 5, 0)),
+                                    hearth::vec3(0, -10, 0));
+    CHECK_NEAR(c.fraction, 0.45, 1e-6); // (5 - 0.5) / 10
+    CHECK(w.overlap_shape(hearth::query_shape(hearth::box(hearth::vec3(0.3f, 0.3f, 0.3f))),
+                          hearth::transform(hearth::vec3(0.5f, 2.5f, 0))).size() == 1);
+    CHECK(w.overlap_aabb(hearth::vec3(-1, -1, -1), hearth::vec3(1, 3, 1)).size() == 2); // plane and ball
+    CHECK(w.overlap_point(hearth::vec3(0, 2.2f, 0)).size() == 1);
+    hearth::Filter f = s.filter();
+    CHECK(f.category_bits == 1 && f.mask_bits == ~0ull && f.group_index == 0);
+    s.set_filter(hearth::filter(4));
+    CHECK(s.filter().category_bits == 4);
+    CHECK(!hearth::is_hit(w.cast_ray_closest(hearth::vec3(-4, 2, 0), hearth::vec3(10, 0, 0), hearth::query_filter(1, 3))));
+    bool invalid = false;
+    try {
+        w.cast_ray_closest(hearth::vec3(0, 0, 0), hearth::vec3(0, 0, 0));
+    } catch (const hearth::Error &e) {
+        invalid = e.code() == hearth::Code::InvalidArgument;
+    }
+    CHECK(invalid);
+}
+
 static void run_throwing_tests() {
     test_box_rests_on_plane();
     test_errors_as_exceptions();
@@ -909,6 +963,7 @@ static void run_throwing_tests() {
     test_recording();
     test_recording_start_failure();
     test_geometry();
+    test_queries_and_filters();
 }
 #endif // HEARTH_CPP_EXCEPTIONS
 

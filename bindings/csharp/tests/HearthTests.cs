@@ -149,6 +149,7 @@ internal static class HearthTests
             new KeyValuePair<string, Type>("HEARTH_GENERATOR_", typeof(GeneratorType)),
             new KeyValuePair<string, Type>("HEARTH_JOINT_", typeof(JointType)),
             new KeyValuePair<string, Type>("HEARTH_INTEGRATOR_", typeof(Integrator)),
+            new KeyValuePair<string, Type>("HEARTH_QUERY_SHAPE_", typeof(QueryShapeType)),
         };
         if (cName == "HEARTH_OK")
         {
@@ -1225,6 +1226,42 @@ internal static class HearthTests
 
     // ---- shared geometry -----------------------------------------------------------------------
 
+    private static void TestQueriesAndFilters()
+    {
+        using (var world = new World())
+        {
+            Body ground = world.CreateBody(BodyType.Static, Vec3.Zero);
+            ShapeId plane = ground.CreatePlane(new Plane(new Vec3(0f, 1f, 0f), 0f)).Id;
+            Body ball = world.CreateBody(BodyType.Static, new Vec3(0f, 2f, 0f));
+            Shape s = ball.CreateSphere(new Sphere(Vec3.Zero, 0.5f));
+            // A sphere at distance 4 of radius 0.5: hit at 3.5 of a 10 m ray.
+            RayHit hit = world.CastRayClosest(new Vec3(-4f, 2f, 0f), new Vec3(10f, 0f, 0f));
+            Ensure(hit.IsHit && hit.Shape == s.Id, "the ball is hit");
+            Near(hit.Fraction, 0.35f, 1e-5f, "fraction (d - r) / |v|");
+            Ensure(!world.CastRayClosest(new Vec3(-4f, 9f, 0f), new Vec3(10f, 0f, 0f)).IsHit, "a miss");
+            int calls = 0;
+            world.CastRay(new Vec3(-4f, 2f, 0f), new Vec3(10f, -10f, 0f), QueryFilter.Default(), h => { calls++; return 1f; });
+            Equal(calls, 1, "the plane only");
+            Throws<InvalidOperationException>(() => world.CastRay(new Vec3(-4f, 2f, 0f), new Vec3(10f, 0f, 0f), QueryFilter.Default(), h => { throw new InvalidOperationException("boom"); }), "exception from the ray callback");
+            var rays = new[] { new RayInput(new Vec3(-4f, 2f, 0f), new Vec3(10f, 0f, 0f)), new RayInput(new Vec3(9f, 9f, 9f), new Vec3(1f, 0f, 0f)) };
+            var hits = new RayHit[2];
+            world.CastRays(rays, hits, QueryFilter.Default());
+            Ensure(hits[0].IsHit && !hits[1].IsHit, "batch");
+            RayHit c = world.CastShape(QueryShape.Of(new Sphere(Vec3.Zero, 0.5f)), new Transform(new Vec3(5f, 5f, 0f), Quat.Identity), new Vec3(0f, -10f, 0f), QueryFilter.Default());
+            Ensure(c.Shape == plane, "the plane is hit");
+            Near(c.Fraction, 0.45f, 1e-6f, "time of impact (5 - 0.5) / 10");
+            Equal(world.OverlapShape(QueryShape.Of(new Box(new Vec3(0.3f, 0.3f, 0.3f))), new Transform(new Vec3(0.5f, 2.5f, 0f), Quat.Identity), QueryFilter.Default()).Length, 1, "box overlap");
+            Equal(world.OverlapAabb(new Vec3(-1f, -1f, -1f), new Vec3(1f, 3f, 1f), QueryFilter.Default()).Length, 2, "plane and ball");
+            Equal(world.OverlapPoint(new Vec3(0f, 2.2f, 0f), QueryFilter.Default()).Length, 1, "point in the ball");
+            Filter f = s.Filter;
+            Ensure(f.CategoryBits == 1 && f.MaskBits == ulong.MaxValue && f.GroupIndex == 0, "default filter");
+            s.Filter = new Filter(4, ulong.MaxValue, 0);
+            Equal(s.Filter.CategoryBits, 4UL, "filter set");
+            Ensure(!world.CastRayClosest(new Vec3(-4f, 2f, 0f), new Vec3(10f, 0f, 0f), new QueryFilter(1, 3)).IsHit, "filtered out");
+            Fails(Result.InvalidArgument, () => world.CastRayClosest(Vec3.Zero, Vec3.Zero), "zero translation");
+        }
+    }
+
     private static void TestGeometry()
     {
         using (var world = new World())
@@ -1418,6 +1455,7 @@ internal static class HearthTests
             new KeyValuePair<string, Action>("soft body settings", TestSoftBodySettings),
             new KeyValuePair<string, Action>("recording", TestRecording),
             new KeyValuePair<string, Action>("shared geometry", TestGeometry),
+            new KeyValuePair<string, Action>("queries and filters", TestQueriesAndFilters),
         };
         int passed = 0, failed = 0;
         foreach (var test in tests)

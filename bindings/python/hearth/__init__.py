@@ -60,7 +60,20 @@ from .handles import (
     body_ids,
     particle_ids,
 )
-from .world import ExpiredParticle, ParticleData, World, WorldCounters, link_end
+from .world import (
+    ALL_BITS,
+    ExpiredParticle,
+    ParticleData,
+    RayHit,
+    World,
+    WorldCounters,
+    link_end,
+    query_box,
+    query_capsule,
+    query_filter,
+    query_hull,
+    query_sphere,
+)
 
 #: The version of the C API this binding was written for (include/hearth.h's HEARTH_VERSION_*).
 VERSION_MAJOR = ffi.HEARTH_VERSION_MAJOR
@@ -75,6 +88,7 @@ def library_version():
 
 
 __all__ = [
+    "ALL_BITS",
     "AttachmentCount",
     "Body",
     "BodyType",
@@ -105,6 +119,7 @@ __all__ = [
     "Particle",
     "ParticleData",
     "Quat",
+    "RayHit",
     "Shape",
     "SoftBody",
     "SoftBodySettings",
@@ -125,5 +140,10 @@ __all__ = [
     "library_version",
     "link_end",
     "particle_ids",
+    "query_box",
+    "query_capsule",
+    "query_filter",
+    "query_hull",
+    "query_sphere",
     "result_name",
 ]

@@ -36,6 +36,11 @@ HEARTH_BODY_STATIC = 0
 HEARTH_BODY_KINEMATIC = 1
 HEARTH_BODY_DYNAMIC = 2
 
+HEARTH_QUERY_SHAPE_SPHERE = 0
+HEARTH_QUERY_SHAPE_CAPSULE = 1
+HEARTH_QUERY_SHAPE_BOX = 2
+HEARTH_QUERY_SHAPE_HULL = 3
+
 HEARTH_GENERATOR_GRAVITY = 0
 HEARTH_GENERATOR_DRAG = 1
 HEARTH_GENERATOR_SPRING = 2
@@ -426,6 +431,14 @@ class HearthExpiredParticle(_Struct):
     ]
 
 
+class HearthFilter(_Struct):
+    _fields_ = [
+        ("category_bits", c_uint64),
+        ("mask_bits", c_uint64),
+        ("group_index", c_int32),
+    ]
+
+
 class HearthShapeDef(_Struct):
     _fields_ = [
         ("density", c_float),
@@ -436,6 +449,7 @@ class HearthShapeDef(_Struct):
         ("internal_value", c_uint32),
         ("rolling_resistance", c_float),
         ("torsional_friction", c_float),
+        ("filter", HearthFilter),
     ]
 
 
@@ -628,6 +642,42 @@ FUNCTIONS = {}
 
 # Exported functions and types that the Pythonic layer deliberately does not wrap, with the
 # reason. The parity test fails for any header item that is neither wrapped nor listed here.
+class HearthQueryFilter(_Struct):
+    _fields_ = [
+        ("category_bits", c_uint64),
+        ("mask_bits", c_uint64),
+    ]
+
+
+class HearthRayInput(_Struct):
+    _fields_ = [
+        ("origin", HearthVec3),
+        ("translation", HearthVec3),
+    ]
+
+
+class HearthRayHit(_Struct):
+    _fields_ = [
+        ("shape", HearthShapeId),
+        ("body", HearthBodyId),
+        ("point", HearthVec3),
+        ("normal", HearthVec3),
+        ("fraction", c_float),
+    ]
+
+
+class HearthQueryShape(_Struct):
+    _fields_ = [
+        ("type", c_uint32),
+        ("sphere", HearthSphere),
+        ("capsule", HearthCapsule),
+        ("box", HearthBox),
+        ("hull", HearthHullShape),
+    ]
+
+
+HearthRayCallback = CFUNCTYPE(c_float, c_void_p, POINTER(HearthRayHit))
+
 NOT_WRAPPED = {}
 
 
@@ -979,6 +1029,38 @@ _fn(
 _fn(
     "hearth_soft_body_set_compliance", HearthResult, POINTER(HearthWorld), HearthSoftBodyId, c_float, c_float,
     c_float,
+)
+_fn("hearth_filter_default", HearthFilter)
+_fn("hearth_query_filter_default", HearthQueryFilter)
+_fn("hearth_shape_set_filter", HearthResult, POINTER(HearthWorld), HearthShapeId, HearthFilter)
+_fn("hearth_shape_get_filter", HearthResult, POINTER(HearthWorld), HearthShapeId, POINTER(HearthFilter))
+_fn(
+    "hearth_world_cast_ray_closest", HearthResult, POINTER(HearthWorld), HearthVec3, HearthVec3,
+    POINTER(HearthQueryFilter), POINTER(HearthRayHit),
+)
+_fn(
+    "hearth_world_cast_ray", HearthResult, POINTER(HearthWorld), HearthVec3, HearthVec3, POINTER(HearthQueryFilter),
+    HearthRayCallback, c_void_p,
+)
+_fn(
+    "hearth_world_cast_rays", HearthResult, POINTER(HearthWorld), POINTER(HearthRayInput), c_size_t,
+    POINTER(HearthQueryFilter), POINTER(HearthRayHit),
+)
+_fn(
+    "hearth_world_cast_shape", HearthResult, POINTER(HearthWorld), POINTER(HearthQueryShape),
+    POINTER(HearthTransform), HearthVec3, POINTER(HearthQueryFilter), POINTER(HearthRayHit),
+)
+_fn(
+    "hearth_world_overlap_shape", HearthResult, POINTER(HearthWorld), POINTER(HearthQueryShape),
+    POINTER(HearthTransform), POINTER(HearthQueryFilter), POINTER(HearthShapeId), c_size_t, POINTER(c_size_t),
+)
+_fn(
+    "hearth_world_overlap_aabb", HearthResult, POINTER(HearthWorld), HearthVec3, HearthVec3,
+    POINTER(HearthQueryFilter), POINTER(HearthShapeId), c_size_t, POINTER(c_size_t),
+)
+_fn(
+    "hearth_world_overlap_point", HearthResult, POINTER(HearthWorld), HearthVec3, POINTER(HearthQueryFilter),
+    POINTER(HearthShapeId), c_size_t, POINTER(c_size_t),
 )
 _fn("hearth_world_def_default", HearthWorldDef)
 _fn("hearth_world_create", HearthResult, POINTER(HearthWorldDef), POINTER(POINTER(HearthWorld)))

@@ -311,6 +311,21 @@ class Shape(_Handle):
     def destroy(self):
         lib.hearth_shape_destroy(self._w, self._id)
 
+    @property
+    def filter(self):
+        """`hearth_shape_get_filter`: (category_bits, mask_bits, group_index)."""
+        out = _ffi.HearthFilter()
+        lib.hearth_shape_get_filter(self._w, self._id, byref(out))
+        return (out.category_bits, out.mask_bits, out.group_index)
+
+    @filter.setter
+    def filter(self, value):
+        """`hearth_shape_set_filter` from (category_bits, mask_bits, group_index); pairs are
+        re-evaluated at the next step."""
+        f = lib.hearth_filter_default()
+        f.category_bits, f.mask_bits, f.group_index = value
+        lib.hearth_shape_set_filter(self._w, self._id, f)
+
 
 class Joint(_Handle):
     """A joint between two bodies or a body and the world (`HearthJointId`)."""

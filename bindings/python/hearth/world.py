@@ -6,7 +6,7 @@ from collections import namedtuple
 from ctypes import POINTER, byref
 
 from . import _ffi
-from ._convert import c_view, check_format, fill, from_vec3, new_buffer, to_record, to_vec3
+from ._convert import IDENTITY, c_view, check_format, fill, from_vec3, new_buffer, to_quat, to_record, to_transform, to_vec3
 from ._lib import lib
 from .callbacks import contact_trampoline, force_trampoline, record_write_trampoline
 from .errors import HearthError
@@ -19,6 +19,7 @@ from .handles import (
     Joint,
     Mesh,
     Particle,
+    Shape,
     SoftBody,
     _body_id,
     _particle_id,
@@ -494,6 +495,72 @@ class World:
         lib.hearth_heightfield_create(self._ptr, rows, columns, h, flags, byref(out))
         return Heightfield(self, out)
 
+    # -- queries
+    def cast_ray_closest(self, origin, translation, filter=None):
+        """`hearth_world_cast_ray_closest`: the nearest hit (a RayHit) of the ray from `origin`
+        along `translation`, or None. `filter`: a `query_filter(...)` (default: the default)."""
+        out = _ffi.HearthRayHit()
+        lib.hearth_world_cast_ray_closest(self._ptr, to_vec3(origin), to_vec3(translation), byref(_filter(filter)), byref(out))
+        return _hit(self, out)
+
+    def cast_ray(self, origin, translation, callback, filter=None):
+        """`hearth_world_cast_ray`: calls `callback(hit)` (a RayHit) for the hits, going on as it
+        returns (Box2D's protocol: -1 ignore, 0 stop, a fraction clips, 1 continue). An exception
+        in the callback stops the cast and is re-raised here."""
+        failed = []
+
+        def trampoline(_user_data, hit):
+            try:
+                return float(callback(_hit(self, hit.contents)))
+            except BaseException as e:  # noqa: BLE001 - nothing may cross into C
+                failed.append(e)
+                return 0.0
+
+        fn = _ffi.HearthRayCallback(trampoline)
+        lib.hearth_world_cast_ray(self._ptr, to_vec3(origin), to_vec3(translation), byref(_filter(filter)), fn, None)
+        if failed:
+            raise failed[0]
+
+    def cast_rays(self, rays, filter=None):
+        """`hearth_world_cast_rays`: the nearest hit (RayHit or None) of each (origin,
+        translation) pair of `rays`, in one call."""
+        inputs = (_ffi.HearthRayInput * len(rays))(*[_ffi.HearthRayInput(to_vec3(o), to_vec3(t)) for o, t in rays])
+        out = (_ffi.HearthRayHit * len(rays))()
+        lib.hearth_world_cast_rays(self._ptr, inputs, len(rays), byref(_filter(filter)), out)
+        return [_hit(self, h) for h in out]
+
+    def cast_shape(self, shape, transform, translation, filter=None):
+        """`hearth_world_cast_shape`: moves `shape` (from `query_sphere` and friends) placed at
+        `transform` (a position, or (position, rotation)) along `translation`; the first hit
+        (RayHit, fraction 0 when overlapping at the start) or None."""
+        out = _ffi.HearthRayHit()
+        xf = to_transform(transform)
+        lib.hearth_world_cast_shape(self._ptr, byref(shape), byref(xf), to_vec3(translation), byref(_filter(filter)), byref(out))
+        return _hit(self, out)
+
+    def _overlap(self, call):
+        count = ctypes.c_size_t()
+        call(None, 0, byref(count))
+        ids = (_ffi.HearthShapeId * count.value)()
+        if count.value:
+            call(ids, len(ids), byref(count))
+        return [Shape(self, s) for s in ids[: count.value]]
+
+    def overlap_shape(self, shape, transform, filter=None):
+        """`hearth_world_overlap_shape`: the shapes that overlap or touch `shape` at `transform`."""
+        xf, f = to_transform(transform), _filter(filter)
+        return self._overlap(lambda ids, cap, n: lib.hearth_world_overlap_shape(self._ptr, byref(shape), byref(xf), byref(f), ids, cap, n))
+
+    def overlap_aabb(self, lower, upper, filter=None):
+        """`hearth_world_overlap_aabb`: the shapes whose bounds overlap the box `lower`..`upper`."""
+        lo, hi, f = to_vec3(lower), to_vec3(upper), _filter(filter)
+        return self._overlap(lambda ids, cap, n: lib.hearth_world_overlap_aabb(self._ptr, lo, hi, byref(f), ids, cap, n))
+
+    def overlap_point(self, point, filter=None):
+        """`hearth_world_overlap_point`: the solid shapes containing `point`."""
+        p, f = to_vec3(point), _filter(filter)
+        return self._overlap(lambda ids, cap, n: lib.hearth_world_overlap_point(self._ptr, p, byref(f), ids, cap, n))
+
 
 def _input_array(values, ctype, typecode, per):
     """A ctypes array of `ctype` copied from a buffer (float32/uint32 items or bytes) or from a
@@ -516,3 +583,60 @@ def _input_array(values, ctype, typecode, per):
     if mv.nbytes % size:
         raise ValueError(f"a buffer of {mv.nbytes} bytes does not hold whole {ctype.__name__} items")
     return (ctype * (mv.nbytes // size)).from_buffer_copy(mv.tobytes())
+
+
+# -- queries (hearth_world_cast_*, hearth_world_overlap_*)
+RayHit = namedtuple("RayHit", "shape body point normal fraction")
+
+ALL_BITS = (1 << 64) - 1
+
+
+def query_filter(category_bits=1, mask_bits=ALL_BITS):
+    """A HearthQueryFilter: the query's categories and the shape categories it reports. The
+    defaults are `hearth_query_filter_default()`; `query_filter(ALL_BITS)` sees every shape."""
+    f = lib.hearth_query_filter_default()
+    f.category_bits = category_bits
+    f.mask_bits = mask_bits
+    return f
+
+
+def query_sphere(radius, center=(0.0, 0.0, 0.0)):
+    """A sphere for `World.cast_shape` and `World.overlap_shape`."""
+    q = _ffi.HearthQueryShape()
+    q.type = _ffi.HEARTH_QUERY_SHAPE_SPHERE
+    q.sphere = _ffi.HearthSphere(to_vec3(center), radius)
+    return q
+
+
+def query_capsule(a, b, radius):
+    """A capsule (segment end points, radius) for the shape queries."""
+    q = _ffi.HearthQueryShape()
+    q.type = _ffi.HEARTH_QUERY_SHAPE_CAPSULE
+    q.capsule = _ffi.HearthCapsule(to_vec3(a), to_vec3(b), radius)
+    return q
+
+
+def query_box(half_extents, center=(0.0, 0.0, 0.0), rotation=IDENTITY):
+    """A box for the shape queries."""
+    q = _ffi.HearthQueryShape()
+    q.type = _ffi.HEARTH_QUERY_SHAPE_BOX
+    q.box = _ffi.HearthBox(to_vec3(center), to_quat(rotation), to_vec3(half_extents))
+    return q
+
+
+def query_hull(hull, scale=1.0, position=(0.0, 0.0, 0.0), rotation=IDENTITY):
+    """A convex hull (a Hull) scaled and placed, for the shape queries."""
+    q = _ffi.HearthQueryShape()
+    q.type = _ffi.HEARTH_QUERY_SHAPE_HULL
+    q.hull = _ffi.HearthHullShape(hull._id, to_transform((position, rotation)), scale)
+    return q
+
+
+def _filter(value):
+    return query_filter() if value is None else value
+
+
+def _hit(world, h):
+    if (h.shape.index, h.shape.generation) == (0, 0):
+        return None
+    return RayHit(Shape(world, h.shape), Body(world, h.body), from_vec3(h.point), from_vec3(h.normal), h.fraction)

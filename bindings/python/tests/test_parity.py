@@ -150,14 +150,14 @@ def test_everything_in_the_header_is_wrapped():
 
 def test_a_new_export_fails_the_parity_check(tmp_path):
     extra = """
-typedef struct HearthRay { struct HearthVec3 origin; struct HearthVec3 direction; } HearthRay;
-HearthResult hearth_world_cast_ray(const struct HearthWorld *world, const struct HearthRay *ray);
+typedef struct HearthBeam { struct HearthVec3 origin; struct HearthVec3 direction; } HearthBeam;
+HearthResult hearth_world_cast_beam(const struct HearthWorld *world, const struct HearthBeam *beam);
 #endif  /* HEARTH_H */
 """
     text = c_header.HEADER.read_text().replace("#endif  /* HEARTH_H */", extra)
     path = tmp_path / "hearth.h"
     path.write_text(text)
-    assert sorted(unwrapped(c_header.parse(path))) == ["HearthRay", "hearth_world_cast_ray"]
+    assert sorted(unwrapped(c_header.parse(path))) == ["HearthBeam", "hearth_world_cast_beam"]
 
 
 def test_package_metadata_version_is_the_binding_version():
