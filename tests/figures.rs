@@ -419,6 +419,13 @@ const FIGURES: &[(&str, &str, Backing)] = &[
     // The header: its preamble repeats README's ranges; the rest are defaults and limits of
     // defs, each validated where the def is (src/capi, tests/c/test_*.c).
     (H, "0.1 s", Range),
+    // The query functions (issue 14): the shape cast's tolerance and the longest translation.
+    (
+        H,
+        "0.1 mm",
+        Measured(&["queries::shape_casts_hit_at_the_analytic_time_of_impact"]),
+    ),
+    (H, "1e6 m", Measured(&["queries::bad_query_inputs_are_refused"])),
     (H, "10000 m", Range),
     (H, "100000 m", Range),
     (H, "10000 m/s", Range),

@@ -961,6 +961,8 @@ fn query_filter_excludes_categories() {
 
 // ------------------------------------------------------------------ input checks, no allocation
 
+/// NaN, infinite, zero and too long (over 1e6 m) translations, origins out of range, bad
+/// query shapes, flipped boxes and foreign hulls are refused.
 #[test]
 fn bad_query_inputs_are_refused() {
     let mut w = world();
