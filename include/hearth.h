@@ -3361,9 +3361,9 @@ HearthResult hearth_world_cast_shape(const struct HearthWorld *world,
  * (`shape` placed by `transform`), exactly (each shape's own geometry; meshes and
  * heightfields triangle by triangle), into the caller-owned `out_shapes`, and their number
  * to `*out_count`. Pass `capacity` 0 (and `out_shapes` NULL) to ask for the count only.
- * When `capacity` is not 0 but too small, `HEARTH_ERROR_BUFFER_TOO_SMALL` is returned,
- * `*out_count` receives the number needed and the array is not written. Order: planes
- * first, then the tree's.
+ * When `capacity` is not 0 but too small, `HEARTH_ERROR_BUFFER_TOO_SMALL` is returned and
+ * nothing is written (as every bulk read: ask for the count first). Order: planes first,
+ * then the tree's.
  *
  * Errors: `HEARTH_ERROR_NULL_POINTER` (world, shape, transform, filter, out_count, or
  * out_shapes with `capacity > 0`), `HEARTH_ERROR_INVALID_ARGUMENT` (as

@@ -416,13 +416,6 @@ unsafe fn overlap_ids(
         n += 1;
         true
     })?;
-    if capacity > 0 {
-        validate::output(out_shapes, "out_shapes")?;
-        if capacity < n {
-            // The needed count is written, so the caller can grow its array and ask again.
-            *count = n;
-        }
-    }
     if let Some(out) = validate::counted_output(out_shapes, capacity, n, "out_shapes")? {
         let mut k = 0;
         run(&mut |h| {
@@ -439,9 +432,9 @@ unsafe fn overlap_ids(
 /// (`shape` placed by `transform`), exactly (each shape's own geometry; meshes and
 /// heightfields triangle by triangle), into the caller-owned `out_shapes`, and their number
 /// to `*out_count`. Pass `capacity` 0 (and `out_shapes` NULL) to ask for the count only.
-/// When `capacity` is not 0 but too small, `HEARTH_ERROR_BUFFER_TOO_SMALL` is returned,
-/// `*out_count` receives the number needed and the array is not written. Order: planes
-/// first, then the tree's.
+/// When `capacity` is not 0 but too small, `HEARTH_ERROR_BUFFER_TOO_SMALL` is returned and
+/// nothing is written (as every bulk read: ask for the count first). Order: planes first,
+/// then the tree's.
 ///
 /// Errors: `HEARTH_ERROR_NULL_POINTER` (world, shape, transform, filter, out_count, or
 /// out_shapes with `capacity > 0`), `HEARTH_ERROR_INVALID_ARGUMENT` (as

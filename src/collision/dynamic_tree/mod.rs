@@ -318,8 +318,19 @@ impl DynamicTree {
                     max_t = value;
                 }
             } else {
-                stack.push(n.child1);
-                stack.push(n.child2);
+                // The child whose centre lies nearer along the ray is popped first, so a
+                // caller clipping the ray at each hit (a closest-hit query) meets near hits
+                // early and culls the far subtrees.
+                let (a, b) = (n.child1, n.child2);
+                let da = (self.nodes[a as usize].aabb.center() - origin).dot(dir);
+                let db = (self.nodes[b as usize].aabb.center() - origin).dot(dir);
+                if da <= db {
+                    stack.push(b);
+                    stack.push(a);
+                } else {
+                    stack.push(a);
+                    stack.push(b);
+                }
             }
         }
     }
