@@ -235,6 +235,8 @@ namespace Hearth
         public Flag IsAwake;
         /// <summary>Set by <c>hearth_body_def_default()</c>; do not change.</summary>
         public uint InternalValue;
+        /// <summary>1 (default) reports the body in move events when it moves or falls asleep; 0 never.</summary>
+        public Flag EnableMoveEvents;
     }
 
     /// <summary>Id of a body inside its world. All-zero is the null id. Ids of destroyed bodies and of other worlds are rejected with <c>HEARTH_ERROR_INVALID_ID</c>.</summary>
@@ -846,6 +848,14 @@ namespace Hearth
         public float RollingResistance;
         /// <summary>Torsional (spin) friction, 0..=1. Default 0.05: a torque against relative spin about the contact normal of up to torsional_friction × radius × normal force. The pair uses the larger value.</summary>
         public float TorsionalFriction;
+        /// <summary>1 makes the shape a sensor: it reports overlaps as sensor events, never pushes, adds no mass. Default 0.</summary>
+        public Flag IsSensor;
+        /// <summary>1 (default): contact begin and end events (both shapes must enable them).</summary>
+        public Flag EnableContactEvents;
+        /// <summary>1: hit events (either shape may enable them). Default 0.</summary>
+        public Flag EnableHitEvents;
+        /// <summary>1 (default): sensor events (both shapes must enable them).</summary>
+        public Flag EnableSensorEvents;
     }
 
     /// <summary>Sphere: centre in the body frame and radius (m, &gt; 0).</summary>
@@ -1183,6 +1193,8 @@ namespace Hearth
         public uint InternalValue;
         /// <summary>Largest angular speed a body may reach (rad/s), &gt; 0. Default 100π ≈ 314.16. Capped like <c>MaxLinearSpeed</c>.</summary>
         public float MaxAngularSpeed;
+        /// <summary>Approach speed above which a contact with hit events reports a hit (m/s, 0..=1e4). Default 1.</summary>
+        public float HitEventThreshold;
     }
 
     /// <summary>How to record a world (hearth_world_record_start_file / _callback).</summary>

@@ -136,6 +136,7 @@ class HearthBodyDef(_Struct):
         ("gravity_scale", c_float),
         ("is_awake", c_uint8),
         ("internal_value", c_uint32),
+        ("enable_move_events", c_uint8),
     ]
 
 
@@ -436,6 +437,10 @@ class HearthShapeDef(_Struct):
         ("internal_value", c_uint32),
         ("rolling_resistance", c_float),
         ("torsional_friction", c_float),
+        ("is_sensor", c_uint8),
+        ("enable_contact_events", c_uint8),
+        ("enable_hit_events", c_uint8),
+        ("enable_sensor_events", c_uint8),
     ]
 
 
@@ -595,6 +600,7 @@ class HearthWorldDef(_Struct):
         ("velocity_iterations", c_uint32),
         ("internal_value", c_uint32),
         ("max_angular_speed", c_float),
+        ("hit_event_threshold", c_float),
     ]
 
 
