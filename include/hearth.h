@@ -580,7 +580,8 @@ typedef struct HearthManifoldPoint {
 } HearthManifoldPoint;
 
 /**
- * What the pre-solve callback sees: a touching contact and its manifold.
+ * What the pre-solve callback sees: a touching contact and its manifold. Valid only during
+ * the call.
  */
 typedef struct HearthPreSolveContact {
     /**
@@ -604,14 +605,14 @@ typedef struct HearthPreSolveContact {
      */
     struct HearthVec3 normal;
     /**
-     * Entries used in `points` (1..=4).
+     * The manifold points (`point_count` of them, 1..=4). A shape against a mesh or
+     * heightfield may touch along several normals; these are of its first manifold.
+     */
+    const struct HearthManifoldPoint *points;
+    /**
+     * Entries in `points`.
      */
     uint32_t point_count;
-    /**
-     * The points. A shape against a mesh or heightfield may touch along several normals;
-     * this is its first manifold.
-     */
-    struct HearthManifoldPoint points[4];
 } HearthPreSolveContact;
 
 /**

@@ -139,9 +139,10 @@ pub struct HearthManifoldPoint {
     pub separation: f32,
 }
 
-/// What the pre-solve callback sees: a touching contact and its manifold.
+/// What the pre-solve callback sees: a touching contact and its manifold. Valid only during
+/// the call.
 #[repr(C)]
-#[derive(Clone, Copy, Debug, Default)]
+#[derive(Clone, Copy, Debug)]
 pub struct HearthPreSolveContact {
     /// The first shape.
     pub shape_a: HearthShapeId,
@@ -153,11 +154,11 @@ pub struct HearthPreSolveContact {
     pub body_b: HearthBodyId,
     /// Unit normal from A to B.
     pub normal: HearthVec3,
-    /// Entries used in `points` (1..=4).
+    /// The manifold points (`point_count` of them, 1..=4). A shape against a mesh or
+    /// heightfield may touch along several normals; these are of its first manifold.
+    pub points: *const HearthManifoldPoint,
+    /// Entries in `points`.
     pub point_count: u32,
-    /// The points. A shape against a mesh or heightfield may touch along several normals;
-    /// this is its first manifold.
-    pub points: [HearthManifoldPoint; 4],
 }
 
 /// A pair-filter callback: called during `hearth_world_step` (on its thread, after the
@@ -301,8 +302,8 @@ pub(crate) unsafe fn run_pre_solve(world: *mut HearthWorld) {
             body_a: c.body_a.into(),
             body_b: c.body_b.into(),
             normal: c.manifold.normal.into(),
+            points: points.as_ptr(),
             point_count: c.manifold.count as u32,
-            points,
         };
         if f(user_data as *mut c_void, world, &contact) == 0 {
             (*core).disable_pre_solve_contact(i);
