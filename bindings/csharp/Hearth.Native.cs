@@ -1812,5 +1812,128 @@ namespace Hearth
         [DllImport(Lib, CallingConvention = CallingConvention.Cdecl)]
         public static extern Result hearth_world_get_transforms(WorldHandle world, [In] BodyId[] bodies, UIntPtr count, [Out] Transform[] outTransforms);
 
+        [DllImport(Lib, CallingConvention = CallingConvention.Cdecl)]
+        public static extern Result hearth_world_get_contact_events(WorldHandle world, out ContactEvents outEvents);
+
+        [DllImport(Lib, CallingConvention = CallingConvention.Cdecl)]
+        public static extern Result hearth_world_get_sensor_events(WorldHandle world, out SensorEvents outEvents);
+
+        [DllImport(Lib, CallingConvention = CallingConvention.Cdecl)]
+        public static extern Result hearth_world_get_body_events(WorldHandle world, out BodyEvents outEvents);
+
+        [DllImport(Lib, CallingConvention = CallingConvention.Cdecl)]
+        public static extern Result hearth_world_set_pair_filter_callback(WorldHandle world, IntPtr callback, IntPtr userData);
+
+        [DllImport(Lib, CallingConvention = CallingConvention.Cdecl)]
+        public static extern Result hearth_world_set_pre_solve_callback(WorldHandle world, IntPtr callback, IntPtr userData);
+
+    }
+
+    /// <summary>HearthPairFilterCallback: <c>uint8_t (*)(void *user_data, HearthWorld *world, HearthShapeId a, HearthShapeId b)</c>; 0 keeps the pair apart.</summary>
+    [UnmanagedFunctionPointer(CallingConvention.Cdecl)]
+    public delegate byte PairFilterCallback(IntPtr userData, IntPtr world, ShapeId shapeA, ShapeId shapeB);
+
+    /// <summary>HearthPreSolveCallback: <c>uint8_t (*)(void *user_data, HearthWorld *world, const HearthPreSolveContact *contact)</c>; 0 disables the contact for the step.</summary>
+    [UnmanagedFunctionPointer(CallingConvention.Cdecl)]
+    public delegate byte PreSolveCallback(IntPtr userData, IntPtr world, IntPtr contact);
+
+    /// <summary>Two shapes (and their bodies) that started or stopped touching.</summary>
+    [StructLayout(LayoutKind.Sequential)]
+    public struct ContactEvent
+    {
+        public ShapeId ShapeA;
+        public ShapeId ShapeB;
+        public BodyId BodyA;
+        public BodyId BodyB;
+    }
+
+    /// <summary>Two shapes that met faster than the world's hit_event_threshold.</summary>
+    [StructLayout(LayoutKind.Sequential)]
+    public struct ContactHitEvent
+    {
+        public ShapeId ShapeA;
+        public ShapeId ShapeB;
+        public BodyId BodyA;
+        public BodyId BodyB;
+        /// <summary>Where they met (world, m).</summary>
+        public Vec3 Point;
+        /// <summary>Unit normal from A to B.</summary>
+        public Vec3 Normal;
+        /// <summary>Approach speed along the normal at impact (m/s).</summary>
+        public float ApproachSpeed;
+    }
+
+    /// <summary>The contact events of the last step: native arrays, valid until the next step or destroy (World.GetContactEvents copies them).</summary>
+    [StructLayout(LayoutKind.Sequential)]
+    public struct ContactEvents
+    {
+        public IntPtr Begin;
+        public UIntPtr BeginCount;
+        public IntPtr End;
+        public UIntPtr EndCount;
+        public IntPtr Hit;
+        public UIntPtr HitCount;
+    }
+
+    /// <summary>A sensor shape and a shape that started or stopped overlapping it.</summary>
+    [StructLayout(LayoutKind.Sequential)]
+    public struct SensorEvent
+    {
+        public ShapeId SensorShape;
+        public ShapeId VisitorShape;
+        public BodyId SensorBody;
+        public BodyId VisitorBody;
+    }
+
+    /// <summary>The sensor events of the last step (native arrays, as ContactEvents).</summary>
+    [StructLayout(LayoutKind.Sequential)]
+    public struct SensorEvents
+    {
+        public IntPtr Begin;
+        public UIntPtr BeginCount;
+        public IntPtr End;
+        public UIntPtr EndCount;
+    }
+
+    /// <summary>A body that moved in the last step, or fell asleep in it.</summary>
+    [StructLayout(LayoutKind.Sequential)]
+    public struct BodyMoveEvent
+    {
+        public BodyId Body;
+        public Transform Transform;
+        public ulong UserData;
+        /// <summary>1 when it fell asleep in this step.</summary>
+        public byte FellAsleep;
+    }
+
+    /// <summary>The body move events of the last step (native array, as ContactEvents).</summary>
+    [StructLayout(LayoutKind.Sequential)]
+    public struct BodyEvents
+    {
+        public IntPtr Moves;
+        public UIntPtr MoveCount;
+    }
+
+    /// <summary>A contact manifold point: midway between the surfaces, and the signed separation (m, negative overlapping).</summary>
+    [StructLayout(LayoutKind.Sequential)]
+    public struct ManifoldPoint
+    {
+        public Vec3 Point;
+        public float Separation;
+    }
+
+    /// <summary>What the pre-solve callback sees (valid only during the call; World.SetPreSolve copies the points).</summary>
+    [StructLayout(LayoutKind.Sequential)]
+    public struct PreSolveContact
+    {
+        public ShapeId ShapeA;
+        public ShapeId ShapeB;
+        public BodyId BodyA;
+        public BodyId BodyB;
+        /// <summary>Unit normal from A to B.</summary>
+        public Vec3 Normal;
+        /// <summary>Native array of PointCount ManifoldPoint.</summary>
+        public IntPtr Points;
+        public uint PointCount;
     }
 }
