@@ -427,6 +427,16 @@ const FIGURES: &[(&str, &str, Backing)] = &[
     (H, "1e10 N·s", Range),
     (H, "100000 kg/m³", Range),
     (H, "162 °", Setting("where twist rows rest")),
+    (
+        H,
+        "0.1 m",
+        Setting("AABB_MARGIN, the broad-phase box margin (world.rs)"),
+    ),
+    (
+        H,
+        "2 cm",
+        Setting("SPECULATIVE_DISTANCE, the fixed part of the speculative distance (step.rs)"),
+    ),
     (H, "0 Hz", Setting("a joint spring's default: off")),
     (H, "1 kg", Setting("default masses of particles and soft bodies")),
     (H, "1e5 m", Range),
