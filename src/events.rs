@@ -296,6 +296,18 @@ impl World {
             }
         };
         let relative_accel = accel(b) - accel(a);
+        // A bound on every point's approach speed first (a resting pile has slow contacts):
+        // |relative velocity| at a point is at most |vB − vA| + |ωA|·rA + |ωB|·rB, r within a
+        // shape's extent plus the gap (points lie midway between the surfaces).
+        let (sa, sb) = (self.shapes.at(c.shape_a), self.shapes.at(c.shape_b));
+        let gap = (0..c.manifold_count())
+            .flat_map(|k| c.child(k).0.points().iter().map(|p| p.separation))
+            .fold(0.0_f32, f32::max);
+        let bound = (b.v - a.v).length() + a.w.length() * (sa.extent + gap) + b.w.length() * (sb.extent + gap);
+        let threshold = self.settings.hit_event_threshold;
+        if bound * bound + 2.0 * relative_accel.length() * gap <= threshold * threshold {
+            return;
+        }
         let mut best: Option<HitCandidate> = None;
         for k in 0..c.manifold_count() {
             let m = c.child(k).0;

@@ -101,7 +101,10 @@ const FIGURES: &[(&str, &str, Backing)] = &[
     (
         R,
         "1 %",
-        Measured(&["soft_robustness::the_default_skin_stays_within_one_percent_of_its_rest_lengths_up_to_nrt_1600"]),
+        Measured(&[
+            "soft_robustness::the_default_skin_stays_within_one_percent_of_its_rest_lengths_up_to_nrt_1600",
+            "events::a_dropped_box_gives_one_begin_one_hit_at_the_free_fall_speed_and_an_end_when_lifted",
+        ]),
     ),
     (
         R,
@@ -436,6 +439,17 @@ const FIGURES: &[(&str, &str, Backing)] = &[
         H,
         "2 cm",
         Setting("SPECULATIVE_DISTANCE, the fixed part of the speculative distance (step.rs)"),
+    ),
+    (R, "1 m/s", Setting("the default hit_event_threshold (world.rs)")),
+    (
+        R,
+        "3.35 m",
+        Measured(&["events::a_one_way_platform_lets_a_box_up_through_and_holds_it_on_top"]),
+    ),
+    (
+        R,
+        "5 mm",
+        Measured(&["events::a_one_way_platform_lets_a_box_up_through_and_holds_it_on_top"]),
     ),
     (H, "0 Hz", Setting("a joint spring's default: off")),
     (H, "1 kg", Setting("default masses of particles and soft bodies")),
