@@ -236,7 +236,9 @@ impl World {
 
     /// After contact `ci`'s narrow phase (stage 4): begin and end events, the sensor overlap
     /// (a sensor contact is then taken out of the solver and islands), and hit candidates.
-    pub(crate) fn contact_events_after_update(&mut self, ci: u32) {
+    /// `motion` bounds the relative speed of the two shapes' points (`collide`: |vB − vA| +
+    /// |ωA|·extentA + |ωB|·extentB) and `spin` is |ωA| + |ωB|.
+    pub(crate) fn contact_events_after_update(&mut self, ci: u32, motion: f32, spin: f32) {
         let flags = self.contacts.at(ci).event_flags;
         if flags & SENSOR != 0 {
             let c = self.contacts.at_mut(ci);
@@ -279,12 +281,12 @@ impl World {
             }
         }
         if flags & HIT_EVENTS != 0 && self.contacts.at(ci).touching {
-            self.hit_candidate(ci);
+            self.hit_candidate(ci, motion, spin);
         }
     }
 
     /// The fastest approaching point of contact `ci` before the solve, if above the threshold.
-    fn hit_candidate(&mut self, ci: u32) {
+    fn hit_candidate(&mut self, ci: u32, motion: f32, spin: f32) {
         let c = self.contacts.at(ci);
         let (a, b) = (self.bodies.at(c.body_a), self.bodies.at(c.body_b));
         let g = self.settings.gravity;
@@ -299,11 +301,13 @@ impl World {
         // A bound on every point's approach speed first (a resting pile has slow contacts):
         // |relative velocity| at a point is at most |vB − vA| + |ωA|·rA + |ωB|·rB, r within a
         // shape's extent plus the gap (points lie midway between the surfaces).
-        let (sa, sb) = (self.shapes.at(c.shape_a), self.shapes.at(c.shape_b));
-        let gap = (0..c.manifold_count())
-            .flat_map(|k| c.child(k).0.points().iter().map(|p| p.separation))
-            .fold(0.0_f32, f32::max);
-        let bound = (b.v - a.v).length() + a.w.length() * (sa.extent + gap) + b.w.length() * (sb.extent + gap);
+        let mut gap = 0.0_f32;
+        for k in 0..c.manifold_count() {
+            for p in c.child(k).0.points() {
+                gap = gap.max(p.separation);
+            }
+        }
+        let bound = motion + spin * gap;
         let threshold = self.settings.hit_event_threshold;
         if bound * bound + 2.0 * relative_accel.length() * gap <= threshold * threshold {
             return;

@@ -198,7 +198,8 @@ impl World {
                 self.destroy_contact(ci);
                 continue;
             }
-            let motion = (bb.v - ba.v).length() + ba.w.length() * sa.extent + bb.w.length() * sb.extent;
+            let (spin_a, spin_b) = (ba.w.length(), bb.w.length());
+            let motion = (bb.v - ba.v).length() + spin_a * sa.extent + spin_b * sb.extent;
             // A sensor measures overlap only: no speculative points.
             let speculative = if c.event_flags & crate::events::SENSOR != 0 {
                 0.0
@@ -213,7 +214,7 @@ impl World {
                 c.update(geometry, sa, &ba.xf, sb, &bb.xf, speculative);
             }
             if c.event_flags != 0 {
-                self.contact_events_after_update(ci);
+                self.contact_events_after_update(ci, motion, spin_a + spin_b);
             }
             let c = self.contacts.at(ci);
             let (ba, bb) = (self.bodies.at(c.body_a), self.bodies.at(c.body_b));
