@@ -205,6 +205,10 @@ const FIGURES: &[(&str, &str, Backing)] = &[
     (R, "0.28 ×", Bench),
     (R, "9.1 M", Bench),
     (R, "39 M", Bench),
+    (R, "48 M", Bench),
+    (R, "11.1 M", Bench),
+    (R, "10.8 M", Bench),
+    (R, "2.8 %", Bench),
     (R, "33 M", Bench),
     // README: rolling resistance and torsional friction (tests/rolling.rs).
     (

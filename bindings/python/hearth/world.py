@@ -272,7 +272,9 @@ class World:
     # -- events and step callbacks
     @staticmethod
     def _array(pointer, count):
-        return [pointer[i] for i in range(count)]
+        # Copies: the C arrays live only until the next step.
+        ctype = pointer._type_
+        return [ctype.from_buffer_copy(pointer[i]) for i in range(count)]
 
     def contact_events(self):
         """`hearth_world_get_contact_events`: (begin, end, hit) of the last step, copies of the
