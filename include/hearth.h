@@ -606,7 +606,8 @@ typedef struct HearthPreSolveContact {
     struct HearthVec3 normal;
     /**
      * The manifold points (`point_count` of them, 1..=4). A shape against a mesh or
-     * heightfield may touch along several normals; these are of its first manifold.
+     * heightfield may touch along several normals; these are of its first manifold with
+     * points.
      */
     const struct HearthManifoldPoint *points;
     /**
@@ -700,9 +701,10 @@ typedef struct HearthContactEvents {
      */
     size_t begin_count;
     /**
-     * Pairs that stopped touching (no manifold point left: more than the 2 cm speculative
-     * distance apart), whose bounds parted, or whose shape or body was destroyed (since the
-     * step before; those ids are no longer live).
+     * Pairs that stopped touching (no manifold point left: further apart than the
+     * speculative distance, 2 cm plus the step's relative motion), whose bounds parted, or
+     * whose shape or body was destroyed (since the step before; those ids are no longer
+     * live).
      */
     const struct HearthContactEvent *end;
     /**

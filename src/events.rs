@@ -95,7 +95,8 @@ pub struct PreSolveContact {
     pub body_a: BodyHandle,
     pub body_b: BodyHandle,
     /// The manifold: unit normal from A to B, points with their separations (negative:
-    /// overlap). A shape against a mesh or heightfield may have several; this is the first.
+    /// overlap). A shape against a mesh or heightfield may have several; this is the first
+    /// with points.
     pub manifold: Manifold,
 }
 
@@ -159,6 +160,14 @@ impl Events {
         self.hits.clear();
         self.fell_asleep.clear();
     }
+}
+
+/// A contact's first manifold with points (a shape against a mesh may have an empty first).
+fn first_manifold(c: &crate::collision::contact::Contact) -> Manifold {
+    (0..c.manifold_count())
+        .map(|k| *c.child(k).0)
+        .find(|m| m.count > 0)
+        .unwrap_or(c.manifold)
 }
 
 /// Smallest separation over every manifold of a contact.
@@ -500,7 +509,7 @@ impl World {
             shape_b: e.shape_b,
             body_a: e.body_a,
             body_b: e.body_b,
-            manifold: self.contacts.at(ci).manifold,
+            manifold: first_manifold(self.contacts.at(ci)),
         }
     }
 

@@ -60,9 +60,10 @@ pub struct HearthContactEvents {
     pub begin: *const HearthContactEvent,
     /// Entries in `begin`.
     pub begin_count: usize,
-    /// Pairs that stopped touching (no manifold point left: more than the 2 cm speculative
-    /// distance apart), whose bounds parted, or whose shape or body was destroyed (since the
-    /// step before; those ids are no longer live).
+    /// Pairs that stopped touching (no manifold point left: further apart than the
+    /// speculative distance, 2 cm plus the step's relative motion), whose bounds parted, or
+    /// whose shape or body was destroyed (since the step before; those ids are no longer
+    /// live).
     pub end: *const HearthContactEvent,
     /// Entries in `end`.
     pub end_count: usize,
@@ -155,7 +156,8 @@ pub struct HearthPreSolveContact {
     /// Unit normal from A to B.
     pub normal: HearthVec3,
     /// The manifold points (`point_count` of them, 1..=4). A shape against a mesh or
-    /// heightfield may touch along several normals; these are of its first manifold.
+    /// heightfield may touch along several normals; these are of its first manifold with
+    /// points.
     pub points: *const HearthManifoldPoint,
     /// Entries in `points`.
     pub point_count: u32,
