@@ -54,6 +54,16 @@ fn benches(c: &mut Criterion) {
     bench_scene(c, "pile", true, |w| {
         scenes::pile(w, 4000);
     });
+    // Issue 14: the pile with every event kind on (contact begin/end, hit, sensor events on
+    // every shape, move events on every body) against none; at most 5 % apart.
+    bench_scene(c, "pile_no_events", true, |w| {
+        scenes::pile(w, 4000);
+        scenes::set_events(w, false);
+    });
+    bench_scene(c, "pile_all_events", true, |w| {
+        scenes::pile(w, 4000);
+        scenes::set_events(w, true);
+    });
     bench_scene(c, "spheres_grid", false, |w| {
         scenes::spheres_grid(w, 100);
     });

@@ -33,6 +33,9 @@ RULES = [
                   r"|hearth_contact_sink_\w+|HearthContactSink|HearthGeneratedContact|Hearth(Force|Contact)Callback"
                   r"|HearthLinkEnd|HEARTH_LINK_\w+)$"),
     ("recording", r"^(hearth_record_\w+|hearth_world_record_\w+|HearthRecord\w*)$"),
+    ("events", r"^(hearth_world_(get_contact_events|get_sensor_events|get_body_events|set_pair_filter_callback"
+               r"|set_pre_solve_callback)|HearthContact(Hit)?Events?|HearthSensorEvents?|HearthBody(Move)?Events?"
+               r"|HearthManifoldPoint|HearthPreSolve\w*|HearthPairFilterCallback)$"),
     ("geometry", r"^(hearth_hull_\w+|hearth_mesh_\w+|hearth_heightfield_\w+|HearthHull\w*|HearthMesh\w*"
                  r"|HearthHeightfield\w*|HEARTH_MAX_(HULL|MESH|HEIGHTFIELD)_\w+"
                  r"|hearth_shape_create_(hull|mesh|heightfield))$"),

@@ -16,6 +16,14 @@ const SCENES: &[(&str, bool, Build)] = &[
     ("pyramid", true, |w| drop(scenes::pyramid(w, 10))),
     ("pyramid_large", false, |w| drop(scenes::pyramid(w, 20))),
     ("pile", true, |w| drop(scenes::pile(w, 4000))),
+    ("pile_no_events", true, |w| {
+        scenes::pile(w, 4000);
+        scenes::set_events(w, false)
+    }),
+    ("pile_all_events", true, |w| {
+        scenes::pile(w, 4000);
+        scenes::set_events(w, true)
+    }),
     ("spheres_grid", false, |w| drop(scenes::spheres_grid(w, 100))),
 ];
 

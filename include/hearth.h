@@ -365,6 +365,12 @@ typedef struct HearthBodyDef {
      * Set by `hearth_body_def_default()`; do not change.
      */
     uint32_t internal_value;
+    /**
+     * 1 (default) reports the body in move events (`hearth_world_get_body_events`) when it
+     * moves or falls asleep; 0 never. (Appended after `internal_value`, so earlier fields
+     * keep their offsets.)
+     */
+    uint8_t enable_move_events;
 } HearthBodyDef;
 
 /**
@@ -550,6 +556,275 @@ typedef struct HearthGeneratedContact {
      */
     float friction;
 } HearthGeneratedContact;
+
+/**
+ * Id of a shape inside its world. All-zero is the null id.
+ */
+typedef struct HearthShapeId {
+    /**
+     * Slot of the shape.
+     */
+    uint32_t index;
+    /**
+     * Generation of the slot (0 only in the null id).
+     */
+    uint32_t generation;
+} HearthShapeId;
+
+/**
+ * A pair-filter callback: called during `hearth_world_step` (on its thread, after the
+ * force generators) for every pair of shapes the broad phase would make a new contact for.
+ * Return 0 to keep the pair from ever touching until it is proposed again, any other value
+ * to let it. A pair is proposed again when either shape's broad-phase box is refit (its body
+ * moved past the box's 0.1 m margin, was teleported, or got a shape), so a rejected pair of
+ * shapes that both stay put is not asked about again. It may read the world; changes return
+ * `HEARTH_ERROR_WORLD_LOCKED`. It must return normally (no longjmp, no C++ exception).
+ */
+typedef uint8_t (*HearthPairFilterCallback)(void *user_data,
+                                            struct HearthWorld *world,
+                                            struct HearthShapeId shape_a,
+                                            struct HearthShapeId shape_b);
+
+/**
+ * A contact manifold point.
+ */
+typedef struct HearthManifoldPoint {
+    /**
+     * World point midway between the surfaces (m).
+     */
+    struct HearthVec3 point;
+    /**
+     * Signed distance along the normal (m): negative overlapping, positive a gap.
+     */
+    float separation;
+} HearthManifoldPoint;
+
+/**
+ * What the pre-solve callback sees: a touching contact and its manifold. Valid only during
+ * the call.
+ */
+typedef struct HearthPreSolveContact {
+    /**
+     * The first shape.
+     */
+    struct HearthShapeId shape_a;
+    /**
+     * The second shape.
+     */
+    struct HearthShapeId shape_b;
+    /**
+     * The body of `shape_a`.
+     */
+    struct HearthBodyId body_a;
+    /**
+     * The body of `shape_b`.
+     */
+    struct HearthBodyId body_b;
+    /**
+     * Unit normal from A to B.
+     */
+    struct HearthVec3 normal;
+    /**
+     * The manifold points (`point_count` of them, 1..=4). A shape against a mesh or
+     * heightfield may touch along several normals; these are of its first manifold with
+     * points.
+     */
+    const struct HearthManifoldPoint *points;
+    /**
+     * Entries in `points`.
+     */
+    uint32_t point_count;
+} HearthPreSolveContact;
+
+/**
+ * A pre-solve callback: called during `hearth_world_step` (on its thread, after the narrow
+ * phase and the contact generators, before the solver) once for every touching contact with
+ * an awake body, sensors excepted. Return 0 to disable the contact for this step (it does
+ * not push; a one-way platform, for one), any other value to keep it. Contact begin and end
+ * events follow the shapes' geometry whether or not the contact is disabled. It may read the
+ * world; changes return `HEARTH_ERROR_WORLD_LOCKED`. It must return normally (no longjmp, no
+ * C++ exception). `contact` is valid only during the call.
+ */
+typedef uint8_t (*HearthPreSolveCallback)(void *user_data,
+                                          struct HearthWorld *world,
+                                          const struct HearthPreSolveContact *contact);
+
+/**
+ * Two shapes (and their bodies) that started or stopped touching.
+ */
+typedef struct HearthContactEvent {
+    /**
+     * The first shape.
+     */
+    struct HearthShapeId shape_a;
+    /**
+     * The second shape.
+     */
+    struct HearthShapeId shape_b;
+    /**
+     * The body of `shape_a`.
+     */
+    struct HearthBodyId body_a;
+    /**
+     * The body of `shape_b`.
+     */
+    struct HearthBodyId body_b;
+} HearthContactEvent;
+
+/**
+ * Two shapes that met faster than the world's `hit_event_threshold`.
+ */
+typedef struct HearthContactHitEvent {
+    /**
+     * The first shape.
+     */
+    struct HearthShapeId shape_a;
+    /**
+     * The second shape.
+     */
+    struct HearthShapeId shape_b;
+    /**
+     * The body of `shape_a`.
+     */
+    struct HearthBodyId body_a;
+    /**
+     * The body of `shape_b`.
+     */
+    struct HearthBodyId body_b;
+    /**
+     * Where they met (world, m): the fastest approaching point.
+     */
+    struct HearthVec3 point;
+    /**
+     * Unit normal from A to B.
+     */
+    struct HearthVec3 normal;
+    /**
+     * Approach speed along the normal at impact (m/s): the relative normal speed at the
+     * start of the step carried over the gap still open by gravity (exact for a free fall).
+     */
+    float approach_speed;
+} HearthContactHitEvent;
+
+/**
+ * The contact events of the last step. The arrays belong to the world and stay valid until
+ * the next `hearth_world_step` or `hearth_world_destroy` of this world; do not free them.
+ */
+typedef struct HearthContactEvents {
+    /**
+     * Pairs that started touching (a manifold point within `linear_slop`), in a
+     * deterministic order.
+     */
+    const struct HearthContactEvent *begin;
+    /**
+     * Entries in `begin`.
+     */
+    size_t begin_count;
+    /**
+     * Pairs that stopped touching (no manifold point left: further apart than the
+     * speculative distance, 2 cm plus the step's relative motion), whose bounds parted, or
+     * whose shape or body was destroyed (since the step before; those ids are no longer
+     * live).
+     */
+    const struct HearthContactEvent *end;
+    /**
+     * Entries in `end`.
+     */
+    size_t end_count;
+    /**
+     * Contacts that the solver pushed after an approach faster than the threshold.
+     */
+    const struct HearthContactHitEvent *hit;
+    /**
+     * Entries in `hit`.
+     */
+    size_t hit_count;
+} HearthContactEvents;
+
+/**
+ * A sensor shape and a shape that started or stopped overlapping it.
+ */
+typedef struct HearthSensorEvent {
+    /**
+     * The sensor.
+     */
+    struct HearthShapeId sensor_shape;
+    /**
+     * The other shape.
+     */
+    struct HearthShapeId visitor_shape;
+    /**
+     * The sensor's body.
+     */
+    struct HearthBodyId sensor_body;
+    /**
+     * The other shape's body.
+     */
+    struct HearthBodyId visitor_body;
+} HearthSensorEvent;
+
+/**
+ * The sensor events of the last step; arrays owned by the world as in
+ * `HearthContactEvents`.
+ */
+typedef struct HearthSensorEvents {
+    /**
+     * Overlaps that began.
+     */
+    const struct HearthSensorEvent *begin;
+    /**
+     * Entries in `begin`.
+     */
+    size_t begin_count;
+    /**
+     * Overlaps that ended, or whose sensor, visitor or body was destroyed.
+     */
+    const struct HearthSensorEvent *end;
+    /**
+     * Entries in `end`.
+     */
+    size_t end_count;
+} HearthSensorEvents;
+
+/**
+ * A body that moved in the last step, or fell asleep in it.
+ */
+typedef struct HearthBodyMoveEvent {
+    /**
+     * The body.
+     */
+    struct HearthBodyId body;
+    /**
+     * Its transform after the step.
+     */
+    struct HearthTransform transform;
+    /**
+     * Its `user_data`.
+     */
+    uint64_t user_data;
+    /**
+     * 1 when it fell asleep in this step (it then stays put until woken), else 0.
+     */
+    uint8_t fell_asleep;
+} HearthBodyMoveEvent;
+
+/**
+ * The body events of the last step; arrays owned by the world as in
+ * `HearthContactEvents`. Joint break events are read with `hearth_world_get_broken_joints`
+ * (same lifetime).
+ */
+typedef struct HearthBodyEvents {
+    /**
+     * One event per body with `enable_move_events` whose transform changed in the step (or
+     * since it was last reported), and one per such body that fell asleep; awake bodies
+     * first, in the order of the world's awake list.
+     */
+    const struct HearthBodyMoveEvent *moves;
+    /**
+     * Entries in `moves`.
+     */
+    size_t move_count;
+} HearthBodyEvents;
 
 /**
  * Extra gravity on every attached body and particle, on top of world gravity.
@@ -1295,20 +1570,6 @@ typedef struct HearthQueryFilter {
 } HearthQueryFilter;
 
 /**
- * Id of a shape inside its world. All-zero is the null id.
- */
-typedef struct HearthShapeId {
-    /**
-     * Slot of the shape.
-     */
-    uint32_t index;
-    /**
-     * Generation of the slot (0 only in the null id).
-     */
-    uint32_t generation;
-} HearthShapeId;
-
-/**
  * A ray's or shape cast's hit. When nothing was hit, `shape` and `body` are the null id
  * (all zero), `fraction` is 1, `point` is the end of the ray (a shape cast: its end
  * position) and `normal` is zero.
@@ -1536,6 +1797,30 @@ typedef struct HearthShapeDef {
      * later with `hearth_shape_set_filter`.
      */
     struct HearthFilter filter;
+    /**
+     * 1 makes the shape a sensor: it reports overlaps with non-sensor shapes (exact shapes)
+     * as sensor events (`hearth_world_get_sensor_events`) and never pushes, never makes a
+     * solver contact, adds no mass (its density is ignored), and particles and soft bodies
+     * pass through it. Sensors see shapes on bodies of every type (not two static ones, not
+     * other sensors) and never wake a body; overlaps with a sleeping body are kept while it
+     * sleeps. A plane cannot be a sensor. Default 0.
+     */
+    uint8_t is_sensor;
+    /**
+     * 1 (default): this shape's contacts report begin and end events
+     * (`hearth_world_get_contact_events`); both shapes must enable them.
+     */
+    uint8_t enable_contact_events;
+    /**
+     * 1: this shape's contacts report hit events (approach faster than the world's
+     * `hit_event_threshold`); either shape may enable them. Default 0.
+     */
+    uint8_t enable_hit_events;
+    /**
+     * 1 (default): a sensor reports, and sensors see this shape; both shapes must enable
+     * them.
+     */
+    uint8_t enable_sensor_events;
 } HearthShapeDef;
 
 /**
@@ -1843,6 +2128,11 @@ typedef struct HearthWorldDef {
      * offsets stay.)
      */
     float max_angular_speed;
+    /**
+     * Approach speed above which a contact whose shapes enable hit events reports a hit
+     * (m/s, 0..=1e4). Default 1.
+     */
+    float hit_event_threshold;
 } HearthWorldDef;
 
 /**
@@ -2272,6 +2562,69 @@ HearthResult hearth_contact_sink_add(struct HearthContactSink *sink,
 HearthResult hearth_contact_sink_get_count(const struct HearthContactSink *sink,
                                            uint32_t *out_count,
                                            uint32_t *out_capacity);
+
+/**
+ * Sets (or with a NULL `callback` clears) the pair-filter callback
+ * (`HearthPairFilterCallback`); `user_data` is passed to it as is. Replaces any earlier one;
+ * pairs that already have a contact keep it.
+ *
+ * Errors: `HEARTH_ERROR_NULL_POINTER` (world), `HEARTH_ERROR_WORLD_LOCKED`.
+ *
+ * # Safety
+ * `world` must be NULL or a live world; the callback must stay callable and `user_data`
+ * valid for it while it is set.
+ */
+HearthResult hearth_world_set_pair_filter_callback(struct HearthWorld *world,
+                                                   HearthPairFilterCallback callback,
+                                                   void *user_data);
+
+/**
+ * Sets (or with a NULL `callback` clears) the pre-solve callback (`HearthPreSolveCallback`);
+ * `user_data` is passed to it as is. Replaces any earlier one.
+ *
+ * Errors: `HEARTH_ERROR_NULL_POINTER` (world), `HEARTH_ERROR_WORLD_LOCKED`.
+ *
+ * # Safety
+ * `world` must be NULL or a live world; the callback must stay callable and `user_data`
+ * valid for it while it is set.
+ */
+HearthResult hearth_world_set_pre_solve_callback(struct HearthWorld *world,
+                                                 HearthPreSolveCallback callback,
+                                                 void *user_data);
+
+/**
+ * Reads the contact events of the last step (`HearthContactEvents`; empty before the first
+ * step). Shapes report them as their `enable_contact_events` and `enable_hit_events` say.
+ *
+ * Errors: `HEARTH_ERROR_NULL_POINTER`.
+ *
+ * # Safety
+ * `world` must be NULL or a live world; `out_events` NULL or writable.
+ */
+HearthResult hearth_world_get_contact_events(const struct HearthWorld *world,
+                                             struct HearthContactEvents *out_events);
+
+/**
+ * Reads the sensor events of the last step (`HearthSensorEvents`).
+ *
+ * Errors: `HEARTH_ERROR_NULL_POINTER`.
+ *
+ * # Safety
+ * `world` must be NULL or a live world; `out_events` NULL or writable.
+ */
+HearthResult hearth_world_get_sensor_events(const struct HearthWorld *world,
+                                            struct HearthSensorEvents *out_events);
+
+/**
+ * Reads the body move events of the last step (`HearthBodyEvents`).
+ *
+ * Errors: `HEARTH_ERROR_NULL_POINTER`.
+ *
+ * # Safety
+ * `world` must be NULL or a live world; `out_events` NULL or writable.
+ */
+HearthResult hearth_world_get_body_events(const struct HearthWorld *world,
+                                          struct HearthBodyEvents *out_events);
 
 /**
  * Defaults: (0, -9.81, 0).

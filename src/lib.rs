@@ -7,6 +7,7 @@
 pub mod collision;
 pub mod dynamics;
 pub mod error;
+pub mod events;
 pub mod generators;
 pub(crate) mod hash;
 pub mod math;

@@ -35,6 +35,7 @@ impl World {
             return Ok(false);
         }
         self.counters = Default::default();
+        self.begin_events();
         // 1. Start of frame: derived data is refreshed while the solver's body arrays are
         //    built (in `solve`).
         // 2. Forces: built-in force generators add to the accumulators of bodies and
@@ -51,8 +52,17 @@ impl World {
     /// Stages 3–5: broad phase, narrow phase, built-in contact generators.
     pub fn collide_step(&mut self, dt: f32) {
         // 3. Broad phase: new pairs from proxies whose fat boxes moved.
-        self.update_pairs();
-        // 4. Narrow phase: manifolds for every awake contact; wake sleepers that are touched.
+        self.find_pairs();
+        //    (A host's pair filter runs here: `events.rs`, `World::step_with`.)
+        self.collide_pairs(dt);
+    }
+
+    /// The rest of stage 3 after `find_pairs` (contacts for the kept candidates), stage 4 and
+    /// the built-in contact generators.
+    pub fn collide_pairs(&mut self, dt: f32) {
+        self.create_pairs();
+        // 4. Narrow phase: manifolds for every awake contact; wake sleepers that are touched;
+        //    contact and sensor begin and end events (events.rs).
         self.collide(dt);
         // 5. Contact generators: rods and cables between bodies write generated contacts
         //    (generators/links.rs). External (host) contact generators run after this.
@@ -64,6 +74,8 @@ impl World {
         // 6. Integration and contact resolution, sub-stepped (solver.rs).
         crate::dynamics::solver::solve(self, dt);
         self.generated_contacts.clear();
+        //    Hit events: contacts that approached fast and were pushed (events.rs).
+        self.hit_events_after_solve();
         // 7. Particles: integration, contacts with shapes (two-way with dynamic bodies),
         //    rods and cables, sleep, lifetimes (particles/solver.rs).
         self.step_particles(dt);
@@ -80,9 +92,13 @@ impl World {
         crate::dynamics::island::sleep_islands(self, ready);
         self.counters.awake_bodies = self.awake_bodies.len();
         self.counters.contacts = self.contacts.len();
+        // 10. Events: body moves, ends of contacts destroyed since the last step.
+        self.finish_events();
     }
 
-    fn update_pairs(&mut self) {
+    /// Stage 3: lists the candidate pairs of proxies whose fat boxes moved (no contacts yet;
+    /// `collide_pairs` makes them, after a pair filter may have dropped some).
+    pub fn find_pairs(&mut self) {
         let World {
             broad,
             shapes,
@@ -108,7 +124,15 @@ impl World {
                 if other.body == shape.body || (other.in_move_buffer && t < s) {
                     return true;
                 }
-                if (body.is_dynamic() || bodies.at(other.body).is_dynamic())
+                let other_body = bodies.at(other.body);
+                // A sensor sees bodies of every type (not two static ones); two sensors
+                // never pair (events.rs).
+                let bodies_pair = match (shape.def.is_sensor, other.def.is_sensor) {
+                    (false, false) => body.is_dynamic() || other_body.is_dynamic(),
+                    (true, true) => false,
+                    _ => !body.is_static() || !other_body.is_static(),
+                };
+                if bodies_pair
                     // Joints with collide_connected off (issue 5) filter their body pair.
                     && joints.should_collide(shape.body, other.body)
                     && should_collide(&shape.def.filter, &other.def.filter)
@@ -134,9 +158,15 @@ impl World {
             shapes.at_mut(s).in_move_buffer = false;
         }
         broad.move_buffer.clear();
+    }
+
+    /// Contacts for the candidate pairs a pair filter kept.
+    fn create_pairs(&mut self) {
         let mut candidates = std::mem::take(&mut self.broad.candidates);
         for &(a, b) in &candidates {
-            self.create_contact(a, b);
+            if b != NONE {
+                self.create_contact(a, b);
+            }
         }
         candidates.clear();
         self.broad.candidates = candidates;
@@ -157,6 +187,7 @@ impl World {
                 ..
             } = self;
             let c = contacts.at_mut(ci);
+            c.disabled = false;
             let (sa, sb) = (shapes.at(c.shape_a), shapes.at(c.shape_b));
             let (ba, bb) = (bodies.at(c.body_a), bodies.at(c.body_b));
             if !fat_overlap(
@@ -172,8 +203,14 @@ impl World {
                 self.destroy_contact(ci);
                 continue;
             }
-            let motion = (bb.v - ba.v).length() + ba.w.length() * sa.extent + bb.w.length() * sb.extent;
-            let speculative = SPECULATIVE_DISTANCE + motion * dt;
+            let (spin_a, spin_b) = (ba.w.length(), bb.w.length());
+            let motion = (bb.v - ba.v).length() + spin_a * sa.extent + spin_b * sb.extent;
+            // A sensor measures overlap only: no speculative points.
+            let speculative = if c.event_flags & crate::events::SENSOR != 0 {
+                0.0
+            } else {
+                SPECULATIVE_DISTANCE + motion * dt
+            };
             if apart(sa, &ba.xf, sb, &bb.xf, speculative) {
                 // Tight boxes further apart than the speculative distance: no points, and the
                 // narrow phase is skipped.
@@ -181,10 +218,15 @@ impl World {
             } else {
                 c.update(geometry, sa, &ba.xf, sb, &bb.xf, speculative);
             }
+            if c.event_flags != 0 {
+                self.contact_events_after_update(ci, motion, spin_a + spin_b);
+            }
+            let c = self.contacts.at(ci);
+            let (ba, bb) = (self.bodies.at(c.body_a), self.bodies.at(c.body_b));
             touching += c.touching as usize;
             if c.touching && (!ba.awake || !bb.awake) {
                 let sleeper = if ba.awake { c.body_b } else { c.body_a };
-                if !bodies.at(sleeper).is_static() {
+                if !self.bodies.at(sleeper).is_static() {
                     self.scratch_wake.push(sleeper);
                 }
             }

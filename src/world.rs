@@ -64,6 +64,8 @@ pub struct WorldSettings {
     /// Contact constraints solved at once: eight where the CPU has AVX2 (`Auto`), or four.
     /// Results are bit for bit the same either way.
     pub lane_width: LaneWidth,
+    /// Approach speed above which a contact with hit events reports a hit (m/s).
+    pub hit_event_threshold: f32,
 }
 
 /// Default `WorldSettings::max_angular_speed`: 100π rad/s.
@@ -87,6 +89,7 @@ impl Default for WorldSettings {
             max_linear_speed: 400.0,
             max_angular_speed: DEFAULT_MAX_ANGULAR_SPEED,
             lane_width: LaneWidth::Auto,
+            hit_event_threshold: 1.0,
         }
     }
 }
@@ -125,6 +128,7 @@ impl WorldSettings {
             MAX_SPEED,
             " m/s",
         )?;
+        check_range("hit_event_threshold", self.hit_event_threshold, 0.0, MAX_SPEED, " m/s")?;
         check_range("linear_slop", self.linear_slop, 0.0, MAX_LENGTH, " m")?;
         check_range("max_linear_speed", self.max_linear_speed, 1.0e-3, MAX_SPEED, " m/s")?;
         check_range(
@@ -196,6 +200,8 @@ pub struct World {
     tag: WorldTag,
     /// Shared geometry used by shapes: convex hulls (issue 13, `collision/geometry_store.rs`).
     pub geometry: GeometryStore,
+    /// The last step's events (`events.rs`).
+    pub(crate) events: crate::events::Events,
 }
 
 impl World {
@@ -233,6 +239,7 @@ impl World {
             soft_bodies: crate::soft::SoftBodies::new(tag),
             tag: lease,
             geometry: GeometryStore::new(tag),
+            events: Default::default(),
         })
     }
 
@@ -495,6 +502,9 @@ impl World {
         let bi = self.body_index(body)?;
         def.validate()?;
         let geometry = geometry.validated()?;
+        if geometry.is_unbounded() && def.is_sensor {
+            return Err(invalid("a plane cannot be a sensor (use a box)"));
+        }
         if geometry.is_unbounded() && !self.bodies.at(bi).is_static() {
             return Err(invalid("a plane can only be attached to a static body"));
         }
@@ -607,6 +617,7 @@ impl World {
             body.shapes
                 .iter()
                 .map(|s| self.shapes.get(*s).unwrap())
+                .filter(|s| !s.def.is_sensor)
                 .map(|s| s.geometry.mass_properties(&self.geometry, s.def.density)),
         );
         self.bodies.at_mut(bi).set_mass_properties(mp);
@@ -717,7 +728,8 @@ impl World {
             return;
         }
         let (a, b) = (self.shapes.at(sa), self.shapes.at(sb));
-        let contact = Contact::new(&self.geometry, sa, sb, a, b, key);
+        let mut contact = Contact::new(&self.geometry, sa, sb, a, b, key);
+        contact.event_flags = self.contact_flags(sa, sb);
         let (ba, bb) = (contact.body_a, contact.body_b);
         let h = self.contacts.insert(contact);
         self.broad.pairs.insert(key, h.index);
@@ -729,6 +741,7 @@ impl World {
     }
 
     pub(crate) fn destroy_contact(&mut self, c: u32) {
+        self.contact_events_on_destroy(c);
         let ct = self.contacts.at(c);
         let (ba, bb, key) = (ct.body_a, ct.body_b, ct.key);
         self.remove_awake_contact(c);

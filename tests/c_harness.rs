@@ -57,6 +57,7 @@ const PROGRAMS: &[&str] = &[
     "test_ranges.c",
     "test_geometry.c",
     "test_query.c",
+    "test_events.c",
 ];
 
 #[test]
@@ -235,6 +236,22 @@ fn shared_library_exports_only_hearth_symbols() {
 /// `examples/c/pyramid.c` (55 boxes, then 60 spheres and boxes dropped on them, 30 s at
 /// 60 Hz) ends with every one of its 115 bodies asleep: the rolling spheres stop by their
 /// rolling resistance. It exits 1 otherwise; its last line reports `0/115` awake.
+/// `examples/c/one_way_platform.c` checks its own outcome (the box rests on the slab at
+/// 3.35 m within 5 mm) and exits 1 otherwise.
+#[test]
+fn c_one_way_platform_example_rests_on_top() {
+    let exe = out_dir().join("one_way_platform_c");
+    let mut cmd = common::compiler(false, &out_dir());
+    cmd.arg(root().join("examples/c/one_way_platform.c"))
+        .arg("-o")
+        .arg(&exe);
+    common::link(&mut cmd, Link::Shared);
+    run(&mut cmd);
+    let text = run(&mut common::program(&exe));
+    print!("{text}");
+    assert!(text.contains("rests at 3.3") && text.contains(": OK"), "{text}");
+}
+
 #[test]
 fn c_pyramid_example_ends_with_every_body_asleep() {
     let text = run(&mut common::program(&common::build_c_pyramid(&out_dir())));

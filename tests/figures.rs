@@ -101,7 +101,10 @@ const FIGURES: &[(&str, &str, Backing)] = &[
     (
         R,
         "1 %",
-        Measured(&["soft_robustness::the_default_skin_stays_within_one_percent_of_its_rest_lengths_up_to_nrt_1600"]),
+        Measured(&[
+            "soft_robustness::the_default_skin_stays_within_one_percent_of_its_rest_lengths_up_to_nrt_1600",
+            "events::a_dropped_box_gives_one_begin_one_hit_at_the_free_fall_speed_and_an_end_when_lifted",
+        ]),
     ),
     (
         R,
@@ -202,6 +205,10 @@ const FIGURES: &[(&str, &str, Backing)] = &[
     (R, "0.28 ×", Bench),
     (R, "9.1 M", Bench),
     (R, "39 M", Bench),
+    (R, "48 M", Bench),
+    (R, "11.1 M", Bench),
+    (R, "10.8 M", Bench),
+    (R, "2.8 %", Bench),
     (R, "33 M", Bench),
     // README: rolling resistance and torsional friction (tests/rolling.rs).
     (
@@ -434,6 +441,27 @@ const FIGURES: &[(&str, &str, Backing)] = &[
     (H, "1e10 N·s", Range),
     (H, "100000 kg/m³", Range),
     (H, "162 °", Setting("where twist rows rest")),
+    (
+        H,
+        "0.1 m",
+        Setting("AABB_MARGIN, the broad-phase box margin (world.rs)"),
+    ),
+    (
+        H,
+        "2 cm",
+        Setting("SPECULATIVE_DISTANCE, the fixed part of the speculative distance (step.rs)"),
+    ),
+    (R, "1 m/s", Setting("the default hit_event_threshold (world.rs)")),
+    (
+        R,
+        "3.35 m",
+        Measured(&["events::a_one_way_platform_lets_a_box_up_through_and_holds_it_on_top"]),
+    ),
+    (
+        R,
+        "5 mm",
+        Measured(&["events::a_one_way_platform_lets_a_box_up_through_and_holds_it_on_top"]),
+    ),
     (H, "0 Hz", Setting("a joint spring's default: off")),
     (H, "1 kg", Setting("default masses of particles and soft bodies")),
     (H, "1e5 m", Range),

@@ -63,6 +63,31 @@ fn steady_steps_do_not_allocate() {
     scenes::pyramid(&mut w, 10);
     assert_eq!(allocations_per_step(&mut w, 120, 120), 0, "pyramid (sleep off)");
 
+    // Every event kind (issue 14): boxes with hit events bouncing on the ground, sensors a
+    // kinematic sweeper carries back and forth through them, move events, the step hooks.
+    let (mut w, sweeper) = events_scene();
+    let mut hooks = KeepAll(0);
+    let run = |w: &mut hearth::World, from: usize, to: usize, hooks: &mut KeepAll| -> usize {
+        let mut events = 0;
+        for k in from..to {
+            if k % 120 == 0 {
+                let dir = if (k / 120) % 2 == 0 { 4.0 } else { -4.0 };
+                w.set_linear_velocity(sweeper, hearth::Vec3::new(dir, 0.0, 0.0))
+                    .unwrap();
+            }
+            w.step_with(1.0 / 60.0, hooks).unwrap();
+            let ev = w.events();
+            events += ev.sensor_begin.len() + ev.sensor_end.len() + ev.body_moves.len() + ev.contact_hit.len();
+        }
+        events
+    };
+    run(&mut w, 0, 960, &mut hooks);
+    let before = ALLOCATIONS.load(Ordering::Relaxed);
+    let events = run(&mut w, 960, 1200, &mut hooks);
+    let allocations = ALLOCATIONS.load(Ordering::Relaxed) - before;
+    assert!(events > 240 && hooks.0 > 0, "events while measured: {events}");
+    assert_eq!(allocations, 0, "every event kind: allocations in 240 steps");
+
     let mut w = scenes::world(false);
     scenes::spheres_grid(&mut w, 30);
     assert_eq!(allocations_per_step(&mut w, 60, 120), 0, "spheres grid (sleep off)");
@@ -94,6 +119,61 @@ fn steady_steps_do_not_allocate() {
     }
 }
 
+/// A pre-solve callback that keeps everything (and counts its calls).
+struct KeepAll(usize);
+impl hearth::events::StepCallbacks for KeepAll {
+    fn pre_solve(&mut self, _: &hearth::World, _: &hearth::events::PreSolveContact) -> bool {
+        self.0 += 1;
+        true
+    }
+}
+
+/// Boxes on a ground plane with hit events, and a kinematic body carrying two sensors.
+fn events_scene() -> (hearth::World, hearth::BodyHandle) {
+    use hearth::{BodyDef, BodyType, Geometry, Quat, ShapeDef, Transform, Vec3};
+    let mut w = scenes::world(false);
+    let ground = w.create_body(&BodyDef::default()).unwrap();
+    let plane = Geometry::Plane {
+        normal: Vec3::Y,
+        offset: 0.0,
+    };
+    w.create_shape(ground, &ShapeDef::default(), &plane).unwrap();
+    let cube = |h: f32| Geometry::Box {
+        center: Vec3::ZERO,
+        rotation: Quat::IDENTITY,
+        half_extents: Vec3::splat(h),
+    };
+    let hits = ShapeDef {
+        enable_hit_events: true,
+        restitution: 0.5,
+        ..Default::default()
+    };
+    for i in 0..24 {
+        let p = Vec3::new((i % 6) as f32 * 1.5 - 4.0, 0.5 + (i / 6) as f32 * 1.2, 0.0);
+        let b = w
+            .create_body(&BodyDef {
+                body_type: BodyType::Dynamic,
+                transform: Transform::new(p, Quat::IDENTITY),
+                ..Default::default()
+            })
+            .unwrap();
+        w.create_shape(b, &hits, &cube(0.4)).unwrap();
+    }
+    let sweeper = w
+        .create_body(&BodyDef {
+            body_type: BodyType::Kinematic,
+            transform: Transform::new(Vec3::new(-8.0, 1.0, 0.0), Quat::IDENTITY),
+            ..Default::default()
+        })
+        .unwrap();
+    let sensor = ShapeDef {
+        is_sensor: true,
+        ..Default::default()
+    };
+    w.create_shape(sweeper, &sensor, &cube(1.0)).unwrap();
+    (w, sweeper)
+}
+
 mod capi_scene {
     //! A scene built and stepped through the C API (`hearth_world_step`): user force and
     //! contact callbacks, a built-in spring, a ball-joint chain, a soft ball, and bursts of
@@ -101,6 +181,7 @@ mod capi_scene {
     use hearth::capi::body::*;
     use hearth::capi::callback::*;
     use hearth::capi::error::{HearthResult, HEARTH_OK};
+    use hearth::capi::events::*;
     use hearth::capi::generator::*;
     use hearth::capi::joint::*;
     use hearth::capi::particle::*;
@@ -115,6 +196,23 @@ mod capi_scene {
 
     fn v(x: f32, y: f32, z: f32) -> HearthVec3 {
         HearthVec3 { x, y, z }
+    }
+
+    unsafe extern "C" fn keep_pair(
+        _: *mut std::ffi::c_void,
+        _: *mut HearthWorld,
+        _: HearthShapeId,
+        _: HearthShapeId,
+    ) -> u8 {
+        1
+    }
+
+    unsafe extern "C" fn keep_contact(
+        _: *mut std::ffi::c_void,
+        _: *mut HearthWorld,
+        c: *const HearthPreSolveContact,
+    ) -> u8 {
+        ((*c).point_count > 0) as u8
     }
 
     unsafe extern "C" fn push(_: *mut std::ffi::c_void, world: *mut HearthWorld, ctx: *const HearthGeneratorContext) {
@@ -152,6 +250,7 @@ mod capi_scene {
         pub world: *mut HearthWorld,
         burst: HearthBurstDef,
         pub expired: usize,
+        pub events: usize,
     }
 
     impl Scene {
@@ -161,7 +260,19 @@ mod capi_scene {
                 wd.enable_sleep = 0;
                 let mut world = std::ptr::null_mut();
                 ok(hearth_world_create(&wd, &mut world));
-                let sd = hearth_shape_def_default();
+                let mut sd = hearth_shape_def_default();
+                // Every event kind on (issue 14), and both step callbacks set.
+                sd.enable_hit_events = 1;
+                ok(hearth_world_set_pair_filter_callback(
+                    world,
+                    Some(keep_pair),
+                    std::ptr::null_mut(),
+                ));
+                ok(hearth_world_set_pre_solve_callback(
+                    world,
+                    Some(keep_contact),
+                    std::ptr::null_mut(),
+                ));
                 let mut ground = Default::default();
                 ok(hearth_body_create(world, &hearth_body_def_default(), &mut ground));
                 let mut s = Default::default();
@@ -235,6 +346,7 @@ mod capi_scene {
                     world,
                     burst,
                     expired: 0,
+                    events: 0,
                 }
             }
         }
@@ -243,6 +355,11 @@ mod capi_scene {
         /// burst has expired (and been reported) before the next.
         pub fn step(&mut self, k: usize) {
             unsafe {
+                let mut ce = std::mem::zeroed::<HearthContactEvents>();
+                ok(hearth_world_get_contact_events(self.world, &mut ce));
+                let mut be = std::mem::zeroed::<HearthBodyEvents>();
+                ok(hearth_world_get_body_events(self.world, &mut be));
+                self.events += ce.begin_count + ce.hit_count + be.move_count;
                 if k % 15 == 0 {
                     self.burst.seed = k as u64 + 1;
                     ok(hearth_particle_emit_burst(

@@ -93,6 +93,15 @@ using ParticleDef = HearthParticleDef;
 using BurstDef = HearthBurstDef;
 using ExpiredParticle = HearthExpiredParticle;
 using SoftBodyDef = HearthSoftBodyDef;
+using ContactEvent = HearthContactEvent;
+using ContactHitEvent = HearthContactHitEvent;
+using ContactEvents = HearthContactEvents;
+using SensorEvent = HearthSensorEvent;
+using SensorEvents = HearthSensorEvents;
+using BodyMoveEvent = HearthBodyMoveEvent;
+using BodyEvents = HearthBodyEvents;
+using ManifoldPoint = HearthManifoldPoint;
+using PreSolveContact = HearthPreSolveContact;
 using SoftBodySettings = HearthSoftBodySettings;
 using BallJointDef = HearthBallJointDef;
 using HingeJointDef = HearthHingeJointDef;
@@ -1080,6 +1089,15 @@ public:
     Ret<void> set_gravity(Vec3 g) const { return P::check(hearth_world_set_gravity(world_, g)); }
     Ret<WorldCounters> counters() const { HEARTH_CPP_READ(WorldCounters, hearth_world_get_counters(world_, &out)); }
 
+    // Events of the last step: arrays owned by the world, valid until the next step or destroy.
+    Ret<ContactEvents> contact_events() const {
+        HEARTH_CPP_READ(ContactEvents, hearth_world_get_contact_events(world_, &out));
+    }
+    Ret<SensorEvents> sensor_events() const {
+        HEARTH_CPP_READ(SensorEvents, hearth_world_get_sensor_events(world_, &out));
+    }
+    Ret<BodyEvents> body_events() const { HEARTH_CPP_READ(BodyEvents, hearth_world_get_body_events(world_, &out)); }
+
     // Bodies.
     Ret<Body> create_body(const BodyDef &def) const {
         BodyId id{};
@@ -1468,6 +1486,9 @@ struct WorldState {
     std::map<uint64_t, std::unique_ptr<CallbackBox>> boxes;
     /** The recording's write lambda (World::record_to), kept while it may be called. */
     std::unique_ptr<CallbackBox> record_box;
+    /** The pair-filter and pre-solve lambdas (World::set_pair_filter, set_pre_solve). */
+    std::unique_ptr<CallbackBox> pair_filter_box;
+    std::unique_ptr<CallbackBox> pre_solve_box;
     bool failed = false;
     Code code = Code::Ok;
     std::string message;
@@ -1582,6 +1603,28 @@ template <class P, class F> struct RecordBox final : CallbackBox {
         bool ok = false;
         guarded(*self->state, [&] { ok = self->fn(bytes, len); });
         return ok ? 0 : 1;
+    }
+};
+/** The heap home of a pair-filter lambda: `bool(ShapeId a, ShapeId b)`. */
+template <class P, class F> struct PairFilterBox final : CallbackBox {
+    PairFilterBox(WorldState *s, F f) : CallbackBox(s), fn(std::move(f)) {}
+    F fn;
+    static uint8_t trampoline(void *user_data, HearthWorld *, HearthShapeId a, HearthShapeId b) noexcept {
+        PairFilterBox *self = static_cast<PairFilterBox *>(user_data);
+        bool keep = true;
+        guarded(*self->state, [&] { keep = self->fn(a, b); });
+        return keep ? 1 : 0;
+    }
+};
+/** The heap home of a pre-solve lambda: `bool(const PreSolveContact &)`. */
+template <class P, class F> struct PreSolveBox final : CallbackBox {
+    PreSolveBox(WorldState *s, F f) : CallbackBox(s), fn(std::move(f)) {}
+    F fn;
+    static uint8_t trampoline(void *user_data, HearthWorld *, const HearthPreSolveContact *c) noexcept {
+        PreSolveBox *self = static_cast<PreSolveBox *>(user_data);
+        bool keep = true;
+        guarded(*self->state, [&] { keep = self->fn(*c); });
+        return keep ? 1 : 0;
     }
 };
 } // namespace detail
@@ -1743,6 +1786,57 @@ public:
         const HearthResult r = hearth_world_record_stop(this->world_);
         if (state_ && r != HEARTH_ERROR_WORLD_LOCKED) {
             state_->record_box.reset(); // the C world no longer calls it
+        }
+        return P::check(r);
+    }
+
+    /**
+     * Sets the pair filter (hearth_world_set_pair_filter_callback) to `fn(ShapeId a, ShapeId b)
+     * -> bool`: false keeps the pair from touching until it is proposed again. A throw keeps
+     * the pair and is reported by the step it happened in.
+     */
+    template <class F> Ret<void> set_pair_filter(F &&fn) {
+        using Box = detail::PairFilterBox<P, std::decay_t<F>>;
+        if (!state_) {
+            return P::fail(Code::NullPointer, "hearth.hpp: empty World");
+        }
+        std::unique_ptr<Box> box(new Box(state_.get(), std::forward<F>(fn)));
+        const HearthResult r = hearth_world_set_pair_filter_callback(this->world_, &Box::trampoline, box.get());
+        if (r == HEARTH_OK) {
+            state_->pair_filter_box = std::move(box);
+        }
+        return P::check(r);
+    }
+    /** Clears the pair filter. */
+    Ret<void> clear_pair_filter() {
+        const HearthResult r = hearth_world_set_pair_filter_callback(this->world_, nullptr, nullptr);
+        if (r == HEARTH_OK && state_) {
+            state_->pair_filter_box.reset();
+        }
+        return P::check(r);
+    }
+    /**
+     * Sets the pre-solve callback (hearth_world_set_pre_solve_callback) to
+     * `fn(const PreSolveContact &) -> bool`: false disables the contact for this step. A throw
+     * keeps the contact and is reported by the step it happened in.
+     */
+    template <class F> Ret<void> set_pre_solve(F &&fn) {
+        using Box = detail::PreSolveBox<P, std::decay_t<F>>;
+        if (!state_) {
+            return P::fail(Code::NullPointer, "hearth.hpp: empty World");
+        }
+        std::unique_ptr<Box> box(new Box(state_.get(), std::forward<F>(fn)));
+        const HearthResult r = hearth_world_set_pre_solve_callback(this->world_, &Box::trampoline, box.get());
+        if (r == HEARTH_OK) {
+            state_->pre_solve_box = std::move(box);
+        }
+        return P::check(r);
+    }
+    /** Clears the pre-solve callback. */
+    Ret<void> clear_pre_solve() {
+        const HearthResult r = hearth_world_set_pre_solve_callback(this->world_, nullptr, nullptr);
+        if (r == HEARTH_OK && state_) {
+            state_->pre_solve_box.reset();
         }
         return P::check(r);
     }

@@ -255,6 +255,8 @@ namespace Hearth
         public Flag IsAwake;
         /// <summary>Set by <c>hearth_body_def_default()</c>; do not change.</summary>
         public uint InternalValue;
+        /// <summary>1 (default) reports the body in move events when it moves or falls asleep; 0 never.</summary>
+        public Flag EnableMoveEvents;
     }
 
     /// <summary>Id of a body inside its world. All-zero is the null id. Ids of destroyed bodies and of other worlds are rejected with <c>HEARTH_ERROR_INVALID_ID</c>.</summary>
@@ -868,6 +870,14 @@ namespace Hearth
         public float TorsionalFriction;
         /// <summary>Which shapes this one collides with and which queries see it. Default: Filter.Default().</summary>
         public Filter Filter;
+        /// <summary>1 makes the shape a sensor: it reports overlaps as sensor events, never pushes, adds no mass. Default 0.</summary>
+        public Flag IsSensor;
+        /// <summary>1 (default): contact begin and end events (both shapes must enable them).</summary>
+        public Flag EnableContactEvents;
+        /// <summary>1: hit events (either shape may enable them). Default 0.</summary>
+        public Flag EnableHitEvents;
+        /// <summary>1 (default): sensor events (both shapes must enable them).</summary>
+        public Flag EnableSensorEvents;
     }
 
     /// <summary>A shape's collision filter (Box2D's rules): the same positive GroupIndex always collides, the same negative one never; otherwise each CategoryBits must share a bit with the other's MaskBits.</summary>
@@ -1272,6 +1282,8 @@ namespace Hearth
         public uint InternalValue;
         /// <summary>Largest angular speed a body may reach (rad/s), &gt; 0. Default 100π ≈ 314.16. Capped like <c>MaxLinearSpeed</c>.</summary>
         public float MaxAngularSpeed;
+        /// <summary>Approach speed above which a contact with hit events reports a hit (m/s, 0..=1e4). Default 1.</summary>
+        public float HitEventThreshold;
     }
 
     /// <summary>How to record a world (hearth_world_record_start_file / _callback).</summary>
@@ -1922,5 +1934,128 @@ namespace Hearth
         [DllImport(Lib, CallingConvention = CallingConvention.Cdecl)]
         public static extern Result hearth_world_get_transforms(WorldHandle world, [In] BodyId[] bodies, UIntPtr count, [Out] Transform[] outTransforms);
 
+        [DllImport(Lib, CallingConvention = CallingConvention.Cdecl)]
+        public static extern Result hearth_world_get_contact_events(WorldHandle world, out ContactEvents outEvents);
+
+        [DllImport(Lib, CallingConvention = CallingConvention.Cdecl)]
+        public static extern Result hearth_world_get_sensor_events(WorldHandle world, out SensorEvents outEvents);
+
+        [DllImport(Lib, CallingConvention = CallingConvention.Cdecl)]
+        public static extern Result hearth_world_get_body_events(WorldHandle world, out BodyEvents outEvents);
+
+        [DllImport(Lib, CallingConvention = CallingConvention.Cdecl)]
+        public static extern Result hearth_world_set_pair_filter_callback(WorldHandle world, IntPtr callback, IntPtr userData);
+
+        [DllImport(Lib, CallingConvention = CallingConvention.Cdecl)]
+        public static extern Result hearth_world_set_pre_solve_callback(WorldHandle world, IntPtr callback, IntPtr userData);
+
+    }
+
+    /// <summary>HearthPairFilterCallback: <c>uint8_t (*)(void *user_data, HearthWorld *world, HearthShapeId a, HearthShapeId b)</c>; 0 keeps the pair apart.</summary>
+    [UnmanagedFunctionPointer(CallingConvention.Cdecl)]
+    public delegate byte PairFilterCallback(IntPtr userData, IntPtr world, ShapeId shapeA, ShapeId shapeB);
+
+    /// <summary>HearthPreSolveCallback: <c>uint8_t (*)(void *user_data, HearthWorld *world, const HearthPreSolveContact *contact)</c>; 0 disables the contact for the step.</summary>
+    [UnmanagedFunctionPointer(CallingConvention.Cdecl)]
+    public delegate byte PreSolveCallback(IntPtr userData, IntPtr world, IntPtr contact);
+
+    /// <summary>Two shapes (and their bodies) that started or stopped touching.</summary>
+    [StructLayout(LayoutKind.Sequential)]
+    public struct ContactEvent
+    {
+        public ShapeId ShapeA;
+        public ShapeId ShapeB;
+        public BodyId BodyA;
+        public BodyId BodyB;
+    }
+
+    /// <summary>Two shapes that met faster than the world's hit_event_threshold.</summary>
+    [StructLayout(LayoutKind.Sequential)]
+    public struct ContactHitEvent
+    {
+        public ShapeId ShapeA;
+        public ShapeId ShapeB;
+        public BodyId BodyA;
+        public BodyId BodyB;
+        /// <summary>Where they met (world, m).</summary>
+        public Vec3 Point;
+        /// <summary>Unit normal from A to B.</summary>
+        public Vec3 Normal;
+        /// <summary>Approach speed along the normal at impact (m/s).</summary>
+        public float ApproachSpeed;
+    }
+
+    /// <summary>The contact events of the last step: native arrays, valid until the next step or destroy (World.GetContactEvents copies them).</summary>
+    [StructLayout(LayoutKind.Sequential)]
+    public struct ContactEvents
+    {
+        public IntPtr Begin;
+        public UIntPtr BeginCount;
+        public IntPtr End;
+        public UIntPtr EndCount;
+        public IntPtr Hit;
+        public UIntPtr HitCount;
+    }
+
+    /// <summary>A sensor shape and a shape that started or stopped overlapping it.</summary>
+    [StructLayout(LayoutKind.Sequential)]
+    public struct SensorEvent
+    {
+        public ShapeId SensorShape;
+        public ShapeId VisitorShape;
+        public BodyId SensorBody;
+        public BodyId VisitorBody;
+    }
+
+    /// <summary>The sensor events of the last step (native arrays, as ContactEvents).</summary>
+    [StructLayout(LayoutKind.Sequential)]
+    public struct SensorEvents
+    {
+        public IntPtr Begin;
+        public UIntPtr BeginCount;
+        public IntPtr End;
+        public UIntPtr EndCount;
+    }
+
+    /// <summary>A body that moved in the last step, or fell asleep in it.</summary>
+    [StructLayout(LayoutKind.Sequential)]
+    public struct BodyMoveEvent
+    {
+        public BodyId Body;
+        public Transform Transform;
+        public ulong UserData;
+        /// <summary>1 when it fell asleep in this step.</summary>
+        public byte FellAsleep;
+    }
+
+    /// <summary>The body move events of the last step (native array, as ContactEvents).</summary>
+    [StructLayout(LayoutKind.Sequential)]
+    public struct BodyEvents
+    {
+        public IntPtr Moves;
+        public UIntPtr MoveCount;
+    }
+
+    /// <summary>A contact manifold point: midway between the surfaces, and the signed separation (m, negative overlapping).</summary>
+    [StructLayout(LayoutKind.Sequential)]
+    public struct ManifoldPoint
+    {
+        public Vec3 Point;
+        public float Separation;
+    }
+
+    /// <summary>What the pre-solve callback sees (valid only during the call; World.SetPreSolve copies the points).</summary>
+    [StructLayout(LayoutKind.Sequential)]
+    public struct PreSolveContact
+    {
+        public ShapeId ShapeA;
+        public ShapeId ShapeB;
+        public BodyId BodyA;
+        public BodyId BodyB;
+        /// <summary>Unit normal from A to B.</summary>
+        public Vec3 Normal;
+        /// <summary>Native array of PointCount ManifoldPoint.</summary>
+        public IntPtr Points;
+        public uint PointCount;
     }
 }

@@ -364,6 +364,12 @@ namespace Hearth
             }
             registrations.Clear();
             ReleaseRecordSink();
+            if (hooksHandle.IsAllocated)
+            {
+                hooksHandle.Free();
+            }
+            pairFilter = null;
+            preSolve = null;
         }
 
         private readonly WorldHandle handle;
@@ -888,6 +894,140 @@ namespace Hearth
 
         /// <summary>The wrapper of an existing joint id.</summary>
         public Joint GetJoint(JointId id) { return new Joint(this, id); }
+
+        // ---- events and step callbacks -----------------------------------------------
+
+        private static T[] CopyArray<T>(IntPtr pointer, UIntPtr count) where T : struct
+        {
+            int n = (int)(ulong)count;
+            var result = new T[n];
+            int size = Marshal.SizeOf(typeof(T));
+            for (int i = 0; i < n; i++)
+            {
+                result[i] = (T)Marshal.PtrToStructure(new IntPtr(pointer.ToInt64() + (long)i * size), typeof(T));
+            }
+            return result;
+        }
+
+        /// <summary>hearth_world_get_contact_events: the last step's begin, end and hit events, copied.</summary>
+        public void GetContactEvents(out ContactEvent[] begin, out ContactEvent[] end, out ContactHitEvent[] hit)
+        {
+            ContactEvents ev;
+            Check(Native.hearth_world_get_contact_events(Handle, out ev), "hearth_world_get_contact_events");
+            begin = CopyArray<ContactEvent>(ev.Begin, ev.BeginCount);
+            end = CopyArray<ContactEvent>(ev.End, ev.EndCount);
+            hit = CopyArray<ContactHitEvent>(ev.Hit, ev.HitCount);
+        }
+
+        /// <summary>hearth_world_get_sensor_events: the last step's sensor begin and end events, copied.</summary>
+        public void GetSensorEvents(out SensorEvent[] begin, out SensorEvent[] end)
+        {
+            SensorEvents ev;
+            Check(Native.hearth_world_get_sensor_events(Handle, out ev), "hearth_world_get_sensor_events");
+            begin = CopyArray<SensorEvent>(ev.Begin, ev.BeginCount);
+            end = CopyArray<SensorEvent>(ev.End, ev.EndCount);
+        }
+
+        /// <summary>hearth_world_get_body_events: the last step's move events, copied.</summary>
+        public BodyMoveEvent[] GetBodyEvents()
+        {
+            BodyEvents ev;
+            Check(Native.hearth_world_get_body_events(Handle, out ev), "hearth_world_get_body_events");
+            return CopyArray<BodyMoveEvent>(ev.Moves, ev.MoveCount);
+        }
+
+        /// <summary>A pair filter: false keeps the two shapes from touching until the pair is proposed again.</summary>
+        public delegate bool PairFilterHandler(World world, ShapeId a, ShapeId b);
+
+        /// <summary>A pre-solve handler: false disables the contact for this step. <paramref name="points"/> is a copy.</summary>
+        public delegate bool PreSolveHandler(World world, PreSolveContact contact, ManifoldPoint[] points);
+
+        private PairFilterHandler pairFilter;
+        private PreSolveHandler preSolve;
+        private GCHandle hooksHandle; // this world, as the user_data of both callbacks
+
+        private static readonly PairFilterCallback PairFilterTrampolineDelegate = PairFilterTrampoline;
+        private static readonly PreSolveCallback PreSolveTrampolineDelegate = PreSolveTrampoline;
+        private static readonly IntPtr PairFilterTrampolinePointer = Marshal.GetFunctionPointerForDelegate(PairFilterTrampolineDelegate);
+        private static readonly IntPtr PreSolveTrampolinePointer = Marshal.GetFunctionPointerForDelegate(PreSolveTrampolineDelegate);
+
+        private IntPtr HooksUserData()
+        {
+            if (!hooksHandle.IsAllocated)
+            {
+                hooksHandle = GCHandle.Alloc(this, GCHandleType.Weak);
+            }
+            return GCHandle.ToIntPtr(hooksHandle);
+        }
+
+        private static World WorldFromUserData(IntPtr userData)
+        {
+            try
+            {
+                GCHandle handle = GCHandle.FromIntPtr(userData);
+                return handle.IsAllocated ? handle.Target as World : null;
+            }
+            catch (InvalidOperationException)
+            {
+                return null;
+            }
+        }
+
+        /// <summary>hearth_world_set_pair_filter_callback with a managed handler (null clears it). An exception keeps the pair and is rethrown by Step.</summary>
+        public void SetPairFilter(PairFilterHandler handler)
+        {
+            WorldHandle world = Handle;
+            Check(Native.hearth_world_set_pair_filter_callback(world, handler == null ? IntPtr.Zero : PairFilterTrampolinePointer, handler == null ? IntPtr.Zero : HooksUserData()), "hearth_world_set_pair_filter_callback");
+            pairFilter = handler;
+        }
+
+        /// <summary>hearth_world_set_pre_solve_callback with a managed handler (null clears it). An exception keeps the contact and is rethrown by Step.</summary>
+        public void SetPreSolve(PreSolveHandler handler)
+        {
+            WorldHandle world = Handle;
+            Check(Native.hearth_world_set_pre_solve_callback(world, handler == null ? IntPtr.Zero : PreSolveTrampolinePointer, handler == null ? IntPtr.Zero : HooksUserData()), "hearth_world_set_pre_solve_callback");
+            preSolve = handler;
+        }
+
+        [MonoPInvokeCallback(typeof(PairFilterCallback))]
+        private static byte PairFilterTrampoline(IntPtr userData, IntPtr world, ShapeId a, ShapeId b)
+        {
+            World w = WorldFromUserData(userData);
+            if (w == null || w.pairFilter == null)
+            {
+                return 1;
+            }
+            try
+            {
+                return w.pairFilter(w, a, b) ? (byte)1 : (byte)0;
+            }
+            catch (Exception e)
+            {
+                w.StoreCallbackException(e);
+                return 1;
+            }
+        }
+
+        [MonoPInvokeCallback(typeof(PreSolveCallback))]
+        private static byte PreSolveTrampoline(IntPtr userData, IntPtr world, IntPtr contact)
+        {
+            World w = WorldFromUserData(userData);
+            if (w == null || w.preSolve == null)
+            {
+                return 1;
+            }
+            try
+            {
+                var c = (PreSolveContact)Marshal.PtrToStructure(contact, typeof(PreSolveContact));
+                ManifoldPoint[] points = CopyArray<ManifoldPoint>(c.Points, (UIntPtr)c.PointCount);
+                return w.preSolve(w, c, points) ? (byte)1 : (byte)0;
+            }
+            catch (Exception e)
+            {
+                w.StoreCallbackException(e);
+                return 1;
+            }
+        }
 
         /// <summary>
         /// hearth_world_get_broken_joints into a caller-owned array: returns how many joints broke

@@ -49,6 +49,10 @@ pub struct HearthBodyDef {
     pub is_awake: u8,
     /// Set by `hearth_body_def_default()`; do not change.
     pub internal_value: u32,
+    /// 1 (default) reports the body in move events (`hearth_world_get_body_events`) when it
+    /// moves or falls asleep; 0 never. (Appended after `internal_value`, so earlier fields
+    /// keep their offsets.)
+    pub enable_move_events: u8,
 }
 
 /// Defaults: static, at the origin, identity rotation, at rest, no damping, may sleep.
@@ -67,6 +71,7 @@ pub extern "C" fn hearth_body_def_default() -> HearthBodyDef {
         gravity_scale: d.gravity_scale,
         is_awake: 1,
         internal_value: DEF_COOKIE,
+        enable_move_events: 1,
     }
 }
 
@@ -89,6 +94,7 @@ fn body_def(d: &HearthBodyDef) -> Result<BodyDef, Failure> {
         allow_sleep: validate::flag(d.allow_sleep, "allow_sleep")?,
         awake: validate::flag(d.is_awake, "is_awake")?,
         user_data: d.user_data,
+        enable_move_events: validate::flag(d.enable_move_events, "enable_move_events")?,
     })
 }
 

@@ -4,6 +4,7 @@
 pub mod body;
 pub mod callback;
 pub mod error;
+pub mod events;
 pub mod generator;
 pub mod geometry;
 pub mod joint;

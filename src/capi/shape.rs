@@ -51,6 +51,22 @@ pub struct HearthShapeDef {
     /// Default: category 1, every mask bit, group 0 (collides with everything). Change it
     /// later with `hearth_shape_set_filter`.
     pub filter: HearthFilter,
+    /// 1 makes the shape a sensor: it reports overlaps with non-sensor shapes (exact shapes)
+    /// as sensor events (`hearth_world_get_sensor_events`) and never pushes, never makes a
+    /// solver contact, adds no mass (its density is ignored), and particles and soft bodies
+    /// pass through it. Sensors see shapes on bodies of every type (not two static ones, not
+    /// other sensors) and never wake a body; overlaps with a sleeping body are kept while it
+    /// sleeps. A plane cannot be a sensor. Default 0.
+    pub is_sensor: u8,
+    /// 1 (default): this shape's contacts report begin and end events
+    /// (`hearth_world_get_contact_events`); both shapes must enable them.
+    pub enable_contact_events: u8,
+    /// 1: this shape's contacts report hit events (approach faster than the world's
+    /// `hit_event_threshold`); either shape may enable them. Default 0.
+    pub enable_hit_events: u8,
+    /// 1 (default): a sensor reports, and sensors see this shape; both shapes must enable
+    /// them.
+    pub enable_sensor_events: u8,
 }
 
 /// Defaults: density 1000 kg/m³, friction 0.6 (static and dynamic), no bounce, rolling
@@ -68,6 +84,10 @@ pub extern "C" fn hearth_shape_def_default() -> HearthShapeDef {
         rolling_resistance: d.rolling_resistance,
         torsional_friction: d.torsional_friction,
         filter: d.filter.into(),
+        is_sensor: 0,
+        enable_contact_events: 1,
+        enable_hit_events: 0,
+        enable_sensor_events: 1,
     }
 }
 
@@ -82,6 +102,10 @@ fn shape_def(d: &HearthShapeDef) -> Result<ShapeDef, Failure> {
         rolling_resistance: d.rolling_resistance,
         torsional_friction: d.torsional_friction,
         filter: d.filter.into(),
+        is_sensor: validate::flag(d.is_sensor, "is_sensor")?,
+        enable_contact_events: validate::flag(d.enable_contact_events, "enable_contact_events")?,
+        enable_hit_events: validate::flag(d.enable_hit_events, "enable_hit_events")?,
+        enable_sensor_events: validate::flag(d.enable_sensor_events, "enable_sensor_events")?,
     })
 }
 

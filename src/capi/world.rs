@@ -23,6 +23,8 @@
 //! * in the contact phase (`PHASE_CONTACTS`) `hearth_contact_sink_add` works;
 //! * in the record phase (`PHASE_RECORD`, a recording's write callback after the core's
 //!   stages, `capi/record.rs`) only reads work;
+//! * in the filter phase (`PHASE_FILTER`, the pair-filter and pre-solve callbacks,
+//!   `capi/events.rs`) only reads work;
 //! * every other mutation (create, destroy, set, attach, step) returns
 //!   `HEARTH_ERROR_WORLD_LOCKED` before any `&mut` to the world is formed, and
 //!   `hearth_world_destroy` is ignored.
@@ -80,6 +82,9 @@ pub struct HearthWorldDef {
     /// not exceed it. (After `internal_value`: fields are only ever appended, so existing
     /// offsets stay.)
     pub max_angular_speed: f32,
+    /// Approach speed above which a contact whose shapes enable hit events reports a hit
+    /// (m/s, 0..=1e4). Default 1.
+    pub hit_event_threshold: f32,
 }
 
 /// The world handle: opaque to C. Owns everything in the world. One thread at a time.
@@ -98,6 +103,8 @@ pub struct HearthWorld {
     pub(crate) sink: UnsafeCell<super::callback::HearthContactSink>,
     /// The running recording, if any (`capi/record.rs`).
     pub(crate) recording: UnsafeCell<Option<super::record::Recording>>,
+    /// Published events and the pair-filter and pre-solve callbacks (`capi/events.rs`).
+    pub(crate) events: UnsafeCell<super::events::EventScratch>,
 }
 
 /// Not stepping.
@@ -110,6 +117,8 @@ pub(crate) const PHASE_FORCES: u8 = 2;
 pub(crate) const PHASE_CONTACTS: u8 = 3;
 /// A recording's write callback runs: reads only.
 pub(crate) const PHASE_RECORD: u8 = 4;
+/// The pair-filter or pre-solve callback runs: reads only (`capi/events.rs`).
+pub(crate) const PHASE_FILTER: u8 = 5;
 
 /// Shared access for reads.
 ///
@@ -177,6 +186,7 @@ pub(crate) fn settings_from_def(def: &HearthWorldDef) -> Result<WorldSettings, F
         max_linear_speed: def.max_linear_speed,
         max_angular_speed: def.max_angular_speed,
         velocity_iterations: def.velocity_iterations,
+        hit_event_threshold: def.hit_event_threshold,
         ..WorldSettings::default()
     };
     s.validate()?;
@@ -202,6 +212,7 @@ pub extern "C" fn hearth_world_def_default() -> HearthWorldDef {
         velocity_iterations: s.velocity_iterations,
         internal_value: DEF_COOKIE,
         max_angular_speed: s.max_angular_speed,
+        hit_event_threshold: s.hit_event_threshold,
     }
 }
 
@@ -234,6 +245,7 @@ pub unsafe extern "C" fn hearth_world_create(
             scratch: UnsafeCell::new(Default::default()),
             sink: UnsafeCell::new(Default::default()),
             recording: UnsafeCell::new(None),
+            events: UnsafeCell::new(Default::default()),
         });
         *out = Box::into_raw(boxed);
         Ok(())
@@ -326,12 +338,16 @@ unsafe fn drive_step(world: *mut HearthWorld, dt: f32) -> Result<(), Failure> {
     if tests::PANIC_MID_STEP.with(Cell::get) {
         panic!("test hook: a panic injected between the force and collision stages");
     }
-    (*core).collide_step(dt);
+    (*core).find_pairs();
+    super::events::run_pair_filter(world);
+    (*core).collide_pairs(dt);
     handle.phase.set(PHASE_CONTACTS);
     super::callback::run_contact_callbacks(world, dt);
     handle.phase.set(PHASE_CORE);
+    super::events::run_pre_solve(world);
     (*core).finish_step(dt);
     super::particle::publish_expired(&*core, &mut (*handle.scratch.get()).expired);
+    super::events::publish(&*core, &mut *handle.events.get());
     Ok(())
 }
 

@@ -71,6 +71,13 @@ pub struct Contact {
     pub more: Vec<ChildManifold>,
     /// The separating-axis feature that decided the last hull test (hull pairs only).
     pub sat: SatCache,
+    /// Event flags of the pair (`events.rs`: `CONTACT_EVENTS`, `HIT_EVENTS`, `SENSOR`,
+    /// `SENSOR_EVENTS`), set at creation.
+    pub event_flags: u8,
+    /// A begin event (contact or sensor) was reported and no end yet.
+    pub reported: bool,
+    /// The pre-solve callback disabled the contact for this step.
+    pub disabled: bool,
 }
 
 /// A manifold after the first of a `multi` contact, with its impulses and cached frames.
@@ -302,6 +309,9 @@ impl Contact {
             // normal mid-game must not allocate in the step.
             more: Vec::with_capacity(if multi { MAX_MESH_MANIFOLDS - 1 } else { 0 }),
             sat: SatCache::None,
+            event_flags: 0,
+            reported: false,
+            disabled: false,
         }
     }
 

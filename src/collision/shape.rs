@@ -425,6 +425,18 @@ pub struct ShapeDef {
     /// Which shapes this one collides with and which queries see it
     /// ([`crate::collision::filter`]). Default: category 1, every mask bit, no group.
     pub filter: crate::collision::filter::Filter,
+    /// A sensor (`events.rs`): reports overlaps with non-sensor shapes as sensor events and
+    /// never makes a solver contact, never pushes, adds no mass and is ignored by particles and
+    /// soft bodies. Planes cannot be sensors.
+    pub is_sensor: bool,
+    /// Contact begin and end events for this shape's contacts (both shapes must enable them).
+    /// Default on.
+    pub enable_contact_events: bool,
+    /// Contact hit events for this shape's contacts (either shape enables them). Default off.
+    pub enable_hit_events: bool,
+    /// Sensor events: on a sensor, it reports; on another shape, sensors see it (both must
+    /// enable them). Default on.
+    pub enable_sensor_events: bool,
 }
 
 /// Largest accepted `ShapeDef::rolling_resistance`: a lever as long as the radius.
@@ -443,6 +455,10 @@ impl Default for ShapeDef {
             rolling_resistance: ShapeDef::DEFAULT_ROLLING_RESISTANCE,
             torsional_friction: ShapeDef::DEFAULT_TORSIONAL_FRICTION,
             filter: crate::collision::filter::Filter::DEFAULT,
+            is_sensor: false,
+            enable_contact_events: true,
+            enable_hit_events: false,
+            enable_sensor_events: true,
         }
     }
 }

@@ -37,6 +37,8 @@ pub struct BodyDef {
     pub allow_sleep: bool,
     pub awake: bool,
     pub user_data: u64,
+    /// Report this body in move events (`events.rs`). Default on.
+    pub enable_move_events: bool,
 }
 
 impl Default for BodyDef {
@@ -52,6 +54,7 @@ impl Default for BodyDef {
             allow_sleep: true,
             awake: true,
             user_data: 0,
+            enable_move_events: true,
         }
     }
 }
@@ -120,6 +123,10 @@ pub struct Body {
     /// those it moved with, and it stops at the start of the next step unless given a new
     /// target or velocity.
     pub kinematic_stop: bool,
+    /// Report this body in move events.
+    pub enable_move_events: bool,
+    /// The transform last reported in a move event (or at creation).
+    pub reported_xf: Transform,
 }
 
 /// The inverse of an inertia tensor, or zero when it is singular. The supported masses and
@@ -183,6 +190,8 @@ impl Body {
             solver_index: 0,
             kinematic_target: None,
             kinematic_stop: false,
+            enable_move_events: def.enable_move_events,
+            reported_xf: def.transform,
         };
         b.set_mass_properties(MassProperties::ZERO);
         b

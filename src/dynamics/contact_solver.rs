@@ -154,7 +154,7 @@ pub fn prepare(world: &mut World) {
     let mut bounces = false;
     for &ci in &world.awake_contacts {
         let c = world.contacts.at(ci);
-        if !c.touching {
+        if !c.touching || c.disabled {
             continue;
         }
         let (a, b) = (

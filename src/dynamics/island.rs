@@ -109,6 +109,7 @@ pub fn sleep_islands(world: &mut World, ready: bool) {
                 i += 1;
             }
             world.put_to_sleep(&scratch.group);
+            world.events.fell_asleep.extend_from_slice(&scratch.group);
         }
     }
     world.island_scratch = scratch;

@@ -446,6 +446,10 @@ impl World {
                 let pr: &Particles = p;
                 broad.tree.query(&bb, |_, si| {
                     let shape = shapes.at(si);
+                    if shape.def.is_sensor {
+                        // Sensors never push (events.rs).
+                        return true;
+                    }
                     let body = bodies.at(shape.body);
                     let m = collide(geometry, &sphere, &xf, &shape.geometry, &body.xf, reach);
                     for mp in m.points() {

@@ -79,7 +79,10 @@ pub(super) fn find_contacts(
     sc.candidates.clear();
     let candidates = &mut sc.candidates;
     broad.tree.query(&bb, |_, si| {
-        candidates.push(si);
+        // Sensors never push (events.rs).
+        if !shapes.at(si).def.is_sensor {
+            candidates.push(si);
+        }
         true
     });
     candidates.sort_unstable();

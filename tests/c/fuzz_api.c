@@ -1199,6 +1199,11 @@ static void op_shape_create(FWorld *fw) {
     if (chance(30)) sd.restitution = frange(0, 1);
     const char *field = NULL;
     int kind = (int)rnd(4);
+    /* Sensors and event flags (a plane cannot be a sensor). */
+    if (kind != 3 && chance(15)) sd.is_sensor = 1;
+    if (chance(30)) sd.enable_hit_events = 1;
+    if (chance(20)) sd.enable_contact_events = 0;
+    if (chance(20)) sd.enable_sensor_events = 0;
     int null_def = f == F_NULL_IN && chance(50), null_geom = f == F_NULL_IN && !null_def;
     if (f == F_COOKIE) sd.internal_value = 0;
     if (f == F_NUMBER && chance(30)) {
@@ -2998,6 +3003,85 @@ static void op_query(FWorld *fw) {
         HearthResult e = f == F_NULL_WORLD || f == F_NULL_OUT ? HEARTH_ERROR_NULL_POINTER : s ? HEARTH_OK : HEARTH_ERROR_INVALID_ID;
         CALL(hearth_shape_get_filter(W(fw, f), id, f == F_NULL_OUT ? NULL : &out), e, NULL, &out, sizeof out);
         (void)r;
+
+/* ------------------------------------------------------------------ events and filters */
+/* The pair filter and pre-solve callbacks: they read (an event read and gravity), try a
+ * mutation (locked) and keep or drop by a hash of the ids (reproducible). */
+static uint8_t pair_filter_callback(void *user_data, HearthWorld *world, HearthShapeId a, HearthShapeId b) {
+    FWorld *fw = (FWorld *)user_data;
+    const char *saved = g_op;
+    g_op = "pair filter callback";
+    g_locked = 1;
+    if (world_of(world) != fw) fail("pair filter", "wrong world");
+    HearthVec3 g;
+    { CALL(hearth_world_get_gravity(world, &g), HEARTH_OK, NULL, NULL, 0); }
+    { CALL(hearth_world_set_gravity(world, g), HEARTH_ERROR_WORLD_LOCKED, NULL, NULL, 0); }
+    { CALL(hearth_world_set_pair_filter_callback(world, NULL, NULL), HEARTH_ERROR_WORLD_LOCKED, NULL, NULL, 0); }
+    g_locked = 0;
+    g_op = saved;
+    return (uint8_t)(((a.index * 31u + b.index * 17u) % 5u) != 0u);
+}
+
+static uint8_t pre_solve_callback(void *user_data, HearthWorld *world, const HearthPreSolveContact *c) {
+    FWorld *fw = (FWorld *)user_data;
+    const char *saved = g_op;
+    g_op = "pre-solve callback";
+    g_locked = 1;
+    if (world_of(world) != fw || !c) fail("pre-solve", "wrong world or contact");
+    if (c->point_count < 1 || c->point_count > 4) fail("pre-solve", "point count outside 1..4");
+    for (uint32_t i = 0; i < c->point_count; i++)
+        if (!finite3(c->points[i].point) || !isfinite(c->points[i].separation)) fail("pre-solve", "non-finite point");
+    if (fabsf(len3(c->normal) - 1.0f) > 1e-3f) fail("pre-solve", "normal not unit");
+    HearthContactEvents ev;
+    { CALL(hearth_world_get_contact_events(world, &ev), HEARTH_OK, NULL, NULL, 0); }
+    { CALL(hearth_world_set_pre_solve_callback(world, NULL, NULL), HEARTH_ERROR_WORLD_LOCKED, NULL, NULL, 0); }
+    g_locked = 0;
+    g_op = saved;
+    return (uint8_t)(c->normal.y > -0.5f);
+}
+
+static void op_events(FWorld *fw) {
+    FAULTS(F_NULL_WORLD, F_NULL_OUT);
+    HearthWorld *w = W(fw, f);
+    int nul = f == F_NULL_OUT;
+    HearthResult e = f == F_NULL_WORLD || nul ? HEARTH_ERROR_NULL_POINTER : HEARTH_OK;
+    switch (rnd(5)) {
+    case 0: {
+        HearthContactEvents ev;
+        memset(&ev, SENTINEL, sizeof ev);
+        CALL(hearth_world_get_contact_events(w, nul ? NULL : &ev), e, NULL, &ev, sizeof ev);
+        if (r == HEARTH_OK) {
+            for (size_t i = 0; i < ev.begin_count; i++)
+                if (ev.begin[i].shape_a.generation == 0 || ev.begin[i].body_b.generation == 0) fail("contact events", "null id");
+            for (size_t i = 0; i < ev.hit_count; i++)
+                if (!(ev.hit[i].approach_speed > 0.0f) || !finite3(ev.hit[i].point)) fail("contact events", "bad hit");
+        }
+        break;
+    }
+    case 1: {
+        HearthSensorEvents ev;
+        memset(&ev, SENTINEL, sizeof ev);
+        CALL(hearth_world_get_sensor_events(w, nul ? NULL : &ev), e, NULL, &ev, sizeof ev);
+        if (r == HEARTH_OK && (ev.begin_count > 0 && !ev.begin)) fail("sensor events", "NULL array");
+        break;
+    }
+    case 2: {
+        HearthBodyEvents ev;
+        memset(&ev, SENTINEL, sizeof ev);
+        CALL(hearth_world_get_body_events(w, nul ? NULL : &ev), e, NULL, &ev, sizeof ev);
+        if (r == HEARTH_OK)
+            for (size_t i = 0; i < ev.move_count; i++)
+                if (!finite3(ev.moves[i].transform.position) || ev.moves[i].fell_asleep > 1) fail("body events", "bad move");
+        break;
+    }
+    case 3: {
+        HearthResult e2 = f == F_NULL_WORLD ? HEARTH_ERROR_NULL_POINTER : HEARTH_OK;
+        CALL(hearth_world_set_pair_filter_callback(w, chance(70) ? pair_filter_callback : NULL, fw), e2, NULL, NULL, 0);
+        break;
+    }
+    default: {
+        HearthResult e2 = f == F_NULL_WORLD ? HEARTH_ERROR_NULL_POINTER : HEARTH_OK;
+        CALL(hearth_world_set_pre_solve_callback(w, chance(70) ? pre_solve_callback : NULL, fw), e2, NULL, NULL, 0);
         break;
     }
     }
@@ -3033,6 +3117,7 @@ static const Op OPS[] = {
     {"geometry_other", op_geometry_other, 2},
     {"geometry_shape", op_geometry_shape, 2},
     {"query", op_query, 4},
+    {"events", op_events, 2},
 };
 #define NOPS ((int)(sizeof OPS / sizeof OPS[0]))
 

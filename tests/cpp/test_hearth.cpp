@@ -15,6 +15,7 @@
 #include <cstdio>
 #include <cstring>
 #include <memory>
+#include <stdexcept>
 #include <string>
 #include <type_traits>
 #include <vector>
@@ -944,9 +945,86 @@ static void test_queries_and_filters() {
         invalid = e.code() == hearth::Code::InvalidArgument;
     }
     CHECK(invalid);
+
+static void test_events_and_step_callbacks() {
+    hearth::World w = make_world(true);
+    add_ground(w);
+    // A dropped box: one begin, one hit at sqrt(2gh) within 1 %, move events.
+    const float h = 2.0f;
+    hearth::ShapeDef hits = hearth::shape_def();
+    hits.enable_hit_events = 1;
+    hearth::Body box = w.create_body(hearth::BodyType::Dynamic, hearth::vec3(0, 0.5f + h, 0));
+    box.add(hearth::box(hearth::vec3(0.5f, 0.5f, 0.5f)), hits);
+    size_t begins = 0, nhits = 0, moves = 0;
+    float speed = 0;
+    for (int i = 0; i < 120; i++) {
+        w.step(DT);
+        hearth::ContactEvents ev = w.contact_events();
+        begins += ev.begin_count;
+        nhits += ev.hit_count;
+        if (ev.hit_count) speed = ev.hit[0].approach_speed;
+        moves += hearth::BodyEvents(w.body_events()).move_count;
+    }
+    CHECK(begins == 1 && nhits == 1 && moves > 30);
+    CHECK_NEAR(speed, std::sqrt(2.0f * 9.81f * h), 0.01f * std::sqrt(2.0f * 9.81f * h));
+    // A sensor and a kinematic visitor.
+    hearth::ShapeDef sensor = hearth::shape_def();
+    sensor.is_sensor = 1;
+    hearth::Body zone = w.create_body(hearth::BodyType::Static, hearth::vec3(10, 3, 0));
+    zone.add(hearth::box(hearth::vec3(1, 1, 1)), sensor);
+    CHECK_THROWS(zone.add(hearth::plane(hearth::vec3(0, 1, 0), -10), sensor), hearth::Code::InvalidArgument);
+    hearth::Body mover = w.create_body(hearth::BodyType::Kinematic, hearth::vec3(5, 3, 0));
+    mover.add(hearth::box(hearth::vec3(0.25f, 0.25f, 0.25f)));
+    mover.set_linear_velocity(hearth::vec3(2, 0, 0));
+    size_t sb = 0, se = 0;
+    for (int i = 0; i < 300; i++) {
+        w.step(DT);
+        hearth::SensorEvents ev = w.sensor_events();
+        sb += ev.begin_count;
+        se += ev.end_count;
+    }
+    CHECK(sb == 1 && se == 1);
+    // A one-way platform through the pre-solve lambda, and a pair filter.
+    hearth::World p = make_world(true);
+    add_ground(p);
+    hearth::Body slab = p.create_body(hearth::BodyType::Static, hearth::vec3(0, 3, 0));
+    const hearth::ShapeId platform = hearth::Shape(slab.add(hearth::box(hearth::vec3(2, 0.1f, 2)))).id();
+    hearth::Body thrown = p.create_body(hearth::BodyType::Dynamic, hearth::vec3(0, 0.5f, 0));
+    thrown.add(hearth::box(hearth::vec3(0.25f, 0.25f, 0.25f)));
+    thrown.set_linear_velocity(hearth::vec3(0, 10, 0));
+    int asked = 0;
+    p.set_pair_filter([&](hearth::ShapeId, hearth::ShapeId) {
+        asked++;
+        return true;
+    });
+    p.set_pre_solve([&](const hearth::PreSolveContact &c) {
+        float up;
+        if (c.shape_a.index == platform.index) up = c.normal.y;
+        else if (c.shape_b.index == platform.index) up = -c.normal.y;
+        else return true;
+        float deepest = 1e30f;
+        for (uint32_t i = 0; i < c.point_count; i++) deepest = std::fmin(deepest, c.points[i].separation);
+        return up > 0.7f && deepest > -0.05f;
+    });
+    for (int i = 0; i < 180; i++) p.step(DT);
+    CHECK_NEAR(hearth::Transform(thrown.transform()).position.y, 3.35f, 0.005f);
+    CHECK(asked > 0);
+    // A throwing lambda is reported by the step.
+    p.set_pre_solve([](const hearth::PreSolveContact &) -> bool { throw std::runtime_error("boom"); });
+    bool caught = false;
+    try {
+        p.step(DT);
+    } catch (const std::runtime_error &e) {
+        caught = std::string(e.what()) == "boom"; // the original exception, after the step
+    }
+    CHECK(caught);
+    p.clear_pre_solve();
+    p.clear_pair_filter();
+    p.step(DT);
 }
 
 static void run_throwing_tests() {
+    test_events_and_step_callbacks();
     test_box_rests_on_plane();
     test_errors_as_exceptions();
     test_rolling_resistance_and_torsional_friction();

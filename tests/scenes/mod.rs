@@ -528,3 +528,20 @@ pub fn hull_pile(world: &mut World, count: usize, seed: u64) -> Vec<BodyHandle> 
     }
     out
 }
+
+/// Turns every event kind on or off for every shape and body built so far (before the first
+/// step, so new contacts take the flags): contact begin/end, hit and sensor events on shapes,
+/// move events on bodies (issue 14's bench: the pile with every event kind against none).
+pub fn set_events(world: &mut World, on: bool) {
+    let shapes: Vec<_> = world.shapes.iter().map(|(h, _)| h).collect();
+    for h in shapes {
+        let def = &mut world.shapes.get_mut(h).unwrap().def;
+        def.enable_contact_events = on;
+        def.enable_hit_events = on;
+        def.enable_sensor_events = on;
+    }
+    let bodies: Vec<_> = world.bodies.iter().map(|(h, _)| h).collect();
+    for h in bodies {
+        world.bodies.get_mut(h).unwrap().enable_move_events = on;
+    }
+}

@@ -1427,6 +1427,89 @@ internal static class HearthTests
         }
     }
 
+
+    private static void TestEventsAndStepCallbacks()
+    {
+        using (var w = new World(WorldDef.Default()))
+        {
+            BodyDef gd = BodyDef.Default();
+            Body ground = w.CreateBody(gd);
+            ShapeDef sd = ShapeDef.Default();
+            Ensure(!sd.IsSensor && sd.EnableContactEvents && !sd.EnableHitEvents && sd.EnableSensorEvents, "event flag defaults");
+            ground.CreatePlane(sd, new Plane { Normal = new Vec3(0, 1, 0), Offset = 0 });
+            // A dropped box: one begin, one hit at sqrt(2gh) within 1 %, move events.
+            float h = 2.0f;
+            BodyDef bd = BodyDef.Default();
+            bd.Type = BodyType.Dynamic;
+            bd.Transform = new Transform(new Vec3(0, 0.5f + h, 0), Quat.Identity);
+            Body box = w.CreateBody(bd);
+            ShapeDef hits = ShapeDef.Default();
+            hits.EnableHitEvents = true;
+            box.CreateBox(hits, new Box { Center = Vec3.Zero, Rotation = Quat.Identity, HalfExtents = new Vec3(0.5f, 0.5f, 0.5f) });
+            int begins = 0, nhits = 0, moves = 0;
+            float speed = 0;
+            for (int i = 0; i < 120; i++)
+            {
+                w.Step(1.0f / 60.0f);
+                ContactEvent[] b, e;
+                ContactHitEvent[] hit;
+                w.GetContactEvents(out b, out e, out hit);
+                begins += b.Length;
+                nhits += hit.Length;
+                if (hit.Length > 0) speed = hit[0].ApproachSpeed;
+                moves += w.GetBodyEvents().Length;
+            }
+            Ensure(begins == 1 && nhits == 1 && moves > 30, "one begin, one hit, moves");
+            float expected = (float)Math.Sqrt(2 * 9.81 * h);
+            Ensure(Math.Abs(speed - expected) < 0.01f * expected, "hit speed " + speed + " against " + expected);
+            // A kinematic box through a sensor.
+            ShapeDef sensor = ShapeDef.Default();
+            sensor.IsSensor = true;
+            BodyDef zd = BodyDef.Default();
+            zd.Transform = new Transform(new Vec3(10, 3, 0), Quat.Identity);
+            w.CreateBody(zd).CreateBox(sensor, new Box { Center = Vec3.Zero, Rotation = Quat.Identity, HalfExtents = new Vec3(1, 1, 1) });
+            BodyDef kd = BodyDef.Default();
+            kd.Type = BodyType.Kinematic;
+            kd.Transform = new Transform(new Vec3(5, 3, 0), Quat.Identity);
+            kd.LinearVelocity = new Vec3(2, 0, 0);
+            w.CreateBody(kd).CreateBox(sd, new Box { Center = Vec3.Zero, Rotation = Quat.Identity, HalfExtents = new Vec3(0.25f, 0.25f, 0.25f) });
+            int sb = 0, se = 0;
+            for (int i = 0; i < 300; i++)
+            {
+                w.Step(1.0f / 60.0f);
+                SensorEvent[] b, e;
+                w.GetSensorEvents(out b, out e);
+                sb += b.Length;
+                se += e.Length;
+            }
+            Ensure(sb == 1 && se == 1, "one sensor begin and end, got " + sb + ", " + se);
+            // A pair filter and a pre-solve callback that disables every contact: the box falls through.
+            int asked = 0;
+            w.SetPairFilter((world, a, b2) => { asked++; return true; });
+            w.SetPreSolve((world, c, points) => points.Length < 0);
+            BodyDef fd = BodyDef.Default();
+            fd.Type = BodyType.Dynamic;
+            fd.Transform = new Transform(new Vec3(-5, 0.5f, 0), Quat.Identity);
+            Body faller = w.CreateBody(fd);
+            faller.CreateBox(sd, new Box { Center = Vec3.Zero, Rotation = Quat.Identity, HalfExtents = new Vec3(0.5f, 0.5f, 0.5f) });
+            for (int i = 0; i < 60; i++) w.Step(1.0f / 60.0f);
+            Ensure(asked > 0, "the pair filter was asked");
+            Ensure(faller.Transform.Position.Y < -1.0f, "every contact disabled: it fell through, y = " + faller.Transform.Position.Y);
+            // An exception in a callback is rethrown by Step.
+            w.SetPreSolve((world, c, points) => { throw new InvalidOperationException("boom"); });
+            bool caught = false;
+            BodyDef rd = BodyDef.Default();
+            rd.Type = BodyType.Dynamic;
+            rd.Transform = new Transform(new Vec3(-8, 0.5f, 0), Quat.Identity);
+            w.CreateBody(rd).CreateBox(sd, new Box { Center = Vec3.Zero, Rotation = Quat.Identity, HalfExtents = new Vec3(0.5f, 0.5f, 0.5f) });
+            try { w.Step(1.0f / 60.0f); } catch (InvalidOperationException) { caught = true; }
+            Ensure(caught, "the pre-solve exception surfaced from Step");
+            w.SetPreSolve(null);
+            w.SetPairFilter(null);
+            w.Step(1.0f / 60.0f);
+        }
+    }
+
     private static int Main(string[] args)
     {
         layoutPath = args.Length > 0 ? args[0] : null;
@@ -1456,6 +1539,7 @@ internal static class HearthTests
             new KeyValuePair<string, Action>("recording", TestRecording),
             new KeyValuePair<string, Action>("shared geometry", TestGeometry),
             new KeyValuePair<string, Action>("queries and filters", TestQueriesAndFilters),
+            new KeyValuePair<string, Action>("events, sensors and step callbacks", TestEventsAndStepCallbacks),
         };
         int passed = 0, failed = 0;
         foreach (var test in tests)

@@ -141,6 +141,7 @@ class HearthBodyDef(_Struct):
         ("gravity_scale", c_float),
         ("is_awake", c_uint8),
         ("internal_value", c_uint32),
+        ("enable_move_events", c_uint8),
     ]
 
 
@@ -450,6 +451,10 @@ class HearthShapeDef(_Struct):
         ("rolling_resistance", c_float),
         ("torsional_friction", c_float),
         ("filter", HearthFilter),
+        ("is_sensor", c_uint8),
+        ("enable_contact_events", c_uint8),
+        ("enable_hit_events", c_uint8),
+        ("enable_sensor_events", c_uint8),
     ]
 
 
@@ -609,6 +614,7 @@ class HearthWorldDef(_Struct):
         ("velocity_iterations", c_uint32),
         ("internal_value", c_uint32),
         ("max_angular_speed", c_float),
+        ("hit_event_threshold", c_float),
     ]
 
 
@@ -1073,3 +1079,103 @@ _fn(
     "hearth_world_get_transforms", HearthResult, POINTER(HearthWorld), POINTER(HearthBodyId), c_size_t,
     POINTER(HearthTransform),
 )
+
+
+# ---------------------------------------------------------------- events and step callbacks
+class HearthContactEvent(_Struct):
+    _fields_ = [
+        ("shape_a", HearthShapeId),
+        ("shape_b", HearthShapeId),
+        ("body_a", HearthBodyId),
+        ("body_b", HearthBodyId),
+    ]
+
+
+class HearthContactHitEvent(_Struct):
+    _fields_ = [
+        ("shape_a", HearthShapeId),
+        ("shape_b", HearthShapeId),
+        ("body_a", HearthBodyId),
+        ("body_b", HearthBodyId),
+        ("point", HearthVec3),
+        ("normal", HearthVec3),
+        ("approach_speed", c_float),
+    ]
+
+
+class HearthContactEvents(_Struct):
+    _fields_ = [
+        ("begin", POINTER(HearthContactEvent)),
+        ("begin_count", c_size_t),
+        ("end", POINTER(HearthContactEvent)),
+        ("end_count", c_size_t),
+        ("hit", POINTER(HearthContactHitEvent)),
+        ("hit_count", c_size_t),
+    ]
+
+
+class HearthSensorEvent(_Struct):
+    _fields_ = [
+        ("sensor_shape", HearthShapeId),
+        ("visitor_shape", HearthShapeId),
+        ("sensor_body", HearthBodyId),
+        ("visitor_body", HearthBodyId),
+    ]
+
+
+class HearthSensorEvents(_Struct):
+    _fields_ = [
+        ("begin", POINTER(HearthSensorEvent)),
+        ("begin_count", c_size_t),
+        ("end", POINTER(HearthSensorEvent)),
+        ("end_count", c_size_t),
+    ]
+
+
+class HearthBodyMoveEvent(_Struct):
+    _fields_ = [
+        ("body", HearthBodyId),
+        ("transform", HearthTransform),
+        ("user_data", c_uint64),
+        ("fell_asleep", c_uint8),
+    ]
+
+
+class HearthBodyEvents(_Struct):
+    _fields_ = [
+        ("moves", POINTER(HearthBodyMoveEvent)),
+        ("move_count", c_size_t),
+    ]
+
+
+class HearthManifoldPoint(_Struct):
+    _fields_ = [
+        ("point", HearthVec3),
+        ("separation", c_float),
+    ]
+
+
+class HearthPreSolveContact(_Struct):
+    _fields_ = [
+        ("shape_a", HearthShapeId),
+        ("shape_b", HearthShapeId),
+        ("body_a", HearthBodyId),
+        ("body_b", HearthBodyId),
+        ("normal", HearthVec3),
+        ("points", POINTER(HearthManifoldPoint)),
+        ("point_count", c_uint32),
+    ]
+
+
+# uint8_t (*HearthPairFilterCallback)(void *user_data, HearthWorld *world, HearthShapeId a, HearthShapeId b)
+HearthPairFilterCallback = CFUNCTYPE(c_uint8, c_void_p, POINTER(HearthWorld), HearthShapeId, HearthShapeId)
+# uint8_t (*HearthPreSolveCallback)(void *user_data, HearthWorld *world, const HearthPreSolveContact *contact)
+HearthPreSolveCallback = CFUNCTYPE(c_uint8, c_void_p, POINTER(HearthWorld), POINTER(HearthPreSolveContact))
+
+_fn("hearth_world_get_contact_events", HearthResult, POINTER(HearthWorld), POINTER(HearthContactEvents))
+_fn("hearth_world_get_sensor_events", HearthResult, POINTER(HearthWorld), POINTER(HearthSensorEvents))
+_fn("hearth_world_get_body_events", HearthResult, POINTER(HearthWorld), POINTER(HearthBodyEvents))
+_fn(
+    "hearth_world_set_pair_filter_callback", HearthResult, POINTER(HearthWorld), HearthPairFilterCallback, c_void_p
+)
+_fn("hearth_world_set_pre_solve_callback", HearthResult, POINTER(HearthWorld), HearthPreSolveCallback, c_void_p)

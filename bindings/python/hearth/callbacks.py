@@ -9,6 +9,7 @@ callbacks of that step still run; only the first exception of a step is re-raise
 """
 
 import ctypes
+from collections import namedtuple
 from ctypes import byref
 
 from . import _ffi
@@ -148,3 +149,43 @@ def record_write_trampoline(world, write):
             return 1
 
     return _ffi.HearthRecordWriteFn(trampoline)
+
+
+PreSolveContact = namedtuple("PreSolveContact", "shape_a shape_b body_a body_b normal points")
+PreSolveContact.__doc__ = """A touching contact as the pre-solve callback sees it: ids, the normal from A to B, and
+`points`, a list of (point, separation) (negative separation: overlap)."""
+
+
+def pair_filter_trampoline(world, callback):
+    """A HearthPairFilterCallback that runs `callback(world, shape_a, shape_b) -> bool`. An
+    exception keeps the pair (returns 1) and is re-raised by the step."""
+    from .handles import Shape
+
+    def trampoline(_user_data, _world, a, b):
+        try:
+            return 1 if callback(world, Shape(world, a), Shape(world, b)) else 0
+        except BaseException as e:  # noqa: BLE001 - nothing may cross into C
+            world._callback_failed(e)
+            return 1
+
+    return _ffi.HearthPairFilterCallback(trampoline)
+
+
+def pre_solve_trampoline(world, callback):
+    """A HearthPreSolveCallback that runs `callback(world, contact) -> bool` with `contact` a
+    PreSolveContact (copies of the shapes, bodies, normal and points). An exception keeps the
+    contact and is re-raised by the step."""
+
+    def trampoline(_user_data, _world, contact):
+        try:
+            c = contact.contents
+            copy = PreSolveContact(
+                c.shape_a, c.shape_b, c.body_a, c.body_b, c.normal,
+                [(c.points[i].point, c.points[i].separation) for i in range(c.point_count)],
+            )
+            return 1 if callback(world, copy) else 0
+        except BaseException as e:  # noqa: BLE001 - nothing may cross into C
+            world._callback_failed(e)
+            return 1
+
+    return _ffi.HearthPreSolveCallback(trampoline)

@@ -8,7 +8,13 @@ from ctypes import POINTER, byref
 from . import _ffi
 from ._convert import IDENTITY, c_view, check_format, fill, from_vec3, new_buffer, to_quat, to_record, to_transform, to_vec3
 from ._lib import lib
-from .callbacks import contact_trampoline, force_trampoline, record_write_trampoline
+from .callbacks import (
+    contact_trampoline,
+    force_trampoline,
+    pair_filter_trampoline,
+    pre_solve_trampoline,
+    record_write_trampoline,
+)
 from .errors import HearthError
 from .handles import (
     Body,
@@ -84,6 +90,8 @@ class World:
         self._ptr = None
         self._callbacks = {}  # (index, generation) of a user generator -> its ctypes trampoline
         self._record_write = None  # the recording's write trampoline, kept alive while recording
+        self._pair_filter = None  # the pair-filter trampoline, kept alive while set
+        self._pre_solve = None  # the pre-solve trampoline, kept alive while set
         self._stepping = False
         self._callback_error = None
         wd = _def(lib.hearth_world_def_default, settings)
@@ -261,6 +269,55 @@ class World:
     def create_slider_joint(self, body_a, body_b=None, **fields):
         """`hearth_joint_create_slider` (fields of HearthSliderJointDef and its base)."""
         return self._joint(lib.hearth_slider_joint_def_default, lib.hearth_joint_create_slider, body_a, body_b, fields)
+
+    # -- events and step callbacks
+    @staticmethod
+    def _array(pointer, count):
+        # Copies: the C arrays live only until the next step.
+        ctype = pointer._type_
+        return [ctype.from_buffer_copy(pointer[i]) for i in range(count)]
+
+    def contact_events(self):
+        """`hearth_world_get_contact_events`: (begin, end, hit) of the last step, copies of the
+        C structs (HearthContactEvent, HearthContactHitEvent)."""
+        ev = _ffi.HearthContactEvents()
+        lib.hearth_world_get_contact_events(self._ptr, byref(ev))
+        return (
+            self._array(ev.begin, ev.begin_count),
+            self._array(ev.end, ev.end_count),
+            self._array(ev.hit, ev.hit_count),
+        )
+
+    def sensor_events(self):
+        """`hearth_world_get_sensor_events`: (begin, end) of the last step (HearthSensorEvent)."""
+        ev = _ffi.HearthSensorEvents()
+        lib.hearth_world_get_sensor_events(self._ptr, byref(ev))
+        return self._array(ev.begin, ev.begin_count), self._array(ev.end, ev.end_count)
+
+    def body_events(self):
+        """`hearth_world_get_body_events`: the move events of the last step
+        (HearthBodyMoveEvent)."""
+        ev = _ffi.HearthBodyEvents()
+        lib.hearth_world_get_body_events(self._ptr, byref(ev))
+        return self._array(ev.moves, ev.move_count)
+
+    def set_pair_filter(self, callback):
+        """`hearth_world_set_pair_filter_callback` with `callback(world, shape_a, shape_b) -> bool`
+        (False: the pair makes no contact until proposed again), or None to clear it."""
+        trampoline = pair_filter_trampoline(self, callback) if callback is not None else None
+        lib.hearth_world_set_pair_filter_callback(
+            self._ptr, trampoline if trampoline is not None else _ffi.HearthPairFilterCallback(), None
+        )
+        self._pair_filter = trampoline
+
+    def set_pre_solve(self, callback):
+        """`hearth_world_set_pre_solve_callback` with `callback(world, contact) -> bool` (False:
+        the contact does not push in this step; `contact` a HearthPreSolveContact), or None."""
+        trampoline = pre_solve_trampoline(self, callback) if callback is not None else None
+        lib.hearth_world_set_pre_solve_callback(
+            self._ptr, trampoline if trampoline is not None else _ffi.HearthPreSolveCallback(), None
+        )
+        self._pre_solve = trampoline
 
     @property
     def broken_joints(self):
