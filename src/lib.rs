@@ -17,6 +17,7 @@ pub mod simd;
 pub mod soft;
 pub mod step;
 pub mod world;
+pub mod world_setters;
 
 pub use collision::geometry_store::ConvexHullHandle;
 pub use collision::hull::builder::HullSettings;

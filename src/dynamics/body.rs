@@ -120,6 +120,12 @@ pub struct Body {
     /// those it moved with, and it stops at the start of the next step unless given a new
     /// target or velocity.
     pub kinematic_stop: bool,
+    /// Mass, centre of mass and inertia set by the host (`World::set_mass_data`), used
+    /// instead of the shapes' until `World::reset_mass_data`.
+    pub mass_override: Option<MassProperties>,
+    /// False while disabled (`World::disable_body`): out of the broad phase, no contacts, not
+    /// simulated, its joints inactive; its state is kept.
+    pub enabled: bool,
 }
 
 /// The inverse of an inertia tensor, or zero when it is singular. The supported masses and
@@ -183,6 +189,8 @@ impl Body {
             solver_index: 0,
             kinematic_target: None,
             kinematic_stop: false,
+            mass_override: None,
+            enabled: true,
         };
         b.set_mass_properties(MassProperties::ZERO);
         b
