@@ -9,6 +9,7 @@ pub mod geometry;
 pub mod joint;
 pub mod particle;
 pub mod record;
+pub mod setters;
 pub mod shape;
 pub mod soft;
 pub mod types;
