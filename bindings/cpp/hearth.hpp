@@ -76,6 +76,7 @@ using WorldCounters = HearthWorldCounters;
 using RecordDef = HearthRecordDef;
 using BodyDef = HearthBodyDef;
 using ShapeDef = HearthShapeDef;
+using MassData = HearthMassData;
 using Sphere = HearthSphere;
 using Box = HearthBox;
 using Capsule = HearthCapsule;
@@ -537,6 +538,22 @@ public:
     Ret<void> set_damping(float linear, float angular) const {
         return P::check(hearth_body_set_damping(world_, id_, linear, angular));
     }
+    // Runtime setters (issue 14), each with its getter.
+    Ret<void> set_type(BodyType t) const {
+        return P::check(hearth_body_set_type(world_, id_, static_cast<uint32_t>(t)));
+    }
+    Ret<float> gravity_scale() const { HEARTH_CPP_READ(float, hearth_body_get_gravity_scale(world_, id_, &out)); }
+    Ret<void> set_gravity_scale(float scale) const {
+        return P::check(hearth_body_set_gravity_scale(world_, id_, scale));
+    }
+    Ret<MassData> mass_data() const { HEARTH_CPP_READ(MassData, hearth_body_get_mass_data(world_, id_, &out)); }
+    Ret<void> set_mass_data(const MassData &data) const {
+        return P::check(hearth_body_set_mass_data(world_, id_, &data));
+    }
+    Ret<void> reset_mass_data() const { return P::check(hearth_body_reset_mass_data(world_, id_)); }
+    Ret<bool> is_enabled() const { HEARTH_CPP_READ(bool, hearth_body_is_enabled(world_, id_, &out)); }
+    Ret<void> enable() const { return P::check(hearth_body_enable(world_, id_)); }
+    Ret<void> disable() const { return P::check(hearth_body_disable(world_, id_)); }
     Ret<void> apply_force(Vec3 f) const { return P::check(hearth_body_apply_force(world_, id_, f)); }
     Ret<void> apply_torque(Vec3 t) const { return P::check(hearth_body_apply_torque(world_, id_, t)); }
     Ret<void> apply_linear_impulse(Vec3 j) const {
@@ -619,6 +636,35 @@ public:
         return P::template value<BasicBody<P>>(r, BasicBody<P>(world_, b));
     }
     Ret<void> destroy() const { return P::check(hearth_shape_destroy(world_, id_)); }
+
+    // Runtime setters (issue 14), each with its getter.
+    /** (static, dynamic) friction coefficients. */
+    Ret<std::pair<float, float>> friction() const {
+        float s = 0, d = 0;
+        const HearthResult r = hearth_shape_get_friction(world_, id_, &s, &d);
+        return P::template value<std::pair<float, float>>(r, std::make_pair(s, d));
+    }
+    Ret<void> set_friction(float static_friction, float dynamic_friction) const {
+        return P::check(hearth_shape_set_friction(world_, id_, static_friction, dynamic_friction));
+    }
+    Ret<float> restitution() const { HEARTH_CPP_READ(float, hearth_shape_get_restitution(world_, id_, &out)); }
+    Ret<void> set_restitution(float x) const { return P::check(hearth_shape_set_restitution(world_, id_, x)); }
+    Ret<float> rolling_resistance() const {
+        HEARTH_CPP_READ(float, hearth_shape_get_rolling_resistance(world_, id_, &out));
+    }
+    Ret<void> set_rolling_resistance(float x) const {
+        return P::check(hearth_shape_set_rolling_resistance(world_, id_, x));
+    }
+    Ret<float> torsional_friction() const {
+        HEARTH_CPP_READ(float, hearth_shape_get_torsional_friction(world_, id_, &out));
+    }
+    Ret<void> set_torsional_friction(float x) const {
+        return P::check(hearth_shape_set_torsional_friction(world_, id_, x));
+    }
+    Ret<float> density() const { HEARTH_CPP_READ(float, hearth_shape_get_density(world_, id_, &out)); }
+    Ret<void> set_density(float x) const { return P::check(hearth_shape_set_density(world_, id_, x)); }
+    Ret<uint64_t> user_data() const { HEARTH_CPP_READ(uint64_t, hearth_shape_get_user_data(world_, id_, &out)); }
+    Ret<void> set_user_data(uint64_t x) const { return P::check(hearth_shape_set_user_data(world_, id_, x)); }
 
 private:
     HearthWorld *world_ = nullptr;

@@ -848,6 +848,17 @@ namespace Hearth
         public float TorsionalFriction;
     }
 
+    /// <summary>A body's mass (kg), centre of mass in the body frame (m) and principal moments of inertia along the body axes (kg·m²): hearth_body_set_mass_data / hearth_body_get_mass_data.</summary>
+    [StructLayout(LayoutKind.Sequential)]
+    public struct MassData
+    {
+        public float Mass;
+        public Vec3 Center;
+        public Vec3 Inertia;
+
+        public MassData(float mass, Vec3 center, Vec3 inertia) { Mass = mass; Center = center; Inertia = inertia; }
+    }
+
     /// <summary>Sphere: centre in the body frame and radius (m, &gt; 0).</summary>
     [StructLayout(LayoutKind.Sequential)]
     public struct Sphere
@@ -1393,6 +1404,69 @@ namespace Hearth
 
         [DllImport(Lib, CallingConvention = CallingConvention.Cdecl)]
         public static extern Result hearth_body_set_damping(WorldHandle world, BodyId body, float linearDamping, float angularDamping);
+
+        [DllImport(Lib, CallingConvention = CallingConvention.Cdecl)]
+        public static extern Result hearth_shape_set_friction(WorldHandle world, ShapeId shape, float staticFriction, float dynamicFriction);
+
+        [DllImport(Lib, CallingConvention = CallingConvention.Cdecl)]
+        public static extern Result hearth_shape_get_friction(WorldHandle world, ShapeId shape, out float outStaticFriction, out float outDynamicFriction);
+
+        [DllImport(Lib, CallingConvention = CallingConvention.Cdecl)]
+        public static extern Result hearth_shape_set_restitution(WorldHandle world, ShapeId shape, float value);
+
+        [DllImport(Lib, CallingConvention = CallingConvention.Cdecl)]
+        public static extern Result hearth_shape_get_restitution(WorldHandle world, ShapeId shape, out float value);
+
+        [DllImport(Lib, CallingConvention = CallingConvention.Cdecl)]
+        public static extern Result hearth_shape_set_rolling_resistance(WorldHandle world, ShapeId shape, float value);
+
+        [DllImport(Lib, CallingConvention = CallingConvention.Cdecl)]
+        public static extern Result hearth_shape_get_rolling_resistance(WorldHandle world, ShapeId shape, out float value);
+
+        [DllImport(Lib, CallingConvention = CallingConvention.Cdecl)]
+        public static extern Result hearth_shape_set_torsional_friction(WorldHandle world, ShapeId shape, float value);
+
+        [DllImport(Lib, CallingConvention = CallingConvention.Cdecl)]
+        public static extern Result hearth_shape_get_torsional_friction(WorldHandle world, ShapeId shape, out float value);
+
+        [DllImport(Lib, CallingConvention = CallingConvention.Cdecl)]
+        public static extern Result hearth_shape_set_density(WorldHandle world, ShapeId shape, float value);
+
+        [DllImport(Lib, CallingConvention = CallingConvention.Cdecl)]
+        public static extern Result hearth_shape_get_density(WorldHandle world, ShapeId shape, out float value);
+
+        [DllImport(Lib, CallingConvention = CallingConvention.Cdecl)]
+        public static extern Result hearth_shape_set_user_data(WorldHandle world, ShapeId shape, ulong userData);
+
+        [DllImport(Lib, CallingConvention = CallingConvention.Cdecl)]
+        public static extern Result hearth_shape_get_user_data(WorldHandle world, ShapeId shape, out ulong value);
+
+        [DllImport(Lib, CallingConvention = CallingConvention.Cdecl)]
+        public static extern Result hearth_body_set_gravity_scale(WorldHandle world, BodyId body, float gravityScale);
+
+        [DllImport(Lib, CallingConvention = CallingConvention.Cdecl)]
+        public static extern Result hearth_body_get_gravity_scale(WorldHandle world, BodyId body, out float value);
+
+        [DllImport(Lib, CallingConvention = CallingConvention.Cdecl)]
+        public static extern Result hearth_body_set_mass_data(WorldHandle world, BodyId body, [In] ref MassData data);
+
+        [DllImport(Lib, CallingConvention = CallingConvention.Cdecl)]
+        public static extern Result hearth_body_get_mass_data(WorldHandle world, BodyId body, out MassData value);
+
+        [DllImport(Lib, CallingConvention = CallingConvention.Cdecl)]
+        public static extern Result hearth_body_reset_mass_data(WorldHandle world, BodyId body);
+
+        [DllImport(Lib, CallingConvention = CallingConvention.Cdecl)]
+        public static extern Result hearth_body_set_type(WorldHandle world, BodyId body, uint type);
+
+        [DllImport(Lib, CallingConvention = CallingConvention.Cdecl)]
+        public static extern Result hearth_body_disable(WorldHandle world, BodyId body);
+
+        [DllImport(Lib, CallingConvention = CallingConvention.Cdecl)]
+        public static extern Result hearth_body_enable(WorldHandle world, BodyId body);
+
+        [DllImport(Lib, CallingConvention = CallingConvention.Cdecl)]
+        public static extern Result hearth_body_is_enabled(WorldHandle world, BodyId body, [MarshalAs(UnmanagedType.U1)] out bool value);
 
         [DllImport(Lib, CallingConvention = CallingConvention.Cdecl)]
         public static extern UserForceGeneratorDef hearth_user_force_generator_def_default();

@@ -1233,6 +1233,53 @@ namespace Hearth
                 HearthException.Check(Native.hearth_body_get_type(H, Id, out value), "hearth_body_get_type");
                 return (BodyType)value;
             }
+            set { HearthException.Check(Native.hearth_body_set_type(H, Id, (uint)value), "hearth_body_set_type"); }
+        }
+
+        /// <summary>hearth_body_get_gravity_scale / hearth_body_set_gravity_scale (-100..=100).</summary>
+        public float GravityScale
+        {
+            get
+            {
+                float value;
+                HearthException.Check(Native.hearth_body_get_gravity_scale(H, Id, out value), "hearth_body_get_gravity_scale");
+                return value;
+            }
+            set { HearthException.Check(Native.hearth_body_set_gravity_scale(H, Id, value), "hearth_body_set_gravity_scale"); }
+        }
+
+        /// <summary>hearth_body_get_mass_data / hearth_body_set_mass_data (an override kept until ResetMassData).</summary>
+        public MassData MassData
+        {
+            get
+            {
+                MassData value;
+                HearthException.Check(Native.hearth_body_get_mass_data(H, Id, out value), "hearth_body_get_mass_data");
+                return value;
+            }
+            set { HearthException.Check(Native.hearth_body_set_mass_data(H, Id, ref value), "hearth_body_set_mass_data"); }
+        }
+
+        /// <summary>hearth_body_reset_mass_data: the mass comes from the shapes again.</summary>
+        public void ResetMassData()
+        {
+            HearthException.Check(Native.hearth_body_reset_mass_data(H, Id), "hearth_body_reset_mass_data");
+        }
+
+        /// <summary>hearth_body_is_enabled; setting it calls hearth_body_enable or hearth_body_disable.</summary>
+        public bool Enabled
+        {
+            get
+            {
+                bool value;
+                HearthException.Check(Native.hearth_body_is_enabled(H, Id, out value), "hearth_body_is_enabled");
+                return value;
+            }
+            set
+            {
+                if (value) HearthException.Check(Native.hearth_body_enable(H, Id), "hearth_body_enable");
+                else HearthException.Check(Native.hearth_body_disable(H, Id), "hearth_body_disable");
+            }
         }
 
         /// <summary>hearth_body_apply_force (N, at the centre of mass, for the next step).</summary>
@@ -1387,6 +1434,78 @@ namespace Hearth
         public void Destroy()
         {
             HearthException.Check(Native.hearth_shape_destroy(World.Handle, Id), "hearth_shape_destroy");
+        }
+
+        /// <summary>hearth_shape_get_restitution / hearth_shape_set_restitution.</summary>
+        public float Restitution
+        {
+            get
+            {
+                float value;
+                HearthException.Check(Native.hearth_shape_get_restitution(World.Handle, Id, out value), "hearth_shape_get_restitution");
+                return value;
+            }
+            set { HearthException.Check(Native.hearth_shape_set_restitution(World.Handle, Id, value), "hearth_shape_set_restitution"); }
+        }
+
+        /// <summary>hearth_shape_get_rolling_resistance / hearth_shape_set_rolling_resistance.</summary>
+        public float RollingResistance
+        {
+            get
+            {
+                float value;
+                HearthException.Check(Native.hearth_shape_get_rolling_resistance(World.Handle, Id, out value), "hearth_shape_get_rolling_resistance");
+                return value;
+            }
+            set { HearthException.Check(Native.hearth_shape_set_rolling_resistance(World.Handle, Id, value), "hearth_shape_set_rolling_resistance"); }
+        }
+
+        /// <summary>hearth_shape_get_torsional_friction / hearth_shape_set_torsional_friction.</summary>
+        public float TorsionalFriction
+        {
+            get
+            {
+                float value;
+                HearthException.Check(Native.hearth_shape_get_torsional_friction(World.Handle, Id, out value), "hearth_shape_get_torsional_friction");
+                return value;
+            }
+            set { HearthException.Check(Native.hearth_shape_set_torsional_friction(World.Handle, Id, value), "hearth_shape_set_torsional_friction"); }
+        }
+
+        /// <summary>hearth_shape_get_density / hearth_shape_set_density.</summary>
+        public float Density
+        {
+            get
+            {
+                float value;
+                HearthException.Check(Native.hearth_shape_get_density(World.Handle, Id, out value), "hearth_shape_get_density");
+                return value;
+            }
+            set { HearthException.Check(Native.hearth_shape_set_density(World.Handle, Id, value), "hearth_shape_set_density"); }
+        }
+
+        /// <summary>hearth_shape_get_user_data / hearth_shape_set_user_data.</summary>
+        public ulong UserData
+        {
+            get
+            {
+                ulong value;
+                HearthException.Check(Native.hearth_shape_get_user_data(World.Handle, Id, out value), "hearth_shape_get_user_data");
+                return value;
+            }
+            set { HearthException.Check(Native.hearth_shape_set_user_data(World.Handle, Id, value), "hearth_shape_set_user_data"); }
+        }
+
+        /// <summary>hearth_shape_get_friction: (static, dynamic) coefficients.</summary>
+        public void GetFriction(out float staticFriction, out float dynamicFriction)
+        {
+            HearthException.Check(Native.hearth_shape_get_friction(World.Handle, Id, out staticFriction, out dynamicFriction), "hearth_shape_get_friction");
+        }
+
+        /// <summary>hearth_shape_set_friction (each &gt;= 0).</summary>
+        public void SetFriction(float staticFriction, float dynamicFriction)
+        {
+            HearthException.Check(Native.hearth_shape_set_friction(World.Handle, Id, staticFriction, dynamicFriction), "hearth_shape_set_friction");
         }
 
         public bool Equals(Shape other) { return ReferenceEquals(World, other.World) && Id == other.Id; }

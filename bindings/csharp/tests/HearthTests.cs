@@ -404,6 +404,65 @@ internal static class HearthTests
         }
     }
 
+    private static void TestRuntimeSetters()
+    {
+        using (var world = new World())
+        {
+            Ground(world);
+            Body body = DynamicBox(world, new Vec3(0f, 5f, 0f), 0.5f);
+            Shape shape = body.CreateSphere(new Sphere(Vec3.Zero, 0.25f));
+            float m0 = body.Mass;
+            shape.Density = 0f;
+            Equal(shape.Density, 0f, "density set");
+            Ensure(body.Mass < m0, "a massless sphere lowers the mass");
+            shape.SetFriction(0.75f, 0.25f);
+            float fs, fd;
+            shape.GetFriction(out fs, out fd);
+            Equal(fs, 0.75f, "static friction");
+            Equal(fd, 0.25f, "dynamic friction");
+            shape.Restitution = 0.5f;
+            shape.RollingResistance = 0.25f;
+            shape.TorsionalFriction = 0.125f;
+            shape.UserData = 42UL;
+            Equal(shape.Restitution, 0.5f, "restitution");
+            Equal(shape.RollingResistance, 0.25f, "rolling resistance");
+            Equal(shape.TorsionalFriction, 0.125f, "torsional friction");
+            Equal(shape.UserData, 42UL, "shape user data");
+            Fails(Result.InvalidArgument, () => shape.Density = -1f, "negative density");
+            Fails(Result.InvalidArgument, () => shape.SetFriction(float.NaN, 0f), "NaN friction");
+            Equal(shape.Density, 0f, "density unchanged");
+
+            body.GravityScale = 0f;
+            Equal(body.GravityScale, 0f, "gravity scale");
+            for (int i = 0; i < 30; i++) world.Step(Dt);
+            Equal(body.Position.Y, 5f, "gravity scale 0 floats");
+            Fails(Result.InvalidArgument, () => body.GravityScale = float.PositiveInfinity, "infinite gravity scale");
+            body.MassData = new MassData(4f, Vec3.Zero, new Vec3(2f, 4f, 8f));
+            Equal(body.MassData.Mass, 4f, "mass override");
+            body.ApplyLinearImpulse(new Vec3(2f, 0f, 0f));
+            Equal(body.LinearVelocity.X, 0.5f, "dv = J/m");
+            Fails(Result.InvalidArgument, () => body.MassData = new MassData(0f, Vec3.Zero, new Vec3(1f, 1f, 1f)), "zero mass");
+            body.ResetMassData();
+            Near(body.Mass, 1000f, 1e-2f, "mass from the shapes again");
+
+            body.Type = BodyType.Static;
+            Equal(body.Type, BodyType.Static, "type set");
+            Equal(body.Mass, 0f, "static mass");
+            Fails(Result.InvalidArgument, () => body.Type = (BodyType)9, "bad type code");
+            body.Type = BodyType.Dynamic;
+            body.GravityScale = 1f;
+            Ensure(body.Enabled, "enabled at creation");
+            body.Enabled = false;
+            Ensure(!body.Enabled, "disabled");
+            float y = body.Position.Y;
+            for (int i = 0; i < 30; i++) world.Step(Dt);
+            Equal(body.Position.Y, y, "a disabled body stays");
+            body.Enabled = true;
+            for (int i = 0; i < 240; i++) world.Step(Dt);
+            Near(body.Position.Y, 0.5f, 0.01f, "enabled, it falls to the ground");
+        }
+    }
+
     private static void TestBulkTransformsEqualSingleReads()
     {
         using (var world = new World())
@@ -1401,6 +1460,7 @@ internal static class HearthTests
             new KeyValuePair<string, Action>("box falls and rests on the plane", TestBoxFallsAndRestsOnThePlane),
             new KeyValuePair<string, Action>("free fall matches gravity", TestFreeFallMatchesGravity),
             new KeyValuePair<string, Action>("body setters and forces", TestBodySettersAndForces),
+            new KeyValuePair<string, Action>("runtime setters", TestRuntimeSetters),
             new KeyValuePair<string, Action>("bulk transforms equal single reads", TestBulkTransformsEqualSingleReads),
             new KeyValuePair<string, Action>("error paths", TestErrorPaths),
             new KeyValuePair<string, Action>("rolling resistance and torsional friction", TestRollingResistanceAndTorsionalFriction),

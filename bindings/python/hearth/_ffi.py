@@ -439,6 +439,14 @@ class HearthShapeDef(_Struct):
     ]
 
 
+class HearthMassData(_Struct):
+    _fields_ = [
+        ("mass", c_float),
+        ("center", HearthVec3),
+        ("inertia", HearthVec3),
+    ]
+
+
 class HearthSphere(_Struct):
     _fields_ = [
         ("center", HearthVec3),
@@ -670,6 +678,26 @@ _fn(
 )
 _fn("hearth_body_set_awake", HearthResult, POINTER(HearthWorld), HearthBodyId, c_uint8)
 _fn("hearth_body_set_damping", HearthResult, POINTER(HearthWorld), HearthBodyId, c_float, c_float)
+# Runtime setters (src/capi/setters.rs).
+for _name in ("restitution", "rolling_resistance", "torsional_friction", "density"):
+    _fn(f"hearth_shape_set_{_name}", HearthResult, POINTER(HearthWorld), HearthShapeId, c_float)
+    _fn(f"hearth_shape_get_{_name}", HearthResult, POINTER(HearthWorld), HearthShapeId, POINTER(c_float))
+_fn("hearth_shape_set_friction", HearthResult, POINTER(HearthWorld), HearthShapeId, c_float, c_float)
+_fn(
+    "hearth_shape_get_friction", HearthResult, POINTER(HearthWorld), HearthShapeId, POINTER(c_float),
+    POINTER(c_float),
+)
+_fn("hearth_shape_set_user_data", HearthResult, POINTER(HearthWorld), HearthShapeId, c_uint64)
+_fn("hearth_shape_get_user_data", HearthResult, POINTER(HearthWorld), HearthShapeId, POINTER(c_uint64))
+_fn("hearth_body_set_gravity_scale", HearthResult, POINTER(HearthWorld), HearthBodyId, c_float)
+_fn("hearth_body_get_gravity_scale", HearthResult, POINTER(HearthWorld), HearthBodyId, POINTER(c_float))
+_fn("hearth_body_set_mass_data", HearthResult, POINTER(HearthWorld), HearthBodyId, POINTER(HearthMassData))
+_fn("hearth_body_get_mass_data", HearthResult, POINTER(HearthWorld), HearthBodyId, POINTER(HearthMassData))
+_fn("hearth_body_reset_mass_data", HearthResult, POINTER(HearthWorld), HearthBodyId)
+_fn("hearth_body_set_type", HearthResult, POINTER(HearthWorld), HearthBodyId, c_uint32)
+_fn("hearth_body_disable", HearthResult, POINTER(HearthWorld), HearthBodyId)
+_fn("hearth_body_enable", HearthResult, POINTER(HearthWorld), HearthBodyId)
+_fn("hearth_body_is_enabled", HearthResult, POINTER(HearthWorld), HearthBodyId, POINTER(c_bool))
 _fn("hearth_user_force_generator_def_default", HearthUserForceGeneratorDef)
 _fn(
     "hearth_generator_create_user_force", HearthResult, POINTER(HearthWorld),
