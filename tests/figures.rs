@@ -44,6 +44,9 @@ const H: &str = "include/hearth.h";
 /// (document, figure as scanned: number, one space, unit; backing). Tests are named
 /// `file::function` under `tests/`.
 const FIGURES: &[(&str, &str, Backing)] = &[
+    // Header: the accepted mass override (hearth_body_set_mass_data).
+    (H, "1e17 kg", Measured(&["setters::bad_input_changes_nothing"])),
+    (H, "1e26 kg·m²", Measured(&["setters::bad_input_changes_nothing"])),
     // README: the C snippet.
     (
         R,

@@ -342,7 +342,8 @@ fn bad_input_changes_nothing() {
         };
         assert!(w.set_mass_data(b, &data).is_err(), "{mass} {inertia}");
     }
-    // The accepted ends of the documented ranges.
+    // The accepted ends of the documented ranges (header: mass 1e-9..=1e17 kg, each principal
+    // inertia 1e-18..=1e26 kg·m²); just outside them is refused above.
     for (mass, inertia) in [(1.0e-9, 1.0e-18), (1.0e17, 1.0e26)] {
         let data = MassData {
             mass,
