@@ -5,6 +5,7 @@
 //! lists the stages of a step and the file that does each.
 
 pub mod collision;
+pub mod debug_draw;
 pub mod dynamics;
 pub mod error;
 pub mod generators;
