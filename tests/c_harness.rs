@@ -57,6 +57,7 @@ const PROGRAMS: &[&str] = &[
     "test_ranges.c",
     "test_geometry.c",
     "test_setters.c",
+    "test_draw.c",
 ];
 
 #[test]

@@ -25,6 +25,7 @@ struct Counts {
 struct Counter {
     n: Counts,
     colors: Vec<Color>,
+    segments: Vec<(Vec3, Vec3, Color)>,
     polygons: Vec<Vec<Vec3>>,
     finite: bool,
 }
@@ -45,6 +46,7 @@ impl DebugDraw for Counter {
     fn segment(&mut self, a: Vec3, b: Vec3, color: Color) {
         self.check(&[a, b]);
         self.n.segments += 1;
+        self.segments.push((a, b, color));
         self.colors.push(color);
     }
     fn polygon(&mut self, vertices: &[Vec3], color: Color) {
@@ -300,6 +302,25 @@ fn flags_draw_aabbs_contacts_joints_and_centres_of_mass() {
         })
     );
     assert_eq!(c.colors.iter().filter(|&&x| x == colors::CONTACT_IMPULSE).count(), 4);
+    // Header: the normal a segment 0.25 m long, the impulse 0.1 m per N·s along it.
+    let (_, contact) = w.contacts.iter().next().unwrap();
+    let n = contact.manifold.normal;
+    let mut impulses: Vec<f32> = contact.impulses[..4].iter().map(|i| i.normal).collect();
+    let mut drawn = Vec::new();
+    for &(a, b, color) in &c.segments {
+        let along = (b - a).dot(n);
+        assert!(((b - a) - n * along).length() < 1e-5, "segments lie along the normal");
+        match color {
+            colors::CONTACT_NORMAL => assert!((along - 0.25).abs() < 1e-6, "normal {along} m"),
+            colors::CONTACT_IMPULSE => drawn.push(along / 0.1),
+            _ => panic!("colour {color:x}"),
+        }
+    }
+    impulses.sort_by(f32::total_cmp);
+    drawn.sort_by(f32::total_cmp);
+    for (i, d) in impulses.iter().zip(&drawn) {
+        assert!((i - d).abs() <= 1e-5 * i, "impulse {i} N·s drawn as {d}");
+    }
     // Centres of mass: one transform per dynamic body.
     let c = draw(
         &w,

@@ -77,6 +77,7 @@ using RecordDef = HearthRecordDef;
 using BodyDef = HearthBodyDef;
 using ShapeDef = HearthShapeDef;
 using MassData = HearthMassData;
+using DebugDraw = HearthDebugDraw;
 using Sphere = HearthSphere;
 using Box = HearthBox;
 using Capsule = HearthCapsule;
@@ -192,6 +193,9 @@ inline BodyDef body_def(BodyType type, Vec3 position = Vec3{0, 0, 0}) noexcept {
     return d;
 }
 inline ShapeDef shape_def() noexcept { return hearth_shape_def_default(); }
+/** Debug-draw callbacks and flags from `hearth_debug_draw_default()` (nothing drawn); set the
+ *  callbacks (captureless lambdas work), `user_data` and flags, then `World::draw`. */
+inline DebugDraw debug_draw() noexcept { return hearth_debug_draw_default(); }
 inline HullDef hull_def() noexcept { return hearth_hull_def_default(); }
 inline ParticleDef particle_def() noexcept { return hearth_particle_def_default(); }
 inline BurstDef burst_def() noexcept { return hearth_burst_def_default(); }
@@ -1070,6 +1074,8 @@ public:
 
     // World settings and counters.
     Ret<Vec3> gravity() const { HEARTH_CPP_READ(Vec3, hearth_world_get_gravity(world_, &out)); }
+    /** `hearth_world_draw`: the world through `d`'s callbacks as its flags ask. */
+    Ret<void> draw(const DebugDraw &d) const { return P::check(hearth_world_draw(world_, &d)); }
     Ret<void> set_gravity(Vec3 g) const { return P::check(hearth_world_set_gravity(world_, g)); }
     Ret<WorldCounters> counters() const { HEARTH_CPP_READ(WorldCounters, hearth_world_get_counters(world_, &out)); }
 

@@ -127,6 +127,53 @@ namespace Hearth
     [UnmanagedFunctionPointer(CallingConvention.Cdecl)]
     public delegate int RecordWriteFn(IntPtr userData, IntPtr bytes, UIntPtr len);
 
+    /// <summary>HearthDrawSegment: <c>void (*)(void *user_data, const HearthVec3 *a, const HearthVec3 *b, uint32_t color)</c>.</summary>
+    [UnmanagedFunctionPointer(CallingConvention.Cdecl)]
+    public delegate void DrawSegment(IntPtr userData, IntPtr a, IntPtr b, uint color);
+
+    /// <summary>HearthDrawPolygon: <c>void (*)(void *user_data, const HearthVec3 *vertices, uint32_t count, uint32_t color)</c>.</summary>
+    [UnmanagedFunctionPointer(CallingConvention.Cdecl)]
+    public delegate void DrawPolygon(IntPtr userData, IntPtr vertices, uint count, uint color);
+
+    /// <summary>HearthDrawSphere: <c>void (*)(void *user_data, const HearthVec3 *center, float radius, uint32_t color)</c>.</summary>
+    [UnmanagedFunctionPointer(CallingConvention.Cdecl)]
+    public delegate void DrawSphere(IntPtr userData, IntPtr center, float radius, uint color);
+
+    /// <summary>HearthDrawCapsule: <c>void (*)(void *user_data, const HearthVec3 *a, const HearthVec3 *b, float radius, uint32_t color)</c>.</summary>
+    [UnmanagedFunctionPointer(CallingConvention.Cdecl)]
+    public delegate void DrawCapsule(IntPtr userData, IntPtr a, IntPtr b, float radius, uint color);
+
+    /// <summary>HearthDrawTransform: <c>void (*)(void *user_data, const HearthTransform *transform)</c>.</summary>
+    [UnmanagedFunctionPointer(CallingConvention.Cdecl)]
+    public delegate void DrawTransform(IntPtr userData, IntPtr transform);
+
+    /// <summary>HearthDrawPoint: <c>void (*)(void *user_data, const HearthVec3 *point, float size, uint32_t color)</c>.</summary>
+    [UnmanagedFunctionPointer(CallingConvention.Cdecl)]
+    public delegate void DrawPoint(IntPtr userData, IntPtr point, float size, uint color);
+
+    /// <summary>Debug draw: callbacks (function pointers, any may be zero), user data and flags (0 or 1). World.Draw fills one for an IDebugDrawer.</summary>
+    [StructLayout(LayoutKind.Sequential)]
+    public struct DebugDraw
+    {
+        /// <summary>The defaults of <c>hearth_debug_draw_default()</c>: no callbacks, nothing drawn.</summary>
+        public static DebugDraw Default() { return Native.hearth_debug_draw_default(); }
+
+        public IntPtr DrawSegment;
+        public IntPtr DrawPolygon;
+        public IntPtr DrawSphere;
+        public IntPtr DrawCapsule;
+        public IntPtr DrawTransform;
+        public IntPtr DrawPoint;
+        public IntPtr UserData;
+        public byte DrawShapes;
+        public byte DrawAabbs;
+        public byte DrawContacts;
+        public byte DrawJoints;
+        public byte DrawCentersOfMass;
+        /// <summary>Set by <c>hearth_debug_draw_default()</c>; do not change.</summary>
+        public uint InternalValue;
+    }
+
     /// <summary>A 3D vector of <c>float</c> (metres, m/s, N, ... by context).</summary>
     [StructLayout(LayoutKind.Sequential)]
     public struct Vec3 : IEquatable<Vec3>
@@ -1404,6 +1451,12 @@ namespace Hearth
 
         [DllImport(Lib, CallingConvention = CallingConvention.Cdecl)]
         public static extern Result hearth_body_set_damping(WorldHandle world, BodyId body, float linearDamping, float angularDamping);
+
+        [DllImport(Lib, CallingConvention = CallingConvention.Cdecl)]
+        public static extern DebugDraw hearth_debug_draw_default();
+
+        [DllImport(Lib, CallingConvention = CallingConvention.Cdecl)]
+        public static extern Result hearth_world_draw(WorldHandle world, [In] ref DebugDraw draw);
 
         [DllImport(Lib, CallingConvention = CallingConvention.Cdecl)]
         public static extern Result hearth_shape_set_friction(WorldHandle world, ShapeId shape, float staticFriction, float dynamicFriction);

@@ -3,6 +3,7 @@
 
 pub mod body;
 pub mod callback;
+pub mod draw;
 pub mod error;
 pub mod generator;
 pub mod geometry;

@@ -110,6 +110,8 @@ pub(crate) const PHASE_FORCES: u8 = 2;
 pub(crate) const PHASE_CONTACTS: u8 = 3;
 /// A recording's write callback runs: reads only.
 pub(crate) const PHASE_RECORD: u8 = 4;
+/// A debug-draw callback runs (`hearth_world_draw`): reads only.
+pub(crate) const PHASE_DRAW: u8 = 5;
 
 /// Shared access for reads.
 ///

@@ -2906,6 +2906,52 @@ static void op_setters(FWorld *fw) {
     }
 }
 
+/* Debug draw: every callback counts; a draw with a fault draws nothing. */
+static long g_drawn;
+static void fz_segment(void *u, const HearthVec3 *a, const HearthVec3 *b, uint32_t c) { (void)u; (void)c; if (!finite3(*a) || !finite3(*b)) fail("draw", "segment not finite"); g_drawn++; }
+static void fz_polygon(void *u, const HearthVec3 *v, uint32_t n, uint32_t c) { (void)u; (void)c; for (uint32_t i = 0; i < n; i++) if (!finite3(v[i])) fail("draw", "polygon not finite"); if (n < 3) fail("draw", "polygon of fewer than 3 vertices"); g_drawn++; }
+static void fz_sphere(void *u, const HearthVec3 *p, float r, uint32_t c) { (void)u; (void)c; if (!finite3(*p) || !(r > 0)) fail("draw", "sphere"); g_drawn++; }
+static void fz_capsule(void *u, const HearthVec3 *a, const HearthVec3 *b, float r, uint32_t c) { (void)u; (void)c; (void)r; if (!finite3(*a) || !finite3(*b)) fail("draw", "capsule"); g_drawn++; }
+static void fz_transform(void *u, const HearthTransform *t) { (void)u; if (!finite3(t->position)) fail("draw", "transform"); g_drawn++; }
+static void fz_point(void *u, const HearthVec3 *p, float s, uint32_t c) { (void)u; (void)c; (void)s; if (!finite3(*p)) fail("draw", "point"); g_drawn++; }
+
+static void op_draw(FWorld *fw) {
+    FAULTS(F_NULL_WORLD, F_NULL_IN, F_COOKIE, F_FLAG);
+    HearthDebugDraw d = hearth_debug_draw_default();
+    mark("hearth_debug_draw_default");
+    if (chance(80)) d.draw_segment = fz_segment;
+    if (chance(80)) d.draw_polygon = fz_polygon;
+    if (chance(80)) d.draw_sphere = fz_sphere;
+    if (chance(80)) d.draw_capsule = fz_capsule;
+    if (chance(80)) d.draw_transform = fz_transform;
+    if (chance(80)) d.draw_point = fz_point;
+    d.draw_shapes = flag01();
+    d.draw_aabbs = flag01();
+    d.draw_contacts = flag01();
+    d.draw_joints = flag01();
+    d.draw_centers_of_mass = flag01();
+    const char *field = NULL;
+    HearthResult expected = HEARTH_OK;
+    switch (f) {
+    case F_NULL_WORLD: case F_NULL_IN: expected = HEARTH_ERROR_NULL_POINTER; break;
+    case F_COOKIE: d.internal_value = (uint32_t)next_u64(); if (d.internal_value == hearth_debug_draw_default().internal_value) d.internal_value ^= 1; expected = HEARTH_ERROR_INVALID_ARGUMENT; break;
+    case F_FLAG:
+        expected = HEARTH_ERROR_INVALID_ARGUMENT;
+        switch (rnd(5)) {
+        case 0: d.draw_shapes = bad_flag(); field = "draw_shapes"; break;
+        case 1: d.draw_aabbs = bad_flag(); field = "draw_aabbs"; break;
+        case 2: d.draw_contacts = bad_flag(); field = "draw_contacts"; break;
+        case 3: d.draw_joints = bad_flag(); field = "draw_joints"; break;
+        default: d.draw_centers_of_mass = bad_flag(); field = "draw_centers_of_mass"; break;
+        }
+        break;
+    default: break;
+    }
+    g_drawn = 0;
+    CALL(hearth_world_draw(W(fw, f), f == F_NULL_IN ? NULL : &d), expected, field, NULL, 0);
+    if (r != HEARTH_OK && g_drawn != 0) fail("hearth_world_draw", "a failing draw called a callback");
+}
+
 static void op_create_world(FWorld *fw) { (void)fw; op_world_create(); }
 static void op_destroy_world(FWorld *fw) { (void)fw; if (chance(30)) op_world_destroy(); }
 
@@ -2935,6 +2981,7 @@ static const Op OPS[] = {
     {"geometry_other", op_geometry_other, 2},
     {"geometry_shape", op_geometry_shape, 2},
     {"setters", op_setters, 4},
+    {"draw", op_draw, 2},
 };
 #define NOPS ((int)(sizeof OPS / sizeof OPS[0]))
 

@@ -945,11 +945,48 @@ static void test_runtime_setters() {
     CHECK_NEAR(b.transform().position.y, 0.25, 0.01);
 }
 
+struct DrawCounts {
+    int polygons = 0, spheres = 0, segments = 0;
+    uint32_t sphere_color = 0;
+};
+
+static void test_debug_draw() {
+    hearth::World w = make_world(true);
+    add_ground(w);
+    hearth::Body b = w.create_body(hearth::BodyType::Dynamic, hearth::vec3(0, 3, 0));
+    b.add(hearth::sphere(0.5f), hearth::shape_def());
+    hearth::Body c = w.create_body(hearth::BodyType::Dynamic, hearth::vec3(3, 3, 0));
+    c.add(hearth::box(hearth::vec3(0.5f, 0.5f, 0.5f)), hearth::shape_def());
+    DrawCounts n;
+    hearth::DebugDraw d = hearth::debug_draw();
+    d.user_data = &n;
+    d.draw_shapes = 1;
+    d.draw_polygon = [](void *u, const HearthVec3 *, uint32_t, uint32_t) { static_cast<DrawCounts *>(u)->polygons++; };
+    d.draw_sphere = [](void *u, const HearthVec3 *, float, uint32_t color) {
+        static_cast<DrawCounts *>(u)->spheres++;
+        static_cast<DrawCounts *>(u)->sphere_color = color;
+    };
+    d.draw_segment = [](void *u, const HearthVec3 *, const HearthVec3 *, uint32_t) {
+        static_cast<DrawCounts *>(u)->segments++;
+    };
+    w.draw(d);
+    CHECK(n.polygons == 7 && n.spheres == 1 && n.segments == 0); // plane patch + six box faces
+    CHECK(n.sphere_color == 0xE68C33FFu);
+    n = DrawCounts();
+    d.draw_shapes = 0;
+    d.draw_aabbs = 1;
+    w.draw(d);
+    CHECK(n.segments == 24 && n.polygons == 0);
+    d.draw_aabbs = 3;
+    CHECK_THROWS(w.draw(d), hearth::Code::InvalidArgument);
+}
+
 static void run_throwing_tests() {
     test_box_rests_on_plane();
     test_errors_as_exceptions();
     test_rolling_resistance_and_torsional_friction();
     test_runtime_setters();
+    test_debug_draw();
     test_move_semantics();
     test_lambda_force_hovers();
     test_lambda_exception_rethrown_by_step();

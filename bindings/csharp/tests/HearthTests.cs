@@ -463,6 +463,50 @@ internal static class HearthTests
         }
     }
 
+    private sealed class DrawCounter : IDebugDrawer
+    {
+        public int Segments, Polygons, Spheres, Capsules, Transforms, Points;
+        public uint SphereColor;
+        public bool Throw;
+        public void Segment(Vec3 a, Vec3 b, uint color) { Segments++; }
+        public void Polygon(Vec3[] vertices, uint color) { Polygons++; if (vertices.Length < 3) throw new Exception("short polygon"); }
+        public void Sphere(Vec3 center, float radius, uint color) { Spheres++; SphereColor = color; if (Throw) throw new InvalidOperationException("boom"); }
+        public void Capsule(Vec3 a, Vec3 b, float radius, uint color) { Capsules++; }
+        public void Transform(Transform t) { Transforms++; }
+        public void Point(Vec3 p, float size, uint color) { Points++; }
+    }
+
+    private static void TestDebugDraw()
+    {
+        using (var world = new World())
+        {
+            Ground(world);
+            Body box = DynamicBox(world, new Vec3(0f, 0.5f, 0f), 0.5f);
+            Body ball = DynamicSphere(world, new Vec3(3f, 0.5f, 0f), 0.5f);
+            var c = new DrawCounter();
+            world.Draw(c);
+            Equal(c.Polygons, 7, "plane patch and six box faces");
+            Equal(c.Spheres, 1, "one sphere");
+            Equal(c.SphereColor, 0xE68C33FFu, "awake colour");
+            for (int i = 0; i < 30; i++) world.Step(Dt);
+            c = new DrawCounter();
+            world.Draw(c, shapes: false, aabbs: true, centersOfMass: true);
+            Equal(c.Segments, 24, "two boxes of 12 segments");
+            Equal(c.Transforms, 2, "two centres of mass");
+            ball.IsAwake = false;
+            c = new DrawCounter();
+            world.Draw(c);
+            Equal(c.SphereColor, 0x8C7359FFu, "sleeping colour");
+            c = new DrawCounter { Throw = true };
+            Throws<InvalidOperationException>(() => world.Draw(c), "a drawer's exception is rethrown");
+            DebugDraw bad = DebugDraw.Default();
+            bad.DrawShapes = 2;
+            Fails(Result.InvalidArgument, () => world.Draw(bad), "flag 2");
+            world.Step(Dt); // not left locked
+            Ensure(box.Mass > 0f, "still usable");
+        }
+    }
+
     private static void TestBulkTransformsEqualSingleReads()
     {
         using (var world = new World())
@@ -1461,6 +1505,7 @@ internal static class HearthTests
             new KeyValuePair<string, Action>("free fall matches gravity", TestFreeFallMatchesGravity),
             new KeyValuePair<string, Action>("body setters and forces", TestBodySettersAndForces),
             new KeyValuePair<string, Action>("runtime setters", TestRuntimeSetters),
+            new KeyValuePair<string, Action>("debug draw", TestDebugDraw),
             new KeyValuePair<string, Action>("bulk transforms equal single reads", TestBulkTransformsEqualSingleReads),
             new KeyValuePair<string, Action>("error paths", TestErrorPaths),
             new KeyValuePair<string, Action>("rolling resistance and torsional friction", TestRollingResistanceAndTorsionalFriction),
