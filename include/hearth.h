@@ -1736,6 +1736,30 @@ typedef struct HearthRecordDef {
 } HearthRecordDef;
 
 /**
+ * Id of a shape inside its world. All-zero is the null id.
+ */
+typedef struct HearthShapeId {
+    /**
+     * Slot of the shape.
+     */
+    uint32_t index;
+    /**
+     * Generation of the slot (0 only in the null id).
+     */
+    uint32_t generation;
+} HearthShapeId;
+
+/**
+ * A body's mass properties: mass (kg), centre of mass in the body frame (m), and the
+ * principal moments of inertia about the centre of mass along the body axes (kg·m²).
+ */
+typedef struct HearthMassData {
+    float mass;
+    struct HearthVec3 center;
+    struct HearthVec3 inertia;
+} HearthMassData;
+
+/**
  * Material of a shape. Get one from `hearth_shape_def_default()`, then edit it. Where two
  * shapes touch, friction combines as the geometric mean; restitution, rolling resistance and
  * torsional friction as the maximum.
@@ -3836,6 +3860,293 @@ HearthResult hearth_world_record_start_callback(struct HearthWorld *world,
  * `world` must be NULL or a live world.
  */
 HearthResult hearth_world_record_stop(struct HearthWorld *world);
+
+/**
+ * Sets a shape's restitution (0..=1). Contacts of the shape use the new value from the next step; the body
+ * is woken.
+ *
+ * Errors: `HEARTH_ERROR_NULL_POINTER`, `HEARTH_ERROR_INVALID_ID`,
+ * `HEARTH_ERROR_INVALID_ARGUMENT` (NaN, infinite, outside 0..=1), `HEARTH_ERROR_WORLD_LOCKED`.
+ *
+ * # Safety
+ * `world` must be NULL or a live world.
+ */
+HearthResult hearth_shape_set_restitution(struct HearthWorld *world,
+                                          struct HearthShapeId shape,
+                                          float restitution);
+
+/**
+ * Reads a shape's restitution (0..=1).
+ *
+ * Errors: `HEARTH_ERROR_NULL_POINTER`, `HEARTH_ERROR_INVALID_ID`.
+ *
+ * # Safety
+ * `world` must be NULL or a live world; `out` NULL or writable.
+ */
+HearthResult hearth_shape_get_restitution(const struct HearthWorld *world,
+                                          struct HearthShapeId shape,
+                                          float *out);
+
+/**
+ * Sets a shape's rolling resistance (0..=1, see `HearthShapeDef`). Contacts of the shape use the new value from the next step; the body
+ * is woken.
+ *
+ * Errors: `HEARTH_ERROR_NULL_POINTER`, `HEARTH_ERROR_INVALID_ID`,
+ * `HEARTH_ERROR_INVALID_ARGUMENT` (NaN, infinite, outside 0..=1), `HEARTH_ERROR_WORLD_LOCKED`.
+ *
+ * # Safety
+ * `world` must be NULL or a live world.
+ */
+HearthResult hearth_shape_set_rolling_resistance(struct HearthWorld *world,
+                                                 struct HearthShapeId shape,
+                                                 float rolling_resistance);
+
+/**
+ * Reads a shape's rolling resistance (0..=1, see `HearthShapeDef`).
+ *
+ * Errors: `HEARTH_ERROR_NULL_POINTER`, `HEARTH_ERROR_INVALID_ID`.
+ *
+ * # Safety
+ * `world` must be NULL or a live world; `out` NULL or writable.
+ */
+HearthResult hearth_shape_get_rolling_resistance(const struct HearthWorld *world,
+                                                 struct HearthShapeId shape,
+                                                 float *out);
+
+/**
+ * Sets a shape's torsional friction (0..=1, see `HearthShapeDef`). Contacts of the shape use the new value from the next step; the body
+ * is woken.
+ *
+ * Errors: `HEARTH_ERROR_NULL_POINTER`, `HEARTH_ERROR_INVALID_ID`,
+ * `HEARTH_ERROR_INVALID_ARGUMENT` (NaN, infinite, outside 0..=1), `HEARTH_ERROR_WORLD_LOCKED`.
+ *
+ * # Safety
+ * `world` must be NULL or a live world.
+ */
+HearthResult hearth_shape_set_torsional_friction(struct HearthWorld *world,
+                                                 struct HearthShapeId shape,
+                                                 float torsional_friction);
+
+/**
+ * Reads a shape's torsional friction (0..=1, see `HearthShapeDef`).
+ *
+ * Errors: `HEARTH_ERROR_NULL_POINTER`, `HEARTH_ERROR_INVALID_ID`.
+ *
+ * # Safety
+ * `world` must be NULL or a live world; `out` NULL or writable.
+ */
+HearthResult hearth_shape_get_torsional_friction(const struct HearthWorld *world,
+                                                 struct HearthShapeId shape,
+                                                 float *out);
+
+/**
+ * Sets a shape's static and dynamic friction coefficients (each >= 0; a pair uses at most its
+ * static value while sliding). Contacts of the shape use them from the next step; the body
+ * is woken.
+ *
+ * Errors: `HEARTH_ERROR_NULL_POINTER`, `HEARTH_ERROR_INVALID_ID`,
+ * `HEARTH_ERROR_INVALID_ARGUMENT` (NaN, infinite, negative), `HEARTH_ERROR_WORLD_LOCKED`.
+ *
+ * # Safety
+ * `world` must be NULL or a live world.
+ */
+HearthResult hearth_shape_set_friction(struct HearthWorld *world,
+                                       struct HearthShapeId shape,
+                                       float static_friction,
+                                       float dynamic_friction);
+
+/**
+ * Reads a shape's static and dynamic friction coefficients. Both outputs are written only
+ * on success.
+ *
+ * Errors: `HEARTH_ERROR_NULL_POINTER` (world or either output), `HEARTH_ERROR_INVALID_ID`.
+ *
+ * # Safety
+ * `world` must be NULL or a live world; the outputs NULL or writable.
+ */
+HearthResult hearth_shape_get_friction(const struct HearthWorld *world,
+                                       struct HearthShapeId shape,
+                                       float *out_static_friction,
+                                       float *out_dynamic_friction);
+
+/**
+ * Sets a shape's density (kg/m³: 0, or 0.001..=1e5). The body's mass, centre of mass and
+ * inertia are recomputed from its shapes (unless a mass override is set, see
+ * `hearth_body_set_mass_data`); the body is woken. Doubling the density of a body's only
+ * shape doubles its mass and inertia exactly.
+ *
+ * Errors: `HEARTH_ERROR_NULL_POINTER`, `HEARTH_ERROR_INVALID_ID`,
+ * `HEARTH_ERROR_INVALID_ARGUMENT` (NaN, infinite, negative, outside the range),
+ * `HEARTH_ERROR_WORLD_LOCKED`.
+ *
+ * # Safety
+ * `world` must be NULL or a live world.
+ */
+HearthResult hearth_shape_set_density(struct HearthWorld *world,
+                                      struct HearthShapeId shape,
+                                      float density);
+
+/**
+ * Reads a shape's density (kg/m³).
+ *
+ * Errors: `HEARTH_ERROR_NULL_POINTER`, `HEARTH_ERROR_INVALID_ID`.
+ *
+ * # Safety
+ * `world` must be NULL or a live world; `out` NULL or writable.
+ */
+HearthResult hearth_shape_get_density(const struct HearthWorld *world,
+                                      struct HearthShapeId shape,
+                                      float *out);
+
+/**
+ * Sets a shape's host data (first given in `HearthShapeDef.user_data`). Does not wake the
+ * body.
+ *
+ * Errors: `HEARTH_ERROR_NULL_POINTER`, `HEARTH_ERROR_INVALID_ID`, `HEARTH_ERROR_WORLD_LOCKED`.
+ *
+ * # Safety
+ * `world` must be NULL or a live world.
+ */
+HearthResult hearth_shape_set_user_data(struct HearthWorld *world,
+                                        struct HearthShapeId shape,
+                                        uint64_t user_data);
+
+/**
+ * Reads a shape's host data.
+ *
+ * Errors: `HEARTH_ERROR_NULL_POINTER`, `HEARTH_ERROR_INVALID_ID`.
+ *
+ * # Safety
+ * `world` must be NULL or a live world; `out` NULL or writable.
+ */
+HearthResult hearth_shape_get_user_data(const struct HearthWorld *world,
+                                        struct HearthShapeId shape,
+                                        uint64_t *out);
+
+/**
+ * Sets the multiplier of world gravity for one body (-100..=100; 0 floats, -1 rises). Wakes
+ * the body.
+ *
+ * Errors: `HEARTH_ERROR_NULL_POINTER`, `HEARTH_ERROR_INVALID_ID`,
+ * `HEARTH_ERROR_INVALID_ARGUMENT` (NaN, infinite, out of range), `HEARTH_ERROR_WORLD_LOCKED`.
+ *
+ * # Safety
+ * `world` must be NULL or a live world.
+ */
+HearthResult hearth_body_set_gravity_scale(struct HearthWorld *world,
+                                           struct HearthBodyId body,
+                                           float gravity_scale);
+
+/**
+ * Reads a body's gravity scale.
+ *
+ * Errors: `HEARTH_ERROR_NULL_POINTER`, `HEARTH_ERROR_INVALID_ID`.
+ *
+ * # Safety
+ * `world` must be NULL or a live world; `out` NULL or writable.
+ */
+HearthResult hearth_body_get_gravity_scale(const struct HearthWorld *world,
+                                           struct HearthBodyId body,
+                                           float *out);
+
+/**
+ * Overrides a body's mass (1e-9..=1e17 kg), centre of mass (body frame, each coordinate
+ * within ±1e5 m) and principal moments of inertia along the body axes (each
+ * 1e-18..=1e26 kg·m²). The override is kept through later shape and density changes until
+ * `hearth_body_reset_mass_data`. Static and kinematic bodies keep infinite mass; the
+ * override applies once they become dynamic. Wakes the body. An impulse J at the centre then
+ * changes the velocity by exactly J/mass.
+ *
+ * Errors: `HEARTH_ERROR_NULL_POINTER`, `HEARTH_ERROR_INVALID_ID`,
+ * `HEARTH_ERROR_INVALID_ARGUMENT` (a number NaN, infinite or out of range; the message names
+ * it), `HEARTH_ERROR_WORLD_LOCKED`.
+ *
+ * # Safety
+ * `world` must be NULL or a live world; `data` NULL or readable.
+ */
+HearthResult hearth_body_set_mass_data(struct HearthWorld *world,
+                                       struct HearthBodyId body,
+                                       const struct HearthMassData *data);
+
+/**
+ * Reads a body's mass (kg; 0 for static and kinematic bodies), centre of mass (body frame)
+ * and the diagonal of its inertia about the centre of mass in the body frame (kg·m²; a body
+ * of rotated shapes also has off-diagonal terms, not reported).
+ *
+ * Errors: `HEARTH_ERROR_NULL_POINTER`, `HEARTH_ERROR_INVALID_ID`.
+ *
+ * # Safety
+ * `world` must be NULL or a live world; `out` NULL or writable.
+ */
+HearthResult hearth_body_get_mass_data(const struct HearthWorld *world,
+                                       struct HearthBodyId body,
+                                       struct HearthMassData *out);
+
+/**
+ * Drops a mass override: the mass comes from the shapes again. Wakes the body. Does nothing
+ * more to a body without an override.
+ *
+ * Errors: `HEARTH_ERROR_NULL_POINTER`, `HEARTH_ERROR_INVALID_ID`, `HEARTH_ERROR_WORLD_LOCKED`.
+ *
+ * # Safety
+ * `world` must be NULL or a live world.
+ */
+HearthResult hearth_body_reset_mass_data(struct HearthWorld *world, struct HearthBodyId body);
+
+/**
+ * Changes a body's type (`HEARTH_BODY_*`). Becoming static stops it (velocities zero) and
+ * takes it out of the awake set; leaving static wakes it. Contacts left without a dynamic
+ * body are dropped; its shapes are queued for new pairs at the next step; its mass is
+ * recomputed (or the override applied); every body it touches or is jointed to is woken. A
+ * pending target transform is dropped.
+ *
+ * Errors: `HEARTH_ERROR_NULL_POINTER`, `HEARTH_ERROR_INVALID_ID`,
+ * `HEARTH_ERROR_INVALID_ARGUMENT` (an unknown code; a body with a plane must stay static, one
+ * with a triangle mesh or heightfield cannot be dynamic), `HEARTH_ERROR_WORLD_LOCKED`.
+ *
+ * # Safety
+ * `world` must be NULL or a live world.
+ */
+HearthResult hearth_body_set_type(struct HearthWorld *world,
+                                  struct HearthBodyId body,
+                                  uint32_t type);
+
+/**
+ * Disables a body without destroying it: its shapes leave the broad phase (no contacts; the
+ * bodies it touched are woken), it is not simulated, and joints to it are inactive (not
+ * solved, cannot break) until it is enabled. Its transform, velocities, shapes, mass and
+ * joints are kept; setters still work on it. Disabling a disabled body does nothing.
+ *
+ * Errors: `HEARTH_ERROR_NULL_POINTER`, `HEARTH_ERROR_INVALID_ID`, `HEARTH_ERROR_WORLD_LOCKED`.
+ *
+ * # Safety
+ * `world` must be NULL or a live world.
+ */
+HearthResult hearth_body_disable(struct HearthWorld *world, struct HearthBodyId body);
+
+/**
+ * Enables a disabled body: its shapes return to the broad phase (contacts form at the next
+ * step) and a kinematic or dynamic body is woken, moving on with the velocities it had.
+ * Enabling an enabled body does nothing.
+ *
+ * Errors: `HEARTH_ERROR_NULL_POINTER`, `HEARTH_ERROR_INVALID_ID`, `HEARTH_ERROR_WORLD_LOCKED`.
+ *
+ * # Safety
+ * `world` must be NULL or a live world.
+ */
+HearthResult hearth_body_enable(struct HearthWorld *world, struct HearthBodyId body);
+
+/**
+ * Reads whether a body is enabled (true from creation until `hearth_body_disable`).
+ *
+ * Errors: `HEARTH_ERROR_NULL_POINTER`, `HEARTH_ERROR_INVALID_ID`.
+ *
+ * # Safety
+ * `world` must be NULL or a live world; `out` NULL or writable.
+ */
+HearthResult hearth_body_is_enabled(const struct HearthWorld *world,
+                                    struct HearthBodyId body,
+                                    bool *out);
 
 /**
  * Defaults: density 1000 kg/m³, friction 0.6 (static and dynamic), no bounce, rolling

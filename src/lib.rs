@@ -5,6 +5,7 @@
 //! lists the stages of a step and the file that does each.
 
 pub mod collision;
+pub mod debug_draw;
 pub mod dynamics;
 pub mod error;
 pub mod events;
@@ -18,6 +19,7 @@ pub mod simd;
 pub mod soft;
 pub mod step;
 pub mod world;
+pub mod world_setters;
 
 pub use collision::geometry_store::ConvexHullHandle;
 pub use collision::hull::builder::HullSettings;

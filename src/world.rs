@@ -262,7 +262,7 @@ impl World {
         self.bodies.get(h).ok_or(Error::InvalidId("body"))
     }
 
-    fn body_index(&self, h: BodyHandle) -> Result<u32> {
+    pub(crate) fn body_index(&self, h: BodyHandle) -> Result<u32> {
         self.body(h).map(|_| h.index)
     }
 
@@ -544,22 +544,33 @@ impl World {
         };
         let h = self.shapes.insert(shape);
         self.bodies.at_mut(bi).shapes.push(h);
-        if geometry.is_unbounded() {
-            self.broad.planes.push(h.index);
-        } else {
-            let xf = self.bodies.at(bi).xf;
-            let tight = geometry.aabb(&self.geometry, &xf);
-            let fat = tight.expanded(AABB_MARGIN);
-            let proxy = self.broad.tree.create_proxy(fat, h.index);
-            let s = self.shapes.at_mut(h.index);
-            s.proxy = proxy;
-            s.aabb = tight;
-            s.fat_aabb = fat;
-            self.push_moved(h.index);
+        if self.bodies.at(bi).enabled {
+            self.add_shape_proxy(h.index);
         }
         self.update_mass(bi);
         self.wake_body(bi);
         Ok(h)
+    }
+
+    /// Puts a shape into the broad phase: its box into the tree (queued for new pairs), or a
+    /// plane into the plane list.
+    pub(crate) fn add_shape_proxy(&mut self, s: u32) {
+        let shape = self.shapes.at(s);
+        let geometry = shape.geometry;
+        let bi = shape.body;
+        if geometry.is_unbounded() {
+            self.broad.planes.push(s);
+        } else {
+            let xf = self.bodies.at(bi).xf;
+            let tight = geometry.aabb(&self.geometry, &xf);
+            let fat = tight.expanded(AABB_MARGIN);
+            let proxy = self.broad.tree.create_proxy(fat, s);
+            let shape = self.shapes.at_mut(s);
+            shape.proxy = proxy;
+            shape.aabb = tight;
+            shape.fat_aabb = fat;
+            self.push_moved(s);
+        }
     }
 
     pub fn destroy_shape(&mut self, h: ShapeHandle) -> Result<()> {
@@ -597,7 +608,7 @@ impl World {
         self.shapes.get(h).ok_or(Error::InvalidId("shape"))
     }
 
-    fn remove_shape_proxy(&mut self, s: u32) {
+    pub(crate) fn remove_shape_proxy(&mut self, s: u32) {
         let shape = self.shapes.at_mut(s);
         if shape.proxy != NONE {
             self.broad.tree.destroy_proxy(shape.proxy);
@@ -611,15 +622,9 @@ impl World {
         }
     }
 
-    fn update_mass(&mut self, bi: u32) {
+    pub(crate) fn update_mass(&mut self, bi: u32) {
         let body = self.bodies.at(bi);
-        let mp = MassProperties::combine(
-            body.shapes
-                .iter()
-                .map(|s| self.shapes.get(*s).unwrap())
-                .filter(|s| !s.def.is_sensor)
-                .map(|s| s.geometry.mass_properties(&self.geometry, s.def.density)),
-        );
+        let mp = body.mass_override.unwrap_or_else(|| self.shape_mass(bi));
         self.bodies.at_mut(bi).set_mass_properties(mp);
         // Shape extents are measured from the centre of mass, which may have moved.
         let center = self.bodies.at(bi).local_center;
@@ -628,6 +633,18 @@ impl World {
             let shape = self.shapes.get_mut(h).unwrap();
             shape.extent = shape.geometry.extent_from(&self.geometry, center);
         }
+    }
+
+    /// The mass properties of a body's shapes at their densities.
+    pub(crate) fn shape_mass(&self, bi: u32) -> MassProperties {
+        let body = self.bodies.at(bi);
+        MassProperties::combine(
+            body.shapes
+                .iter()
+                .map(|s| self.shapes.get(*s).unwrap())
+                .filter(|s| !s.def.is_sensor)
+                .map(|s| s.geometry.mass_properties(&self.geometry, s.def.density)),
+        )
     }
 
     /// Recomputes a shape's box; if it left its fat box, refit the proxy and queue it for new
@@ -787,7 +804,7 @@ impl World {
         }
     }
 
-    fn remove_awake_body(&mut self, b: u32) {
+    pub(crate) fn remove_awake_body(&mut self, b: u32) {
         let body = self.bodies.at_mut(b);
         let i = body.awake_index;
         body.awake = false;
@@ -804,7 +821,7 @@ impl World {
     /// Wakes a body and everything in its sleeping island; resets the sleep timer if awake.
     pub(crate) fn wake_body(&mut self, b: u32) {
         let body = self.bodies.at_mut(b);
-        if body.is_static() {
+        if body.is_static() || !body.enabled {
             return;
         }
         let threshold = self.settings.sleep_threshold;
@@ -877,7 +894,8 @@ impl World {
             }
             // Joints (issue 5) join bodies into one island too.
             for o in self.joint_partners(x) {
-                if self.bodies.at(o).is_dynamic() && !out.contains(&o) {
+                let other = self.bodies.at(o);
+                if other.is_dynamic() && other.enabled && !out.contains(&o) {
                     out.push(o);
                 }
             }

@@ -58,6 +58,8 @@ const PROGRAMS: &[&str] = &[
     "test_geometry.c",
     "test_query.c",
     "test_events.c",
+    "test_setters.c",
+    "test_draw.c",
 ];
 
 #[test]

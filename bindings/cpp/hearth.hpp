@@ -76,6 +76,8 @@ using WorldCounters = HearthWorldCounters;
 using RecordDef = HearthRecordDef;
 using BodyDef = HearthBodyDef;
 using ShapeDef = HearthShapeDef;
+using MassData = HearthMassData;
+using DebugDraw = HearthDebugDraw;
 using Sphere = HearthSphere;
 using Box = HearthBox;
 using Capsule = HearthCapsule;
@@ -249,6 +251,9 @@ inline BodyDef body_def(BodyType type, Vec3 position = Vec3{0, 0, 0}) noexcept {
     return d;
 }
 inline ShapeDef shape_def() noexcept { return hearth_shape_def_default(); }
+/** Debug-draw callbacks and flags from `hearth_debug_draw_default()` (nothing drawn); set the
+ *  callbacks (captureless lambdas work), `user_data` and flags, then `World::draw`. */
+inline DebugDraw debug_draw() noexcept { return hearth_debug_draw_default(); }
 inline HullDef hull_def() noexcept { return hearth_hull_def_default(); }
 inline ParticleDef particle_def() noexcept { return hearth_particle_def_default(); }
 inline BurstDef burst_def() noexcept { return hearth_burst_def_default(); }
@@ -595,6 +600,22 @@ public:
     Ret<void> set_damping(float linear, float angular) const {
         return P::check(hearth_body_set_damping(world_, id_, linear, angular));
     }
+    // Runtime setters (issue 14), each with its getter.
+    Ret<void> set_type(BodyType t) const {
+        return P::check(hearth_body_set_type(world_, id_, static_cast<uint32_t>(t)));
+    }
+    Ret<float> gravity_scale() const { HEARTH_CPP_READ(float, hearth_body_get_gravity_scale(world_, id_, &out)); }
+    Ret<void> set_gravity_scale(float scale) const {
+        return P::check(hearth_body_set_gravity_scale(world_, id_, scale));
+    }
+    Ret<MassData> mass_data() const { HEARTH_CPP_READ(MassData, hearth_body_get_mass_data(world_, id_, &out)); }
+    Ret<void> set_mass_data(const MassData &data) const {
+        return P::check(hearth_body_set_mass_data(world_, id_, &data));
+    }
+    Ret<void> reset_mass_data() const { return P::check(hearth_body_reset_mass_data(world_, id_)); }
+    Ret<bool> is_enabled() const { HEARTH_CPP_READ(bool, hearth_body_is_enabled(world_, id_, &out)); }
+    Ret<void> enable() const { return P::check(hearth_body_enable(world_, id_)); }
+    Ret<void> disable() const { return P::check(hearth_body_disable(world_, id_)); }
     Ret<void> apply_force(Vec3 f) const { return P::check(hearth_body_apply_force(world_, id_, f)); }
     Ret<void> apply_torque(Vec3 t) const { return P::check(hearth_body_apply_torque(world_, id_, t)); }
     Ret<void> apply_linear_impulse(Vec3 j) const {
@@ -681,6 +702,35 @@ public:
     Ret<Filter> filter() const { HEARTH_CPP_READ(Filter, hearth_shape_get_filter(world_, id_, &out)); }
     /** Changes the filter; pairs are re-evaluated at the next step. */
     Ret<void> set_filter(const Filter &f) const { return P::check(hearth_shape_set_filter(world_, id_, f)); }
+
+    // Runtime setters (issue 14), each with its getter.
+    /** (static, dynamic) friction coefficients. */
+    Ret<std::pair<float, float>> friction() const {
+        float s = 0, d = 0;
+        const HearthResult r = hearth_shape_get_friction(world_, id_, &s, &d);
+        return P::template value<std::pair<float, float>>(r, std::make_pair(s, d));
+    }
+    Ret<void> set_friction(float static_friction, float dynamic_friction) const {
+        return P::check(hearth_shape_set_friction(world_, id_, static_friction, dynamic_friction));
+    }
+    Ret<float> restitution() const { HEARTH_CPP_READ(float, hearth_shape_get_restitution(world_, id_, &out)); }
+    Ret<void> set_restitution(float x) const { return P::check(hearth_shape_set_restitution(world_, id_, x)); }
+    Ret<float> rolling_resistance() const {
+        HEARTH_CPP_READ(float, hearth_shape_get_rolling_resistance(world_, id_, &out));
+    }
+    Ret<void> set_rolling_resistance(float x) const {
+        return P::check(hearth_shape_set_rolling_resistance(world_, id_, x));
+    }
+    Ret<float> torsional_friction() const {
+        HEARTH_CPP_READ(float, hearth_shape_get_torsional_friction(world_, id_, &out));
+    }
+    Ret<void> set_torsional_friction(float x) const {
+        return P::check(hearth_shape_set_torsional_friction(world_, id_, x));
+    }
+    Ret<float> density() const { HEARTH_CPP_READ(float, hearth_shape_get_density(world_, id_, &out)); }
+    Ret<void> set_density(float x) const { return P::check(hearth_shape_set_density(world_, id_, x)); }
+    Ret<uint64_t> user_data() const { HEARTH_CPP_READ(uint64_t, hearth_shape_get_user_data(world_, id_, &out)); }
+    Ret<void> set_user_data(uint64_t x) const { return P::check(hearth_shape_set_user_data(world_, id_, x)); }
 
 private:
     HearthWorld *world_ = nullptr;
@@ -1086,6 +1136,8 @@ public:
 
     // World settings and counters.
     Ret<Vec3> gravity() const { HEARTH_CPP_READ(Vec3, hearth_world_get_gravity(world_, &out)); }
+    /** `hearth_world_draw`: the world through `d`'s callbacks as its flags ask. */
+    Ret<void> draw(const DebugDraw &d) const { return P::check(hearth_world_draw(world_, &d)); }
     Ret<void> set_gravity(Vec3 g) const { return P::check(hearth_world_set_gravity(world_, g)); }
     Ret<WorldCounters> counters() const { HEARTH_CPP_READ(WorldCounters, hearth_world_get_counters(world_, &out)); }
 

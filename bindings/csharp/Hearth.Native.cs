@@ -146,6 +146,52 @@ namespace Hearth
     /// </summary>
     [UnmanagedFunctionPointer(CallingConvention.Cdecl)]
     public delegate float RayCallback(IntPtr userData, ref RayHit hit);
+    /// <summary>HearthDrawSegment: <c>void (*)(void *user_data, const HearthVec3 *a, const HearthVec3 *b, uint32_t color)</c>.</summary>
+    [UnmanagedFunctionPointer(CallingConvention.Cdecl)]
+    public delegate void DrawSegment(IntPtr userData, IntPtr a, IntPtr b, uint color);
+
+    /// <summary>HearthDrawPolygon: <c>void (*)(void *user_data, const HearthVec3 *vertices, uint32_t count, uint32_t color)</c>.</summary>
+    [UnmanagedFunctionPointer(CallingConvention.Cdecl)]
+    public delegate void DrawPolygon(IntPtr userData, IntPtr vertices, uint count, uint color);
+
+    /// <summary>HearthDrawSphere: <c>void (*)(void *user_data, const HearthVec3 *center, float radius, uint32_t color)</c>.</summary>
+    [UnmanagedFunctionPointer(CallingConvention.Cdecl)]
+    public delegate void DrawSphere(IntPtr userData, IntPtr center, float radius, uint color);
+
+    /// <summary>HearthDrawCapsule: <c>void (*)(void *user_data, const HearthVec3 *a, const HearthVec3 *b, float radius, uint32_t color)</c>.</summary>
+    [UnmanagedFunctionPointer(CallingConvention.Cdecl)]
+    public delegate void DrawCapsule(IntPtr userData, IntPtr a, IntPtr b, float radius, uint color);
+
+    /// <summary>HearthDrawTransform: <c>void (*)(void *user_data, const HearthTransform *transform)</c>.</summary>
+    [UnmanagedFunctionPointer(CallingConvention.Cdecl)]
+    public delegate void DrawTransform(IntPtr userData, IntPtr transform);
+
+    /// <summary>HearthDrawPoint: <c>void (*)(void *user_data, const HearthVec3 *point, float size, uint32_t color)</c>.</summary>
+    [UnmanagedFunctionPointer(CallingConvention.Cdecl)]
+    public delegate void DrawPoint(IntPtr userData, IntPtr point, float size, uint color);
+
+    /// <summary>Debug draw: callbacks (function pointers, any may be zero), user data and flags (0 or 1). World.Draw fills one for an IDebugDrawer.</summary>
+    [StructLayout(LayoutKind.Sequential)]
+    public struct DebugDraw
+    {
+        /// <summary>The defaults of <c>hearth_debug_draw_default()</c>: no callbacks, nothing drawn.</summary>
+        public static DebugDraw Default() { return Native.hearth_debug_draw_default(); }
+
+        public IntPtr DrawSegment;
+        public IntPtr DrawPolygon;
+        public IntPtr DrawSphere;
+        public IntPtr DrawCapsule;
+        public IntPtr DrawTransform;
+        public IntPtr DrawPoint;
+        public IntPtr UserData;
+        public byte DrawShapes;
+        public byte DrawAabbs;
+        public byte DrawContacts;
+        public byte DrawJoints;
+        public byte DrawCentersOfMass;
+        /// <summary>Set by <c>hearth_debug_draw_default()</c>; do not change.</summary>
+        public uint InternalValue;
+    }
 
     /// <summary>A 3D vector of <c>float</c> (metres, m/s, N, ... by context).</summary>
     [StructLayout(LayoutKind.Sequential)]
@@ -947,6 +993,17 @@ namespace Hearth
         public static QueryShape Of(HullShape h) { var q = default(QueryShape); q.Type = QueryShapeType.Hull; q.Hull = h; return q; }
     }
 
+    /// <summary>A body's mass (kg), centre of mass in the body frame (m) and principal moments of inertia along the body axes (kg·m²): hearth_body_set_mass_data / hearth_body_get_mass_data.</summary>
+    [StructLayout(LayoutKind.Sequential)]
+    public struct MassData
+    {
+        public float Mass;
+        public Vec3 Center;
+        public Vec3 Inertia;
+
+        public MassData(float mass, Vec3 center, Vec3 inertia) { Mass = mass; Center = center; Inertia = inertia; }
+    }
+
     /// <summary>Sphere: centre in the body frame and radius (m, &gt; 0).</summary>
     [StructLayout(LayoutKind.Sequential)]
     public struct Sphere
@@ -1494,6 +1551,75 @@ namespace Hearth
 
         [DllImport(Lib, CallingConvention = CallingConvention.Cdecl)]
         public static extern Result hearth_body_set_damping(WorldHandle world, BodyId body, float linearDamping, float angularDamping);
+
+        [DllImport(Lib, CallingConvention = CallingConvention.Cdecl)]
+        public static extern DebugDraw hearth_debug_draw_default();
+
+        [DllImport(Lib, CallingConvention = CallingConvention.Cdecl)]
+        public static extern Result hearth_world_draw(WorldHandle world, [In] ref DebugDraw draw);
+
+        [DllImport(Lib, CallingConvention = CallingConvention.Cdecl)]
+        public static extern Result hearth_shape_set_friction(WorldHandle world, ShapeId shape, float staticFriction, float dynamicFriction);
+
+        [DllImport(Lib, CallingConvention = CallingConvention.Cdecl)]
+        public static extern Result hearth_shape_get_friction(WorldHandle world, ShapeId shape, out float outStaticFriction, out float outDynamicFriction);
+
+        [DllImport(Lib, CallingConvention = CallingConvention.Cdecl)]
+        public static extern Result hearth_shape_set_restitution(WorldHandle world, ShapeId shape, float value);
+
+        [DllImport(Lib, CallingConvention = CallingConvention.Cdecl)]
+        public static extern Result hearth_shape_get_restitution(WorldHandle world, ShapeId shape, out float value);
+
+        [DllImport(Lib, CallingConvention = CallingConvention.Cdecl)]
+        public static extern Result hearth_shape_set_rolling_resistance(WorldHandle world, ShapeId shape, float value);
+
+        [DllImport(Lib, CallingConvention = CallingConvention.Cdecl)]
+        public static extern Result hearth_shape_get_rolling_resistance(WorldHandle world, ShapeId shape, out float value);
+
+        [DllImport(Lib, CallingConvention = CallingConvention.Cdecl)]
+        public static extern Result hearth_shape_set_torsional_friction(WorldHandle world, ShapeId shape, float value);
+
+        [DllImport(Lib, CallingConvention = CallingConvention.Cdecl)]
+        public static extern Result hearth_shape_get_torsional_friction(WorldHandle world, ShapeId shape, out float value);
+
+        [DllImport(Lib, CallingConvention = CallingConvention.Cdecl)]
+        public static extern Result hearth_shape_set_density(WorldHandle world, ShapeId shape, float value);
+
+        [DllImport(Lib, CallingConvention = CallingConvention.Cdecl)]
+        public static extern Result hearth_shape_get_density(WorldHandle world, ShapeId shape, out float value);
+
+        [DllImport(Lib, CallingConvention = CallingConvention.Cdecl)]
+        public static extern Result hearth_shape_set_user_data(WorldHandle world, ShapeId shape, ulong userData);
+
+        [DllImport(Lib, CallingConvention = CallingConvention.Cdecl)]
+        public static extern Result hearth_shape_get_user_data(WorldHandle world, ShapeId shape, out ulong value);
+
+        [DllImport(Lib, CallingConvention = CallingConvention.Cdecl)]
+        public static extern Result hearth_body_set_gravity_scale(WorldHandle world, BodyId body, float gravityScale);
+
+        [DllImport(Lib, CallingConvention = CallingConvention.Cdecl)]
+        public static extern Result hearth_body_get_gravity_scale(WorldHandle world, BodyId body, out float value);
+
+        [DllImport(Lib, CallingConvention = CallingConvention.Cdecl)]
+        public static extern Result hearth_body_set_mass_data(WorldHandle world, BodyId body, [In] ref MassData data);
+
+        [DllImport(Lib, CallingConvention = CallingConvention.Cdecl)]
+        public static extern Result hearth_body_get_mass_data(WorldHandle world, BodyId body, out MassData value);
+
+        [DllImport(Lib, CallingConvention = CallingConvention.Cdecl)]
+        public static extern Result hearth_body_reset_mass_data(WorldHandle world, BodyId body);
+
+        [DllImport(Lib, CallingConvention = CallingConvention.Cdecl)]
+        public static extern Result hearth_body_set_type(WorldHandle world, BodyId body, uint type);
+
+        [DllImport(Lib, CallingConvention = CallingConvention.Cdecl)]
+        public static extern Result hearth_body_disable(WorldHandle world, BodyId body);
+
+        [DllImport(Lib, CallingConvention = CallingConvention.Cdecl)]
+        public static extern Result hearth_body_enable(WorldHandle world, BodyId body);
+
+        [DllImport(Lib, CallingConvention = CallingConvention.Cdecl)]
+        public static extern Result hearth_body_is_enabled(WorldHandle world, BodyId body, [MarshalAs(UnmanagedType.U1)] out bool value);
 
         [DllImport(Lib, CallingConvention = CallingConvention.Cdecl)]
         public static extern UserForceGeneratorDef hearth_user_force_generator_def_default();

@@ -474,6 +474,140 @@ namespace Hearth
             Check(result, "hearth_world_step");
         }
 
+        // ---- debug draw: static trampolines (IL2CPP needs them), user_data a GCHandle of the session.
+        private sealed class DrawSession
+        {
+            public IDebugDrawer Drawer;
+            public ExceptionDispatchInfo Failure;
+        }
+
+        private static readonly DrawSegment SegmentDelegate = SegmentTrampoline;
+        private static readonly DrawPolygon PolygonDelegate = PolygonTrampoline;
+        private static readonly DrawSphere SphereDelegate = SphereTrampoline;
+        private static readonly DrawCapsule CapsuleDelegate = CapsuleTrampoline;
+        private static readonly DrawTransform TransformDelegate = TransformTrampoline;
+        private static readonly DrawPoint PointDelegate = PointTrampoline;
+        private static readonly IntPtr SegmentPointer = Marshal.GetFunctionPointerForDelegate(SegmentDelegate);
+        private static readonly IntPtr PolygonPointer = Marshal.GetFunctionPointerForDelegate(PolygonDelegate);
+        private static readonly IntPtr SpherePointer = Marshal.GetFunctionPointerForDelegate(SphereDelegate);
+        private static readonly IntPtr CapsulePointer = Marshal.GetFunctionPointerForDelegate(CapsuleDelegate);
+        private static readonly IntPtr TransformPointer = Marshal.GetFunctionPointerForDelegate(TransformDelegate);
+        private static readonly IntPtr PointPointer = Marshal.GetFunctionPointerForDelegate(PointDelegate);
+
+        private static DrawSession Session(IntPtr userData)
+        {
+            try
+            {
+                DrawSession s = GCHandle.FromIntPtr(userData).Target as DrawSession;
+                return s != null && s.Failure == null ? s : null;
+            }
+            catch (InvalidOperationException)
+            {
+                return null;
+            }
+        }
+
+        private static Vec3 V(IntPtr p) { return (Vec3)Marshal.PtrToStructure(p, typeof(Vec3)); }
+
+        // Runs one drawer call; an exception is kept for Draw to rethrow and stops the rest.
+        private static void Guard(IntPtr userData, Action<IDebugDrawer> call)
+        {
+            DrawSession s = Session(userData);
+            if (s == null)
+            {
+                return;
+            }
+            try
+            {
+                call(s.Drawer);
+            }
+            catch (Exception e)
+            {
+                s.Failure = ExceptionDispatchInfo.Capture(e);
+            }
+        }
+
+        [MonoPInvokeCallback(typeof(DrawSegment))]
+        private static void SegmentTrampoline(IntPtr u, IntPtr a, IntPtr b, uint color)
+        {
+            Guard(u, d => d.Segment(V(a), V(b), color));
+        }
+
+        [MonoPInvokeCallback(typeof(DrawPolygon))]
+        private static void PolygonTrampoline(IntPtr u, IntPtr vertices, uint count, uint color)
+        {
+            Guard(u, d =>
+            {
+                var v = new Vec3[count];
+                int size = Marshal.SizeOf(typeof(Vec3));
+                for (int i = 0; i < v.Length; i++) v[i] = V(IntPtr.Add(vertices, i * size));
+                d.Polygon(v, color);
+            });
+        }
+
+        [MonoPInvokeCallback(typeof(DrawSphere))]
+        private static void SphereTrampoline(IntPtr u, IntPtr center, float radius, uint color)
+        {
+            Guard(u, d => d.Sphere(V(center), radius, color));
+        }
+
+        [MonoPInvokeCallback(typeof(DrawCapsule))]
+        private static void CapsuleTrampoline(IntPtr u, IntPtr a, IntPtr b, float radius, uint color)
+        {
+            Guard(u, d => d.Capsule(V(a), V(b), radius, color));
+        }
+
+        [MonoPInvokeCallback(typeof(DrawTransform))]
+        private static void TransformTrampoline(IntPtr u, IntPtr transform)
+        {
+            Guard(u, d => d.Transform((Transform)Marshal.PtrToStructure(transform, typeof(Transform))));
+        }
+
+        [MonoPInvokeCallback(typeof(DrawPoint))]
+        private static void PointTrampoline(IntPtr u, IntPtr point, float size, uint color)
+        {
+            Guard(u, d => d.Point(V(point), size, color));
+        }
+
+        /// <summary>hearth_world_draw: describes the world to <paramref name="drawer"/> as the flags ask
+        /// (colours 0xRRGGBBAA, listed at HearthDebugDraw in include/hearth.h). An exception the
+        /// drawer throws stops the drawing and is rethrown here.</summary>
+        public void Draw(IDebugDrawer drawer, bool shapes = true, bool aabbs = false, bool contacts = false,
+                         bool joints = false, bool centersOfMass = false)
+        {
+            if (drawer == null) throw new ArgumentNullException("drawer");
+            var session = new DrawSession { Drawer = drawer };
+            GCHandle handle = GCHandle.Alloc(session);
+            try
+            {
+                DebugDraw d = DebugDraw.Default();
+                d.DrawSegment = SegmentPointer;
+                d.DrawPolygon = PolygonPointer;
+                d.DrawSphere = SpherePointer;
+                d.DrawCapsule = CapsulePointer;
+                d.DrawTransform = TransformPointer;
+                d.DrawPoint = PointPointer;
+                d.UserData = GCHandle.ToIntPtr(handle);
+                d.DrawShapes = (byte)(shapes ? 1 : 0);
+                d.DrawAabbs = (byte)(aabbs ? 1 : 0);
+                d.DrawContacts = (byte)(contacts ? 1 : 0);
+                d.DrawJoints = (byte)(joints ? 1 : 0);
+                d.DrawCentersOfMass = (byte)(centersOfMass ? 1 : 0);
+                Check(Native.hearth_world_draw(Handle, ref d), "hearth_world_draw");
+            }
+            finally
+            {
+                handle.Free();
+            }
+            if (session.Failure != null) session.Failure.Throw();
+        }
+
+        /// <summary>hearth_world_draw with a DebugDraw the caller fills (its own function pointers and flags).</summary>
+        public void Draw(DebugDraw draw)
+        {
+            Check(Native.hearth_world_draw(Handle, ref draw), "hearth_world_draw");
+        }
+
         /// <summary>hearth_world_get_gravity / hearth_world_set_gravity (m/s²; setting wakes every body).</summary>
         public Vec3 Gravity
         {
@@ -1485,6 +1619,53 @@ namespace Hearth
                 HearthException.Check(Native.hearth_body_get_type(H, Id, out value), "hearth_body_get_type");
                 return (BodyType)value;
             }
+            set { HearthException.Check(Native.hearth_body_set_type(H, Id, (uint)value), "hearth_body_set_type"); }
+        }
+
+        /// <summary>hearth_body_get_gravity_scale / hearth_body_set_gravity_scale (-100..=100).</summary>
+        public float GravityScale
+        {
+            get
+            {
+                float value;
+                HearthException.Check(Native.hearth_body_get_gravity_scale(H, Id, out value), "hearth_body_get_gravity_scale");
+                return value;
+            }
+            set { HearthException.Check(Native.hearth_body_set_gravity_scale(H, Id, value), "hearth_body_set_gravity_scale"); }
+        }
+
+        /// <summary>hearth_body_get_mass_data / hearth_body_set_mass_data (an override kept until ResetMassData).</summary>
+        public MassData MassData
+        {
+            get
+            {
+                MassData value;
+                HearthException.Check(Native.hearth_body_get_mass_data(H, Id, out value), "hearth_body_get_mass_data");
+                return value;
+            }
+            set { HearthException.Check(Native.hearth_body_set_mass_data(H, Id, ref value), "hearth_body_set_mass_data"); }
+        }
+
+        /// <summary>hearth_body_reset_mass_data: the mass comes from the shapes again.</summary>
+        public void ResetMassData()
+        {
+            HearthException.Check(Native.hearth_body_reset_mass_data(H, Id), "hearth_body_reset_mass_data");
+        }
+
+        /// <summary>hearth_body_is_enabled; setting it calls hearth_body_enable or hearth_body_disable.</summary>
+        public bool Enabled
+        {
+            get
+            {
+                bool value;
+                HearthException.Check(Native.hearth_body_is_enabled(H, Id, out value), "hearth_body_is_enabled");
+                return value;
+            }
+            set
+            {
+                if (value) HearthException.Check(Native.hearth_body_enable(H, Id), "hearth_body_enable");
+                else HearthException.Check(Native.hearth_body_disable(H, Id), "hearth_body_disable");
+            }
         }
 
         /// <summary>hearth_body_apply_force (N, at the centre of mass, for the next step).</summary>
@@ -1612,6 +1793,19 @@ namespace Hearth
         public override string ToString() { return "Body(" + Id.Index + ", " + Id.Generation + ")"; }
     }
 
+    /// <summary>What World.Draw calls: the debug-draw primitives (world space, metres; colours 0xRRGGBBAA).</summary>
+    public interface IDebugDrawer
+    {
+        void Segment(Vec3 a, Vec3 b, uint color);
+        /// <summary>A convex planar polygon (a face; three vertices for a triangle).</summary>
+        void Polygon(Vec3[] vertices, uint color);
+        void Sphere(Vec3 center, float radius, uint color);
+        void Capsule(Vec3 a, Vec3 b, float radius, uint color);
+        /// <summary>A frame: a centre of mass and the body's orientation.</summary>
+        void Transform(Transform transform);
+        void Point(Vec3 point, float size, uint color);
+    }
+
     /// <summary>A shape (its World and ShapeId).</summary>
     public struct Shape : IEquatable<Shape>
     {
@@ -1651,6 +1845,76 @@ namespace Hearth
                 return f;
             }
             set { HearthException.Check(Native.hearth_shape_set_filter(World.Handle, Id, value), "hearth_shape_set_filter"); }
+        /// <summary>hearth_shape_get_restitution / hearth_shape_set_restitution.</summary>
+        public float Restitution
+        {
+            get
+            {
+                float value;
+                HearthException.Check(Native.hearth_shape_get_restitution(World.Handle, Id, out value), "hearth_shape_get_restitution");
+                return value;
+            }
+            set { HearthException.Check(Native.hearth_shape_set_restitution(World.Handle, Id, value), "hearth_shape_set_restitution"); }
+        }
+
+        /// <summary>hearth_shape_get_rolling_resistance / hearth_shape_set_rolling_resistance.</summary>
+        public float RollingResistance
+        {
+            get
+            {
+                float value;
+                HearthException.Check(Native.hearth_shape_get_rolling_resistance(World.Handle, Id, out value), "hearth_shape_get_rolling_resistance");
+                return value;
+            }
+            set { HearthException.Check(Native.hearth_shape_set_rolling_resistance(World.Handle, Id, value), "hearth_shape_set_rolling_resistance"); }
+        }
+
+        /// <summary>hearth_shape_get_torsional_friction / hearth_shape_set_torsional_friction.</summary>
+        public float TorsionalFriction
+        {
+            get
+            {
+                float value;
+                HearthException.Check(Native.hearth_shape_get_torsional_friction(World.Handle, Id, out value), "hearth_shape_get_torsional_friction");
+                return value;
+            }
+            set { HearthException.Check(Native.hearth_shape_set_torsional_friction(World.Handle, Id, value), "hearth_shape_set_torsional_friction"); }
+        }
+
+        /// <summary>hearth_shape_get_density / hearth_shape_set_density.</summary>
+        public float Density
+        {
+            get
+            {
+                float value;
+                HearthException.Check(Native.hearth_shape_get_density(World.Handle, Id, out value), "hearth_shape_get_density");
+                return value;
+            }
+            set { HearthException.Check(Native.hearth_shape_set_density(World.Handle, Id, value), "hearth_shape_set_density"); }
+        }
+
+        /// <summary>hearth_shape_get_user_data / hearth_shape_set_user_data.</summary>
+        public ulong UserData
+        {
+            get
+            {
+                ulong value;
+                HearthException.Check(Native.hearth_shape_get_user_data(World.Handle, Id, out value), "hearth_shape_get_user_data");
+                return value;
+            }
+            set { HearthException.Check(Native.hearth_shape_set_user_data(World.Handle, Id, value), "hearth_shape_set_user_data"); }
+        }
+
+        /// <summary>hearth_shape_get_friction: (static, dynamic) coefficients.</summary>
+        public void GetFriction(out float staticFriction, out float dynamicFriction)
+        {
+            HearthException.Check(Native.hearth_shape_get_friction(World.Handle, Id, out staticFriction, out dynamicFriction), "hearth_shape_get_friction");
+        }
+
+        /// <summary>hearth_shape_set_friction (each &gt;= 0).</summary>
+        public void SetFriction(float staticFriction, float dynamicFriction)
+        {
+            HearthException.Check(Native.hearth_shape_set_friction(World.Handle, Id, staticFriction, dynamicFriction), "hearth_shape_set_friction");
         }
 
         public bool Equals(Shape other) { return ReferenceEquals(World, other.World) && Id == other.Id; }

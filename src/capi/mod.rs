@@ -3,6 +3,7 @@
 
 pub mod body;
 pub mod callback;
+pub mod draw;
 pub mod error;
 pub mod events;
 pub mod generator;
@@ -11,6 +12,7 @@ pub mod joint;
 pub mod particle;
 pub mod query;
 pub mod record;
+pub mod setters;
 pub mod shape;
 pub mod soft;
 pub mod types;

@@ -119,6 +119,8 @@ pub(crate) const PHASE_CONTACTS: u8 = 3;
 pub(crate) const PHASE_RECORD: u8 = 4;
 /// The pair-filter or pre-solve callback runs: reads only (`capi/events.rs`).
 pub(crate) const PHASE_FILTER: u8 = 5;
+/// A debug-draw callback runs (`hearth_world_draw`): reads only.
+pub(crate) const PHASE_DRAW: u8 = 6;
 
 /// Shared access for reads.
 ///

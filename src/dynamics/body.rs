@@ -127,6 +127,12 @@ pub struct Body {
     pub enable_move_events: bool,
     /// The transform last reported in a move event (or at creation).
     pub reported_xf: Transform,
+    /// Mass, centre of mass and inertia set by the host (`World::set_mass_data`), used
+    /// instead of the shapes' until `World::reset_mass_data`.
+    pub mass_override: Option<MassProperties>,
+    /// False while disabled (`World::disable_body`): out of the broad phase, no contacts, not
+    /// simulated, its joints inactive; its state is kept.
+    pub enabled: bool,
 }
 
 /// The inverse of an inertia tensor, or zero when it is singular. The supported masses and
@@ -192,6 +198,8 @@ impl Body {
             kinematic_stop: false,
             enable_move_events: def.enable_move_events,
             reported_xf: def.transform,
+            mass_override: None,
+            enabled: true,
         };
         b.set_mass_properties(MassProperties::ZERO);
         b

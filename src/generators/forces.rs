@@ -143,7 +143,7 @@ impl Ctx<'_> {
         match o {
             Obj::Body(b, _) => {
                 let body = self.bodies.at_mut(b);
-                if !body.is_dynamic() {
+                if !body.is_dynamic() || !body.enabled {
                     return;
                 }
                 body.add_force_at(f, p);

@@ -3088,6 +3088,176 @@ static void op_events(FWorld *fw) {
 }
 
 static void op_step(FWorld *fw) { (void)fw; op_world_step(); }
+/* Issue 14's runtime setters and getters. Successful calls keep the model true: a body's
+ * type is set to the one it has (the code checked), a disable is followed by an enable. */
+static void op_setters(FWorld *fw) {
+    FAULTS(F_NULL_WORLD, F_ID, F_NUMBER, F_NULL_OUT, F_NULL_IN, F_CODE);
+    HearthWorld *w = W(fw, f);
+    union {
+        HearthMassData m;
+        float x[2];
+        uint64_t u64;
+        uint32_t u32;
+        bool flag;
+    } out;
+    memset(&out, SENTINEL, sizeof out);
+    if (chance(50)) {
+        Obj *o = f == F_ID || fw->n[K_SHAPE] == 0 ? NULL : pick(fw, K_SHAPE);
+        HearthShapeId s = o ? shape_id(o->id) : shape_id(bad_id(fw, K_SHAPE));
+        HearthResult id_r = f == F_NULL_WORLD ? HEARTH_ERROR_NULL_POINTER : o ? HEARTH_OK : HEARTH_ERROR_INVALID_ID;
+        HearthResult get_r = f == F_NULL_OUT && id_r != HEARTH_ERROR_NULL_POINTER ? HEARTH_ERROR_NULL_POINTER : id_r;
+        HearthResult set_r = f == F_NUMBER && id_r == HEARTH_OK ? HEARTH_ERROR_INVALID_ARGUMENT : id_r;
+        int nul = f == F_NULL_OUT;
+        switch (rnd(12)) {
+        case 0: {
+            float a = frange(0, 1), b = frange(0, 1);
+            const char *field = NULL;
+            if (f == F_NUMBER) { if (chance(50)) { a = outside(0, 1e30f); field = "static_friction"; } else { b = outside(0, 1e30f); field = "dynamic_friction"; } }
+            if (f == F_NUMBER && (isfinite(a) && a >= 0) && (isfinite(b) && b >= 0)) set_r = id_r;
+            CALL(hearth_shape_set_friction(w, s, a, b), set_r, set_r == HEARTH_ERROR_INVALID_ARGUMENT ? field : NULL, NULL, 0);
+            break;
+        }
+        case 1: { CALL(hearth_shape_get_friction(w, s, nul ? NULL : &out.x[0], &out.x[1]), get_r, NULL, &out, sizeof out); break; }
+        case 2: {
+            float x = f == F_NUMBER ? outside(0, 1) : frange(0, 1);
+            CALL(hearth_shape_set_restitution(w, s, x), set_r, "restitution", NULL, 0);
+            break;
+        }
+        case 3: { CALL(hearth_shape_get_restitution(w, s, nul ? NULL : &out.x[0]), get_r, NULL, &out, sizeof out); break; }
+        case 4: {
+            float x = f == F_NUMBER ? outside(0, 1) : frange(0, 1);
+            CALL(hearth_shape_set_rolling_resistance(w, s, x), set_r, "rolling_resistance", NULL, 0);
+            break;
+        }
+        case 5: { CALL(hearth_shape_get_rolling_resistance(w, s, nul ? NULL : &out.x[0]), get_r, NULL, &out, sizeof out); break; }
+        case 6: {
+            float x = f == F_NUMBER ? outside(0, 1) : frange(0, 1);
+            CALL(hearth_shape_set_torsional_friction(w, s, x), set_r, "torsional_friction", NULL, 0);
+            break;
+        }
+        case 7: { CALL(hearth_shape_get_torsional_friction(w, s, nul ? NULL : &out.x[0]), get_r, NULL, &out, sizeof out); break; }
+        case 8: {
+            float x = f == F_NUMBER ? (chance(50) ? nonfinite() : (chance(50) ? -1.0f : MAX_DENSITY * 1.01f)) : frange(MIN_DENSITY, 3000.0f);
+            CALL(hearth_shape_set_density(w, s, x), set_r, "density", NULL, 0);
+            break;
+        }
+        case 9: { CALL(hearth_shape_get_density(w, s, nul ? NULL : &out.x[0]), get_r, NULL, &out, sizeof out);
+            if (r == HEARTH_OK && !(out.x[0] >= 0)) fail("shape density", "negative or NaN");
+            break; }
+        case 10: { if (f == F_NUMBER) return; CALL(hearth_shape_set_user_data(w, s, next_u64()), id_r, NULL, NULL, 0); break; }
+        default: { CALL(hearth_shape_get_user_data(w, s, nul ? NULL : &out.u64), get_r, NULL, &out, sizeof out); break; }
+        }
+    } else {
+        HearthBodyId b;
+        Obj *o;
+        HearthResult id_r = target_body(fw, f == F_NULL_WORLD || f == F_ID ? f : F_NONE, &b, &o);
+        HearthResult get_r = f == F_NULL_OUT && id_r != HEARTH_ERROR_NULL_POINTER ? HEARTH_ERROR_NULL_POINTER : id_r;
+        HearthResult set_r = f == F_NUMBER && id_r == HEARTH_OK ? HEARTH_ERROR_INVALID_ARGUMENT : id_r;
+        int nul = f == F_NULL_OUT;
+        switch (rnd(9)) {
+        case 0: {
+            float x = f == F_NUMBER ? outside(-MAX_GRAVITY_SCALE, MAX_GRAVITY_SCALE) : frange(-2, 2);
+            CALL(hearth_body_set_gravity_scale(w, b, x), set_r, "gravity_scale", NULL, 0);
+            break;
+        }
+        case 1: { CALL(hearth_body_get_gravity_scale(w, b, nul ? NULL : &out.x[0]), get_r, NULL, &out, sizeof out); break; }
+        case 2: {
+            HearthMassData d;
+            d.mass = frange(0.1f, 100.0f);
+            d.center = vec(frange(-1, 1), frange(-1, 1), frange(-1, 1));
+            d.inertia = vec(frange(0.01f, 10), frange(0.01f, 10), frange(0.01f, 10));
+            const char *field = NULL;
+            if (f == F_NUMBER) {
+                switch (rnd(3)) {
+                case 0: d.mass = chance(50) ? nonfinite() : (chance(50) ? 0.0f : -1.0f); field = "mass"; break;
+                case 1: d.center = bad_position(); field = "center"; break;
+                default: d.inertia.y = chance(50) ? nonfinite() : 0.0f; field = "inertia.y"; break;
+                }
+            }
+            HearthResult e = f == F_NULL_IN && id_r != HEARTH_ERROR_NULL_POINTER ? HEARTH_ERROR_NULL_POINTER : set_r;
+            CALL(hearth_body_set_mass_data(w, b, f == F_NULL_IN ? NULL : &d), e, field, NULL, 0);
+            break;
+        }
+        case 3: { CALL(hearth_body_get_mass_data(w, b, nul ? NULL : &out.m), get_r, NULL, &out, sizeof out);
+            if (r == HEARTH_OK && !(out.m.mass >= 0 && finite3(out.m.center) && finite3(out.m.inertia))) fail("mass data", "not finite");
+            break; }
+        case 4: { if (f == F_NUMBER) return; CALL(hearth_body_reset_mass_data(w, b), id_r, NULL, NULL, 0); break; }
+        case 5: {
+            uint32_t t = o ? o->meta : HEARTH_BODY_DYNAMIC;
+            HearthResult e = id_r;
+            /* The code is checked before the id. */
+            if (f == F_CODE) { t = 3 + rnd(1000); e = HEARTH_ERROR_INVALID_ARGUMENT; }
+            CALL(hearth_body_set_type(w, b, t), e, f == F_CODE ? "type" : NULL, NULL, 0);
+            break;
+        }
+        case 6: {
+            if (f == F_NUMBER) return;
+            CALL(hearth_body_disable(w, b), id_r, NULL, NULL, 0);
+            if (r == HEARTH_OK) {
+                bool on = true;
+                ENSURE_OK(hearth_body_is_enabled(w, b, &on));
+                if (on) fail("body_disable", "still enabled");
+            }
+            { CALL(hearth_body_enable(w, b), id_r, NULL, NULL, 0); }
+            break;
+        }
+        case 7: { if (f == F_NUMBER) return; CALL(hearth_body_enable(w, b), id_r, NULL, NULL, 0); break; }
+        default: {
+            CALL(hearth_body_is_enabled(w, b, nul ? NULL : &out.flag), get_r, NULL, &out, sizeof out);
+            if (r == HEARTH_OK && !out.flag) fail("body_is_enabled", "a body is disabled outside op_setters");
+            break;
+        }
+        }
+        if (id_r == HEARTH_OK && f == F_NONE) check_state(fw, "after a runtime setter");
+    }
+}
+
+/* Debug draw: every callback counts; a draw with a fault draws nothing. */
+static long g_drawn;
+static void fz_segment(void *u, const HearthVec3 *a, const HearthVec3 *b, uint32_t c) { (void)u; (void)c; if (!finite3(*a) || !finite3(*b)) fail("draw", "segment not finite"); g_drawn++; }
+static void fz_polygon(void *u, const HearthVec3 *v, uint32_t n, uint32_t c) { (void)u; (void)c; for (uint32_t i = 0; i < n; i++) if (!finite3(v[i])) fail("draw", "polygon not finite"); if (n < 3) fail("draw", "polygon of fewer than 3 vertices"); g_drawn++; }
+static void fz_sphere(void *u, const HearthVec3 *p, float r, uint32_t c) { (void)u; (void)c; if (!finite3(*p) || !(r > 0)) fail("draw", "sphere"); g_drawn++; }
+static void fz_capsule(void *u, const HearthVec3 *a, const HearthVec3 *b, float r, uint32_t c) { (void)u; (void)c; (void)r; if (!finite3(*a) || !finite3(*b)) fail("draw", "capsule"); g_drawn++; }
+static void fz_transform(void *u, const HearthTransform *t) { (void)u; if (!finite3(t->position)) fail("draw", "transform"); g_drawn++; }
+static void fz_point(void *u, const HearthVec3 *p, float s, uint32_t c) { (void)u; (void)c; (void)s; if (!finite3(*p)) fail("draw", "point"); g_drawn++; }
+
+static void op_draw(FWorld *fw) {
+    FAULTS(F_NULL_WORLD, F_NULL_IN, F_COOKIE, F_FLAG);
+    HearthDebugDraw d = hearth_debug_draw_default();
+    mark("hearth_debug_draw_default");
+    if (chance(80)) d.draw_segment = fz_segment;
+    if (chance(80)) d.draw_polygon = fz_polygon;
+    if (chance(80)) d.draw_sphere = fz_sphere;
+    if (chance(80)) d.draw_capsule = fz_capsule;
+    if (chance(80)) d.draw_transform = fz_transform;
+    if (chance(80)) d.draw_point = fz_point;
+    d.draw_shapes = flag01();
+    d.draw_aabbs = flag01();
+    d.draw_contacts = flag01();
+    d.draw_joints = flag01();
+    d.draw_centers_of_mass = flag01();
+    const char *field = NULL;
+    HearthResult expected = HEARTH_OK;
+    switch (f) {
+    case F_NULL_WORLD: case F_NULL_IN: expected = HEARTH_ERROR_NULL_POINTER; break;
+    case F_COOKIE: d.internal_value = (uint32_t)next_u64(); if (d.internal_value == hearth_debug_draw_default().internal_value) d.internal_value ^= 1; expected = HEARTH_ERROR_INVALID_ARGUMENT; break;
+    case F_FLAG:
+        expected = HEARTH_ERROR_INVALID_ARGUMENT;
+        switch (rnd(5)) {
+        case 0: d.draw_shapes = bad_flag(); field = "draw_shapes"; break;
+        case 1: d.draw_aabbs = bad_flag(); field = "draw_aabbs"; break;
+        case 2: d.draw_contacts = bad_flag(); field = "draw_contacts"; break;
+        case 3: d.draw_joints = bad_flag(); field = "draw_joints"; break;
+        default: d.draw_centers_of_mass = bad_flag(); field = "draw_centers_of_mass"; break;
+        }
+        break;
+    default: break;
+    }
+    g_drawn = 0;
+    CALL(hearth_world_draw(W(fw, f), f == F_NULL_IN ? NULL : &d), expected, field, NULL, 0);
+    if (r != HEARTH_OK && g_drawn != 0) fail("hearth_world_draw", "a failing draw called a callback");
+}
+
 static void op_create_world(FWorld *fw) { (void)fw; op_world_create(); }
 static void op_destroy_world(FWorld *fw) { (void)fw; if (chance(30)) op_world_destroy(); }
 
@@ -3118,6 +3288,8 @@ static const Op OPS[] = {
     {"geometry_shape", op_geometry_shape, 2},
     {"query", op_query, 4},
     {"events", op_events, 2},
+    {"setters", op_setters, 4},
+    {"draw", op_draw, 2},
 };
 #define NOPS ((int)(sizeof OPS / sizeof OPS[0]))
 

@@ -1021,6 +1021,93 @@ static void test_events_and_step_callbacks() {
     p.clear_pre_solve();
     p.clear_pair_filter();
     p.step(DT);
+static void test_runtime_setters() {
+    hearth::World w = make_world(true);
+    add_ground(w);
+    hearth::Body b = w.create_body(hearth::BodyType::Dynamic, hearth::vec3(0, 5, 0));
+    hearth::Shape s = b.add(hearth::box(hearth::vec3(0.5f, 0.25f, 1.0f)), hearth::shape_def());
+    const float m0 = b.mass();
+    s.set_density(2000.0f);
+    CHECK(s.density() == 2000.0f);
+    CHECK(b.mass() == 2.0f * m0);
+    s.set_friction(0.75f, 0.25f);
+    CHECK(s.friction().first == 0.75f && s.friction().second == 0.25f);
+    s.set_restitution(0.5f);
+    s.set_rolling_resistance(0.25f);
+    s.set_torsional_friction(0.125f);
+    CHECK(s.restitution() == 0.5f && s.rolling_resistance() == 0.25f && s.torsional_friction() == 0.125f);
+    s.set_user_data(99);
+    CHECK(s.user_data() == 99);
+    CHECK_THROWS(s.set_density(-1.0f), hearth::Code::InvalidArgument);
+    CHECK_THROWS(s.set_friction(NaN, 0.1f), hearth::Code::InvalidArgument);
+    CHECK(s.density() == 2000.0f);
+
+    b.set_gravity_scale(0.0f);
+    CHECK(b.gravity_scale() == 0.0f);
+    for (int i = 0; i < 30; i++) w.step(DT);
+    CHECK(b.transform().position.y == 5.0f);
+    CHECK_THROWS(b.set_gravity_scale(INFINITY), hearth::Code::InvalidArgument);
+    hearth::MassData d{};
+    d.mass = 4.0f;
+    d.inertia = hearth::vec3(2, 4, 8);
+    b.set_mass_data(d);
+    CHECK(b.mass_data().mass == 4.0f && b.mass_data().inertia.z == 8.0f);
+    b.apply_linear_impulse(hearth::vec3(2, 0, 0));
+    CHECK(b.linear_velocity().x == 0.5f);
+    d.mass = 0.0f;
+    CHECK_THROWS(b.set_mass_data(d), hearth::Code::InvalidArgument);
+    b.reset_mass_data();
+    CHECK_NEAR(b.mass(), 2000.0, 1e-2);
+
+    b.set_type(hearth::BodyType::Static);
+    CHECK(b.type() == hearth::BodyType::Static && b.mass() == 0.0f);
+    CHECK_THROWS(b.set_type(static_cast<hearth::BodyType>(9)), hearth::Code::InvalidArgument);
+    b.set_type(hearth::BodyType::Dynamic);
+    b.set_gravity_scale(1.0f);
+    CHECK(b.is_enabled());
+    b.disable();
+    CHECK(!b.is_enabled());
+    for (int i = 0; i < 30; i++) w.step(DT);
+    CHECK(b.transform().position.y == 5.0f);
+    b.enable();
+    for (int i = 0; i < 240; i++) w.step(DT);
+    CHECK_NEAR(b.transform().position.y, 0.25, 0.01);
+}
+
+struct DrawCounts {
+    int polygons = 0, spheres = 0, segments = 0;
+    uint32_t sphere_color = 0;
+};
+
+static void test_debug_draw() {
+    hearth::World w = make_world(true);
+    add_ground(w);
+    hearth::Body b = w.create_body(hearth::BodyType::Dynamic, hearth::vec3(0, 3, 0));
+    b.add(hearth::sphere(0.5f), hearth::shape_def());
+    hearth::Body c = w.create_body(hearth::BodyType::Dynamic, hearth::vec3(3, 3, 0));
+    c.add(hearth::box(hearth::vec3(0.5f, 0.5f, 0.5f)), hearth::shape_def());
+    DrawCounts n;
+    hearth::DebugDraw d = hearth::debug_draw();
+    d.user_data = &n;
+    d.draw_shapes = 1;
+    d.draw_polygon = [](void *u, const HearthVec3 *, uint32_t, uint32_t) { static_cast<DrawCounts *>(u)->polygons++; };
+    d.draw_sphere = [](void *u, const HearthVec3 *, float, uint32_t color) {
+        static_cast<DrawCounts *>(u)->spheres++;
+        static_cast<DrawCounts *>(u)->sphere_color = color;
+    };
+    d.draw_segment = [](void *u, const HearthVec3 *, const HearthVec3 *, uint32_t) {
+        static_cast<DrawCounts *>(u)->segments++;
+    };
+    w.draw(d);
+    CHECK(n.polygons == 7 && n.spheres == 1 && n.segments == 0); // plane patch + six box faces
+    CHECK(n.sphere_color == 0xE68C33FFu);
+    n = DrawCounts();
+    d.draw_shapes = 0;
+    d.draw_aabbs = 1;
+    w.draw(d);
+    CHECK(n.segments == 24 && n.polygons == 0);
+    d.draw_aabbs = 3;
+    CHECK_THROWS(w.draw(d), hearth::Code::InvalidArgument);
 }
 
 static void run_throwing_tests() {
@@ -1028,6 +1115,8 @@ static void run_throwing_tests() {
     test_box_rests_on_plane();
     test_errors_as_exceptions();
     test_rolling_resistance_and_torsional_friction();
+    test_runtime_setters();
+    test_debug_draw();
     test_move_semantics();
     test_lambda_force_hovers();
     test_lambda_exception_rethrown_by_step();

@@ -405,6 +405,109 @@ internal static class HearthTests
         }
     }
 
+    private static void TestRuntimeSetters()
+    {
+        using (var world = new World())
+        {
+            Ground(world);
+            Body body = DynamicBox(world, new Vec3(0f, 5f, 0f), 0.5f);
+            Shape shape = body.CreateSphere(new Sphere(Vec3.Zero, 0.25f));
+            float m0 = body.Mass;
+            shape.Density = 0f;
+            Equal(shape.Density, 0f, "density set");
+            Ensure(body.Mass < m0, "a massless sphere lowers the mass");
+            shape.SetFriction(0.75f, 0.25f);
+            float fs, fd;
+            shape.GetFriction(out fs, out fd);
+            Equal(fs, 0.75f, "static friction");
+            Equal(fd, 0.25f, "dynamic friction");
+            shape.Restitution = 0.5f;
+            shape.RollingResistance = 0.25f;
+            shape.TorsionalFriction = 0.125f;
+            shape.UserData = 42UL;
+            Equal(shape.Restitution, 0.5f, "restitution");
+            Equal(shape.RollingResistance, 0.25f, "rolling resistance");
+            Equal(shape.TorsionalFriction, 0.125f, "torsional friction");
+            Equal(shape.UserData, 42UL, "shape user data");
+            Fails(Result.InvalidArgument, () => shape.Density = -1f, "negative density");
+            Fails(Result.InvalidArgument, () => shape.SetFriction(float.NaN, 0f), "NaN friction");
+            Equal(shape.Density, 0f, "density unchanged");
+
+            body.GravityScale = 0f;
+            Equal(body.GravityScale, 0f, "gravity scale");
+            for (int i = 0; i < 30; i++) world.Step(Dt);
+            Equal(body.Position.Y, 5f, "gravity scale 0 floats");
+            Fails(Result.InvalidArgument, () => body.GravityScale = float.PositiveInfinity, "infinite gravity scale");
+            body.MassData = new MassData(4f, Vec3.Zero, new Vec3(2f, 4f, 8f));
+            Equal(body.MassData.Mass, 4f, "mass override");
+            body.ApplyLinearImpulse(new Vec3(2f, 0f, 0f));
+            Equal(body.LinearVelocity.X, 0.5f, "dv = J/m");
+            Fails(Result.InvalidArgument, () => body.MassData = new MassData(0f, Vec3.Zero, new Vec3(1f, 1f, 1f)), "zero mass");
+            body.ResetMassData();
+            Near(body.Mass, 1000f, 1e-2f, "mass from the shapes again");
+
+            body.Type = BodyType.Static;
+            Equal(body.Type, BodyType.Static, "type set");
+            Equal(body.Mass, 0f, "static mass");
+            Fails(Result.InvalidArgument, () => body.Type = (BodyType)9, "bad type code");
+            body.Type = BodyType.Dynamic;
+            body.GravityScale = 1f;
+            Ensure(body.Enabled, "enabled at creation");
+            body.Enabled = false;
+            Ensure(!body.Enabled, "disabled");
+            float y = body.Position.Y;
+            for (int i = 0; i < 30; i++) world.Step(Dt);
+            Equal(body.Position.Y, y, "a disabled body stays");
+            body.Enabled = true;
+            for (int i = 0; i < 240; i++) world.Step(Dt);
+            Near(body.Position.Y, 0.5f, 0.01f, "enabled, it falls to the ground");
+        }
+    }
+
+    private sealed class DrawCounter : IDebugDrawer
+    {
+        public int Segments, Polygons, Spheres, Capsules, Transforms, Points;
+        public uint SphereColor;
+        public bool Throw;
+        public void Segment(Vec3 a, Vec3 b, uint color) { Segments++; }
+        public void Polygon(Vec3[] vertices, uint color) { Polygons++; if (vertices.Length < 3) throw new Exception("short polygon"); }
+        public void Sphere(Vec3 center, float radius, uint color) { Spheres++; SphereColor = color; if (Throw) throw new InvalidOperationException("boom"); }
+        public void Capsule(Vec3 a, Vec3 b, float radius, uint color) { Capsules++; }
+        public void Transform(Transform t) { Transforms++; }
+        public void Point(Vec3 p, float size, uint color) { Points++; }
+    }
+
+    private static void TestDebugDraw()
+    {
+        using (var world = new World())
+        {
+            Ground(world);
+            Body box = DynamicBox(world, new Vec3(0f, 0.5f, 0f), 0.5f);
+            Body ball = DynamicSphere(world, new Vec3(3f, 0.5f, 0f), 0.5f);
+            var c = new DrawCounter();
+            world.Draw(c);
+            Equal(c.Polygons, 7, "plane patch and six box faces");
+            Equal(c.Spheres, 1, "one sphere");
+            Equal(c.SphereColor, 0xE68C33FFu, "awake colour");
+            for (int i = 0; i < 30; i++) world.Step(Dt);
+            c = new DrawCounter();
+            world.Draw(c, shapes: false, aabbs: true, centersOfMass: true);
+            Equal(c.Segments, 24, "two boxes of 12 segments");
+            Equal(c.Transforms, 2, "two centres of mass");
+            ball.IsAwake = false;
+            c = new DrawCounter();
+            world.Draw(c);
+            Equal(c.SphereColor, 0x8C7359FFu, "sleeping colour");
+            c = new DrawCounter { Throw = true };
+            Throws<InvalidOperationException>(() => world.Draw(c), "a drawer's exception is rethrown");
+            DebugDraw bad = DebugDraw.Default();
+            bad.DrawShapes = 2;
+            Fails(Result.InvalidArgument, () => world.Draw(bad), "flag 2");
+            world.Step(Dt); // not left locked
+            Ensure(box.Mass > 0f, "still usable");
+        }
+    }
+
     private static void TestBulkTransformsEqualSingleReads()
     {
         using (var world = new World())
@@ -1521,6 +1624,8 @@ internal static class HearthTests
             new KeyValuePair<string, Action>("box falls and rests on the plane", TestBoxFallsAndRestsOnThePlane),
             new KeyValuePair<string, Action>("free fall matches gravity", TestFreeFallMatchesGravity),
             new KeyValuePair<string, Action>("body setters and forces", TestBodySettersAndForces),
+            new KeyValuePair<string, Action>("runtime setters", TestRuntimeSetters),
+            new KeyValuePair<string, Action>("debug draw", TestDebugDraw),
             new KeyValuePair<string, Action>("bulk transforms equal single reads", TestBulkTransformsEqualSingleReads),
             new KeyValuePair<string, Action>("error paths", TestErrorPaths),
             new KeyValuePair<string, Action>("rolling resistance and torsional friction", TestRollingResistanceAndTorsionalFriction),

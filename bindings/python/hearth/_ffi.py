@@ -458,6 +458,14 @@ class HearthShapeDef(_Struct):
     ]
 
 
+class HearthMassData(_Struct):
+    _fields_ = [
+        ("mass", c_float),
+        ("center", HearthVec3),
+        ("inertia", HearthVec3),
+    ]
+
+
 class HearthSphere(_Struct):
     _fields_ = [
         ("center", HearthVec3),
@@ -631,6 +639,33 @@ class HearthWorldCounters(_Struct):
 # int32_t (*HearthRecordWriteFn)(void *user_data, const uint8_t *bytes, size_t len)
 HearthRecordWriteFn = CFUNCTYPE(c_int32, c_void_p, POINTER(c_uint8), c_size_t)
 
+# Debug draw (src/capi/draw.rs).
+HearthDrawSegment = CFUNCTYPE(None, c_void_p, POINTER(HearthVec3), POINTER(HearthVec3), c_uint32)
+HearthDrawPolygon = CFUNCTYPE(None, c_void_p, POINTER(HearthVec3), c_uint32, c_uint32)
+HearthDrawSphere = CFUNCTYPE(None, c_void_p, POINTER(HearthVec3), c_float, c_uint32)
+HearthDrawCapsule = CFUNCTYPE(None, c_void_p, POINTER(HearthVec3), POINTER(HearthVec3), c_float, c_uint32)
+HearthDrawTransform = CFUNCTYPE(None, c_void_p, POINTER(HearthTransform))
+HearthDrawPoint = CFUNCTYPE(None, c_void_p, POINTER(HearthVec3), c_float, c_uint32)
+
+
+class HearthDebugDraw(_Struct):
+    _fields_ = [
+        ("draw_segment", HearthDrawSegment),
+        ("draw_polygon", HearthDrawPolygon),
+        ("draw_sphere", HearthDrawSphere),
+        ("draw_capsule", HearthDrawCapsule),
+        ("draw_transform", HearthDrawTransform),
+        ("draw_point", HearthDrawPoint),
+        ("user_data", c_void_p),
+        ("draw_shapes", c_uint8),
+        ("draw_aabbs", c_uint8),
+        ("draw_contacts", c_uint8),
+        ("draw_joints", c_uint8),
+        ("draw_centers_of_mass", c_uint8),
+        ("internal_value", c_uint32),
+    ]
+
+
 
 class HearthRecordDef(_Struct):
     _fields_ = [
@@ -726,6 +761,28 @@ _fn(
 )
 _fn("hearth_body_set_awake", HearthResult, POINTER(HearthWorld), HearthBodyId, c_uint8)
 _fn("hearth_body_set_damping", HearthResult, POINTER(HearthWorld), HearthBodyId, c_float, c_float)
+_fn("hearth_debug_draw_default", HearthDebugDraw)
+_fn("hearth_world_draw", HearthResult, POINTER(HearthWorld), POINTER(HearthDebugDraw))
+# Runtime setters (src/capi/setters.rs).
+for _name in ("restitution", "rolling_resistance", "torsional_friction", "density"):
+    _fn(f"hearth_shape_set_{_name}", HearthResult, POINTER(HearthWorld), HearthShapeId, c_float)
+    _fn(f"hearth_shape_get_{_name}", HearthResult, POINTER(HearthWorld), HearthShapeId, POINTER(c_float))
+_fn("hearth_shape_set_friction", HearthResult, POINTER(HearthWorld), HearthShapeId, c_float, c_float)
+_fn(
+    "hearth_shape_get_friction", HearthResult, POINTER(HearthWorld), HearthShapeId, POINTER(c_float),
+    POINTER(c_float),
+)
+_fn("hearth_shape_set_user_data", HearthResult, POINTER(HearthWorld), HearthShapeId, c_uint64)
+_fn("hearth_shape_get_user_data", HearthResult, POINTER(HearthWorld), HearthShapeId, POINTER(c_uint64))
+_fn("hearth_body_set_gravity_scale", HearthResult, POINTER(HearthWorld), HearthBodyId, c_float)
+_fn("hearth_body_get_gravity_scale", HearthResult, POINTER(HearthWorld), HearthBodyId, POINTER(c_float))
+_fn("hearth_body_set_mass_data", HearthResult, POINTER(HearthWorld), HearthBodyId, POINTER(HearthMassData))
+_fn("hearth_body_get_mass_data", HearthResult, POINTER(HearthWorld), HearthBodyId, POINTER(HearthMassData))
+_fn("hearth_body_reset_mass_data", HearthResult, POINTER(HearthWorld), HearthBodyId)
+_fn("hearth_body_set_type", HearthResult, POINTER(HearthWorld), HearthBodyId, c_uint32)
+_fn("hearth_body_disable", HearthResult, POINTER(HearthWorld), HearthBodyId)
+_fn("hearth_body_enable", HearthResult, POINTER(HearthWorld), HearthBodyId)
+_fn("hearth_body_is_enabled", HearthResult, POINTER(HearthWorld), HearthBodyId, POINTER(c_bool))
 _fn("hearth_user_force_generator_def_default", HearthUserForceGeneratorDef)
 _fn(
     "hearth_generator_create_user_force", HearthResult, POINTER(HearthWorld),

@@ -189,3 +189,51 @@ def pre_solve_trampoline(world, callback):
             return 1
 
     return _ffi.HearthPreSolveCallback(trampoline)
+def draw(world, drawer, flags):
+    """`hearth_world_draw` through the methods of `drawer` (any of `segment(a, b, color)`,
+    `polygon(vertices, color)`, `sphere(center, radius, color)`, `capsule(a, b, radius,
+    color)`, `transform(position, rotation)`, `point(p, size, color)`; points as Vec3
+    tuples, colours as 0xRRGGBBAA). A missing method is a NULL callback. The first exception
+    a method raises is re-raised after the draw (later primitives are skipped)."""
+    from ._convert import from_quat, from_vec3
+
+    failure = []
+    d = lib.hearth_debug_draw_default()
+
+    def guarded(fn):
+        def call(*args):
+            if failure:
+                return
+            try:
+                fn(*args)
+            except BaseException as e:  # noqa: BLE001 - nothing may cross into C
+                failure.append(e)
+
+        return call
+
+    keep = []
+
+    def bind(field, method, make):
+        fn = getattr(drawer, method, None)
+        if fn is not None:
+            cb = make(fn)
+            keep.append(cb)
+            setattr(d, field, cb)
+
+    bind("draw_segment", "segment", lambda f: _ffi.HearthDrawSegment(
+        guarded(lambda _u, a, b, c: f(from_vec3(a.contents), from_vec3(b.contents), c))))
+    bind("draw_polygon", "polygon", lambda f: _ffi.HearthDrawPolygon(
+        guarded(lambda _u, v, n, c: f([from_vec3(v[i]) for i in range(n)], c))))
+    bind("draw_sphere", "sphere", lambda f: _ffi.HearthDrawSphere(
+        guarded(lambda _u, p, r, c: f(from_vec3(p.contents), r, c))))
+    bind("draw_capsule", "capsule", lambda f: _ffi.HearthDrawCapsule(
+        guarded(lambda _u, a, b, r, c: f(from_vec3(a.contents), from_vec3(b.contents), r, c))))
+    bind("draw_transform", "transform", lambda f: _ffi.HearthDrawTransform(
+        guarded(lambda _u, t: f(from_vec3(t.contents.position), from_quat(t.contents.rotation)))))
+    bind("draw_point", "point", lambda f: _ffi.HearthDrawPoint(
+        guarded(lambda _u, p, s, c: f(from_vec3(p.contents), s, c))))
+    for name, value in flags.items():
+        setattr(d, "draw_" + name, int(value))
+    lib.hearth_world_draw(world._ptr, byref(d))
+    if failure:
+        raise failure[0]

@@ -231,6 +231,53 @@ class Body(_Handle):
     def set_damping(self, linear_damping, angular_damping):
         lib.hearth_body_set_damping(self._w, self._id, linear_damping, angular_damping)
 
+    # -- runtime setters (each with its getter)
+    @type.setter
+    def type(self, value):
+        """`hearth_body_set_type`: a BodyType or its name ("static", "kinematic", "dynamic")."""
+        if isinstance(value, str):
+            value = BodyType[value.upper()]
+        lib.hearth_body_set_type(self._w, self._id, int(value))
+
+    @property
+    def gravity_scale(self):
+        out = ctypes.c_float()
+        lib.hearth_body_get_gravity_scale(self._w, self._id, byref(out))
+        return out.value
+
+    @gravity_scale.setter
+    def gravity_scale(self, value):
+        lib.hearth_body_set_gravity_scale(self._w, self._id, value)
+
+    @property
+    def mass_data(self):
+        """(mass kg, centre of mass in the body frame, diagonal of the inertia kg·m²)."""
+        out = _ffi.HearthMassData()
+        lib.hearth_body_get_mass_data(self._w, self._id, byref(out))
+        return out.mass, from_vec3(out.center), from_vec3(out.inertia)
+
+    def set_mass_data(self, mass, center, inertia):
+        """`hearth_body_set_mass_data`: overrides mass, centre and principal inertia."""
+        data = _ffi.HearthMassData(mass, to_vec3(center), to_vec3(inertia))
+        lib.hearth_body_set_mass_data(self._w, self._id, byref(data))
+
+    def reset_mass_data(self):
+        lib.hearth_body_reset_mass_data(self._w, self._id)
+
+    @property
+    def enabled(self):
+        out = ctypes.c_bool()
+        lib.hearth_body_is_enabled(self._w, self._id, byref(out))
+        return out.value
+
+    @enabled.setter
+    def enabled(self, value):
+        """`hearth_body_enable` (True) / `hearth_body_disable` (False)."""
+        if value:
+            lib.hearth_body_enable(self._w, self._id)
+        else:
+            lib.hearth_body_disable(self._w, self._id)
+
     def apply_force(self, force):
         lib.hearth_body_apply_force(self._w, self._id, to_vec3(force))
 
@@ -307,6 +354,65 @@ class Shape(_Handle):
         out = _ffi.HearthBodyId()
         lib.hearth_shape_get_body(self._w, self._id, byref(out))
         return Body(self.world, out)
+
+    def _get_float(self, getter):
+        out = ctypes.c_float()
+        getter(self._w, self._id, byref(out))
+        return out.value
+
+    @property
+    def friction(self):
+        """(static, dynamic) friction coefficients; set with a pair or one number for both."""
+        s, d = ctypes.c_float(), ctypes.c_float()
+        lib.hearth_shape_get_friction(self._w, self._id, byref(s), byref(d))
+        return s.value, d.value
+
+    @friction.setter
+    def friction(self, value):
+        s, d = (value, value) if isinstance(value, (int, float)) else value
+        lib.hearth_shape_set_friction(self._w, self._id, s, d)
+
+    @property
+    def restitution(self):
+        return self._get_float(lib.hearth_shape_get_restitution)
+
+    @restitution.setter
+    def restitution(self, value):
+        lib.hearth_shape_set_restitution(self._w, self._id, value)
+
+    @property
+    def rolling_resistance(self):
+        return self._get_float(lib.hearth_shape_get_rolling_resistance)
+
+    @rolling_resistance.setter
+    def rolling_resistance(self, value):
+        lib.hearth_shape_set_rolling_resistance(self._w, self._id, value)
+
+    @property
+    def torsional_friction(self):
+        return self._get_float(lib.hearth_shape_get_torsional_friction)
+
+    @torsional_friction.setter
+    def torsional_friction(self, value):
+        lib.hearth_shape_set_torsional_friction(self._w, self._id, value)
+
+    @property
+    def density(self):
+        return self._get_float(lib.hearth_shape_get_density)
+
+    @density.setter
+    def density(self, value):
+        lib.hearth_shape_set_density(self._w, self._id, value)
+
+    @property
+    def user_data(self):
+        out = ctypes.c_uint64()
+        lib.hearth_shape_get_user_data(self._w, self._id, byref(out))
+        return out.value
+
+    @user_data.setter
+    def user_data(self, value):
+        lib.hearth_shape_set_user_data(self._w, self._id, value)
 
     def destroy(self):
         lib.hearth_shape_destroy(self._w, self._id)

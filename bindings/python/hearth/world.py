@@ -184,6 +184,14 @@ class World:
             if not self._stepping:
                 self._record_write = None
 
+    def draw(self, drawer, shapes=True, aabbs=False, contacts=False, joints=False, centers_of_mass=False):
+        """`hearth_world_draw`: describes the world to `drawer` (see `hearth.callbacks.draw`) as the
+        flags ask. Colours are 0xRRGGBBAA (`HearthDebugDraw` in include/hearth.h lists them)."""
+        from .callbacks import draw
+
+        flags = dict(shapes=shapes, aabbs=aabbs, contacts=contacts, joints=joints, centers_of_mass=centers_of_mass)
+        draw(self, drawer, flags)
+
     def _callback_failed(self, error):
         if self._callback_error is None:
             self._callback_error = error

@@ -396,6 +396,10 @@ pub fn prepare(world: &mut World, h: f32) {
             continue;
         }
         let ba = bodies.at(joint.a);
+        // A joint to a disabled body is inactive until the body is enabled again.
+        if !ba.enabled || (joint.b != NONE && !bodies.at(joint.b).enabled) {
+            continue;
+        }
         let ia = if ba.awake { ba.solver_index } else { 0 };
         let (ib, center_b, frame_b) = if joint.b == NONE {
             (0, Vec3::ZERO, joint.def.frame_b)
