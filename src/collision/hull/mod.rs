@@ -343,9 +343,9 @@ impl ConvexHull {
     pub(crate) fn min_dot(&self, d: Vec3) -> f32 {
         let mut m = [f32::MAX; 4];
         for b in &self.lanes {
-            for k in 0..4 {
+            for (k, mk) in m.iter_mut().enumerate() {
                 let x = d.x * b.x[k] + d.y * b.y[k] + d.z * b.z[k];
-                m[k] = if x < m[k] { x } else { m[k] };
+                *mk = if x < *mk { x } else { *mk };
             }
         }
         let lo = if m[1] < m[0] { m[1] } else { m[0] };
