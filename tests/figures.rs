@@ -1,8 +1,8 @@
 //! Every documented number is an asserted number.
 //!
 //! `FIGURES` lists each figure with a unit (a number followed by %, m, mm, s, J, N·m, ...)
-//! that README.md, ARCHITECTURE.md or the header's doc comments (`include/hearth.h`, made from
-//! `src/capi/*.rs` and `build.rs`) state, with what backs it:
+//! that README.md, ARCHITECTURE.md, docs/comparison.md or the header's doc comments
+//! (`include/hearth.h`, made from `src/capi/*.rs` and `build.rs`) state, with what backs it:
 //!
 //! * `Measured`: the test(s) asserting it at the stated precision. The test must exist and
 //!   its doc comment or body must mention the figure's number (the bound, or a comment
@@ -40,6 +40,8 @@ use Backing::*;
 const R: &str = "README.md";
 const A: &str = "ARCHITECTURE.md";
 const H: &str = "include/hearth.h";
+/// The side-by-side comparison with Rapier (issue 13): every figure in it is a Bench.
+const C: &str = "docs/comparison.md";
 
 /// (document, figure as scanned: number, one space, unit; backing). Tests are named
 /// `file::function` under `tests/`.
@@ -224,6 +226,14 @@ const FIGURES: &[(&str, &str, Backing)] = &[
     (R, "10.8 M", Bench),
     (R, "2.8 %", Bench),
     (R, "33 M", Bench),
+    // docs/comparison.md: Hearth and Rapier side by side on the hull and terrain scenes.
+    (C, "257 ×", Bench),
+    (C, "71.2 M", Bench),
+    (C, "45.1 M", Bench),
+    (C, "37 %", Bench),
+    (C, "32.5 M", Bench),
+    (C, "34.2 M", Bench),
+    (C, "0.1 %", Bench),
     // README: rolling resistance and torsional friction (tests/rolling.rs).
     (
         R,
@@ -640,7 +650,7 @@ fn every_documented_figure_is_listed() {
             problems.push(format!("{doc}: {figure:?} listed twice"));
         }
     }
-    for doc in [R, A, H] {
+    for doc in [R, A, H, C] {
         let text = std::fs::read_to_string(root().join(doc)).unwrap();
         let found: BTreeSet<String> = scan(&text).into_iter().collect();
         for figure in &found {

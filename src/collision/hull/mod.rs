@@ -91,6 +91,17 @@ pub struct ConvexHull {
     pub(crate) max: Vec3,
     /// Radius about `unit_mass.center` that bounds the core.
     pub(crate) bound_radius: f32,
+    /// The vertices again, four at a time by coordinate (the last block padded with copies
+    /// of the last vertex), for `min_dot`.
+    pub(crate) lanes: Vec<VertexLanes>,
+}
+
+/// Four vertices by coordinate.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct VertexLanes {
+    pub x: [f32; 4],
+    pub y: [f32; 4],
+    pub z: [f32; 4],
 }
 
 impl ConvexHull {
@@ -161,7 +172,20 @@ impl ConvexHull {
             min: Vec3::ZERO,
             max: Vec3::ZERO,
             bound_radius: 0.0,
+            lanes: Vec::new(),
         };
+        hull.lanes = hull
+            .vertices
+            .chunks(4)
+            .map(|c| {
+                let at = |k: usize| c[k.min(c.len() - 1)];
+                VertexLanes {
+                    x: [at(0).x, at(1).x, at(2).x, at(3).x],
+                    y: [at(0).y, at(1).y, at(2).y, at(3).y],
+                    z: [at(0).z, at(1).z, at(2).z, at(3).z],
+                }
+            })
+            .collect();
         hull.planes = (0..hull.faces.len()).map(|f| hull.fit_plane(f)).collect();
         hull.edge_directions = hull.distinct_edge_directions();
         hull.edge_gauss = hull
@@ -309,6 +333,28 @@ impl ConvexHull {
             }
         }
         best
+    }
+
+    /// Smallest `d · v` over the vertices: the support distance along `−d`, negated. The
+    /// vertices are taken four at a time in independent lanes (vectorised), each lane
+    /// keeping its own minimum; a minimum does not depend on the order, so the result is
+    /// the same on every path.
+    #[inline]
+    pub(crate) fn min_dot(&self, d: Vec3) -> f32 {
+        let mut m = [f32::MAX; 4];
+        for b in &self.lanes {
+            for (k, mk) in m.iter_mut().enumerate() {
+                let x = d.x * b.x[k] + d.y * b.y[k] + d.z * b.z[k];
+                *mk = if x < *mk { x } else { *mk };
+            }
+        }
+        let lo = if m[1] < m[0] { m[1] } else { m[0] };
+        let hi = if m[3] < m[2] { m[3] } else { m[2] };
+        if hi < lo {
+            hi
+        } else {
+            lo
+        }
     }
 
     /// Radius about the centre of mass that bounds the core.

@@ -6,8 +6,13 @@
 //! 1. **Cached axis.** The feature that decided last time (`SatCache`: a face of A, a face
 //!    of B or an edge pair) is tried first; if it still separates the shapes by more than
 //!    the speculative distance, there is no contact and nothing else is computed.
-//! 2. **Face axes** of A (B's support point against each plane) and of B.
-//! 3. **Edge pairs** only where the two edges' arcs on the Gauss map cross (the pair
+//! 2. **Face axes** of A (B's least projection on each plane, four vertices at a time:
+//!    `ConvexHull::min_dot`) and of B.
+//! 3. **GJK bound.** GJK's distance (or its overlap verdict) bounds every axis's
+//!    separation from above; when it leaves no room for an edge axis to end the test or
+//!    to beat the best face by the edge slack, the edge loop below is skipped (same result,
+//!    most resting and face-closest pairs).
+//! 4. **Edge pairs** only where the two edges' arcs on the Gauss map cross (the pair
 //!    builds a face of the Minkowski difference — four dot products reject the rest): the
 //!    axis is the cross product, oriented out of A, and the separation is measured between
 //!    the two edges.
@@ -53,18 +58,21 @@ const EDGE_ABS_TOL: f32 = 0.002;
 /// Separated cores: GJK's distance replaces the best axis when larger by this slack.
 const GJK_REL_TOL: f32 = 0.02;
 const GJK_ABS_TOL: f32 = 0.001;
+/// What GJK's overlap verdict leaves as a possible separation (its termination tolerance is
+/// 1e-7 m; this is far above it and far below `EDGE_ABS_TOL`).
+const GJK_OVERLAP_BOUND: f32 = 1.0e-5;
 
 const KIND_FACE_A: u32 = 1;
 const KIND_FACE_B: u32 = 2;
 const KIND_EDGE: u32 = 3;
 const KIND_GJK: u32 = 4;
 
-/// Separation of B from face `f` of A (A's frame).
+/// Separation of B from face `f` of A (A's frame): the least `n · (R·v + t) − offset`
+/// over B's vertices `v`, taken as `(Rᵀn) · v` in B's frame.
 #[inline(always)]
 fn face_a_separation(a: &Poly, b: &Poly, rel: &Relative, f: usize) -> f32 {
     let pl = a.plane(f);
-    let i = b.support_index(rel.rt * -pl.normal);
-    pl.normal.dot(rel.r * b.vertex(i) + rel.t) - pl.offset
+    b.hull.min_dot((rel.rt * pl.normal) * b.scale) + pl.normal.dot(rel.t) - pl.offset
 }
 
 /// Separation of A from face `f` of B (B's plane in A's frame).
@@ -73,8 +81,7 @@ fn face_b_separation(a: &Poly, b: &Poly, rel: &Relative, f: usize) -> f32 {
     let pl = b.plane(f);
     let n = rel.r * pl.normal;
     let d = pl.offset + n.dot(rel.t);
-    let i = a.support_index(-n);
-    n.dot(a.vertex(i)) - d
+    a.hull.min_dot(n * a.scale) - d
 }
 
 /// An edge pair's axis (out of A) and separation, `None` when parallel.
@@ -162,9 +169,29 @@ pub(crate) fn hull_hull(a: &Poly, b: &Poly, speculative: f32, cache: &mut SatCac
             face_b = f;
         }
     }
+    // GJK from the best face's normal bounds every axis's separation from above: the
+    // distance it returns is that of a point of the Minkowski difference (never less than
+    // the true distance), and on overlap every axis separates by at most rounding. When
+    // that bound is below both the speculative limit and the margin an edge axis needs to
+    // replace the best face, no edge pair can end the test or decide the contact, and the
+    // edge loop (the cost of the test, |edges A| × |edges B|) is skipped with the same
+    // result: resting contacts with shallow overlap and separated pairs whose closest
+    // features are faces.
+    let use_b = sep_b > sep_a + FACE_REL_TOL * sep_a.abs() + FACE_ABS_TOL;
+    let best_face = if use_b { sep_b } else { sep_a };
+    let face_start = if use_b {
+        -(rel.r * b.plane(face_b).normal)
+    } else {
+        a.plane(face_a).normal
+    };
+    let g = gjk::distance_from(&Own(a), &InA { poly: b, rel }, face_start);
+    let upper = if g.overlap { GJK_OVERLAP_BOUND } else { g.distance };
+    let edge_margin = best_face + EDGE_REL_TOL * best_face.abs() + EDGE_ABS_TOL;
+    let edges_can_matter = upper > edge_margin || upper > limit;
     // Edge pairs that build a Minkowski face.
     let (mut sep_e, mut edges, mut edge_dir) = (f32::MIN, (usize::MAX, usize::MAX), Vec3::ZERO);
-    for (kb, gb) in b.hull.edge_gauss.iter().enumerate() {
+    let b_edges = if edges_can_matter { &b.hull.edge_gauss[..] } else { &[] };
+    for (kb, gb) in b_edges.iter().enumerate() {
         // B's arc, negated (Minkowski difference A − B), in A's frame.
         let c = -(rel.r * gb.n1);
         let d = -(rel.r * gb.n2);
@@ -206,9 +233,8 @@ pub(crate) fn hull_hull(a: &Poly, b: &Poly, speculative: f32, cache: &mut SatCac
         }
     }
 
-    let use_b = sep_b > sep_a + FACE_REL_TOL * sep_a.abs() + FACE_ABS_TOL;
-    let mut best = if use_b { sep_b } else { sep_a };
-    let use_edge = edges.0 != usize::MAX && sep_e > best + EDGE_REL_TOL * best.abs() + EDGE_ABS_TOL;
+    let mut best = best_face;
+    let use_edge = edges.0 != usize::MAX && sep_e > edge_margin;
     *cache = if use_edge {
         best = sep_e;
         SatCache::Edges(edges.0 as u16, edges.1 as u16)
@@ -219,12 +245,12 @@ pub(crate) fn hull_hull(a: &Poly, b: &Poly, speculative: f32, cache: &mut SatCac
     };
 
     if best > 0.0 {
-        let start = match *cache {
-            SatCache::FaceB(f) => -(rel.r * b.plane(f as usize).normal),
-            SatCache::Edges(..) => edge_dir,
-            _ => a.plane(face_a).normal,
+        // GJK again only when an edge decided (started from its axis, as the faces' was).
+        let g = if use_edge {
+            gjk::distance_from(&Own(a), &InA { poly: b, rel }, edge_dir)
+        } else {
+            g
         };
-        let g = gjk::distance_from(&Own(a), &InA { poly: b, rel }, start);
         if !g.overlap && g.distance > best + GJK_REL_TOL * best + GJK_ABS_TOL {
             return one_point(
                 a.world_point(g.point_a),
@@ -391,4 +417,74 @@ fn face_contact(refp: &Poly, inc: &Poly, rel: &Relative, face: usize, speculativ
     }
     let normal = refp.rot * if flipped { -n } else { n };
     cands.finish(normal, |x| refp.world_point(x))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::collision::hull::builder::{build, HullSettings};
+    use crate::math::{Quat, Transform};
+
+    /// The bound that lets `hull_hull` skip its edge loop: for random hull pairs, from
+    /// 5 cm overlap to 10 cm apart, no axis — every edge pair's cross product and random
+    /// directions — separates the cores by more than GJK's distance (or its overlap bound).
+    #[test]
+    fn gjk_bounds_every_axis_separation() {
+        let mut s = 0x2545_f491_4f6c_dd1du64;
+        let mut rnd = move || {
+            s ^= s << 13;
+            s ^= s >> 7;
+            s ^= s << 17;
+            (s >> 40) as f32 / (1u64 << 24) as f32
+        };
+        let cloud = |rnd: &mut dyn FnMut() -> f32| -> Vec<Vec3> {
+            let n = 8 + (rnd() * 16.0) as usize;
+            (0..n)
+                .map(|_| Vec3::new(rnd() - 0.5, rnd() - 0.5, rnd() - 0.5) * Vec3::new(0.8, 0.6, 0.7))
+                .collect()
+        };
+        let mut checked = 0;
+        for _ in 0..300 {
+            let ha = build(&cloud(&mut rnd), &HullSettings::default()).unwrap();
+            let hb = build(&cloud(&mut rnd), &HullSettings::default()).unwrap();
+            let quat = |rnd: &mut dyn FnMut() -> f32| {
+                Quat::from_xyzw(rnd() - 0.5, rnd() - 0.5, rnd() - 0.5, rnd() - 0.5).normalize()
+            };
+            let xa = Transform::new(Vec3::ZERO, quat(&mut rnd));
+            let dir = Vec3::new(rnd() - 0.5, rnd() - 0.5, rnd() - 0.5).normalize();
+            let xb = Transform::new(dir * (0.3 + 0.5 * rnd()), quat(&mut rnd));
+            let a = Poly::hull(&ha, &Transform::IDENTITY, 1.0, &xa);
+            let b = Poly::hull(&hb, &Transform::IDENTITY, 1.0, &xb);
+            let rel = Relative::new(&a, &b);
+            let g = gjk::distance_from(&Own(&a), &InA { poly: &b, rel }, Vec3::Y);
+            let upper = if g.overlap { GJK_OVERLAP_BOUND } else { g.distance };
+            if !(-0.05..=0.1).contains(&upper) && !g.overlap {
+                continue;
+            }
+            checked += 1;
+            let mut worst = f32::MIN;
+            for ka in 0..ha.edge_gauss.len() {
+                for kb in 0..hb.edge_gauss.len() {
+                    if let Some((axis, _)) = edge_pair(&a, &b, &rel, ka, kb) {
+                        worst = worst.max(support_separation(&a, &b, &rel, axis));
+                    }
+                }
+            }
+            for _ in 0..64 {
+                let axis = Vec3::new(rnd() - 0.5, rnd() - 0.5, rnd() - 0.5).normalize();
+                worst = worst.max(support_separation(&a, &b, &rel, axis));
+            }
+            for f in 0..ha.planes.len() {
+                worst = worst.max(face_a_separation(&a, &b, &rel, f));
+            }
+            for f in 0..hb.planes.len() {
+                worst = worst.max(face_b_separation(&a, &b, &rel, f));
+            }
+            assert!(
+                worst <= upper + 1.0e-6,
+                "axis separation {worst} over GJK's bound {upper}"
+            );
+        }
+        assert!(checked > 100, "only {checked} pairs in range");
+    }
 }
