@@ -558,6 +558,109 @@ typedef struct HearthGeneratedContact {
 } HearthGeneratedContact;
 
 /**
+ * Draws a segment from `a` to `b` (world space, m). `color` is `0xRRGGBBAA`.
+ */
+typedef void (*HearthDrawSegment)(void *user_data,
+                                  const struct HearthVec3 *a,
+                                  const struct HearthVec3 *b,
+                                  uint32_t color);
+
+/**
+ * Draws a convex planar polygon (a face; three vertices for a triangle), its `count`
+ * vertices in order. The array is valid only during the call.
+ */
+typedef void (*HearthDrawPolygon)(void *user_data,
+                                  const struct HearthVec3 *vertices,
+                                  uint32_t count,
+                                  uint32_t color);
+
+/**
+ * Draws a sphere.
+ */
+typedef void (*HearthDrawSphere)(void *user_data,
+                                 const struct HearthVec3 *center,
+                                 float radius,
+                                 uint32_t color);
+
+/**
+ * Draws the segment `a`–`b` swept by `radius`.
+ */
+typedef void (*HearthDrawCapsule)(void *user_data,
+                                  const struct HearthVec3 *a,
+                                  const struct HearthVec3 *b,
+                                  float radius,
+                                  uint32_t color);
+
+/**
+ * Draws a frame: its origin and axes (a centre of mass and the body's orientation).
+ */
+typedef void (*HearthDrawTransform)(void *user_data, const struct HearthTransform *transform);
+
+/**
+ * Draws a point of `size` (m): a contact point or a joint anchor.
+ */
+typedef void (*HearthDrawPoint)(void *user_data,
+                                const struct HearthVec3 *point,
+                                float size,
+                                uint32_t color);
+
+/**
+ * Debug draw: callbacks for each primitive (any may be NULL: that primitive is skipped),
+ * what to draw, and `user_data` handed to every callback. Get one from
+ * `hearth_debug_draw_default()` (every flag 0, no callbacks), then edit it. The pointers a
+ * callback receives are valid only during that call. Callbacks run on the calling thread,
+ * inside `hearth_world_draw`; the world is locked meanwhile (reads work; changes, steps and
+ * destroying the world are refused).
+ *
+ * Colours (`0xRRGGBBAA`): shapes by their body's state — static 0x8C8C8CFF, kinematic
+ * 0x4C8CE6FF, awake dynamic 0xE68C33FF, sleeping dynamic 0x8C7359FF; AABBs 0xCC33CCFF;
+ * contact points 0xE63333FF, normals 0x33CC33FF, impulses 0xE6E633FF; joints 0x33CCCCFF.
+ */
+typedef struct HearthDebugDraw {
+    HearthDrawSegment draw_segment;
+    HearthDrawPolygon draw_polygon;
+    HearthDrawSphere draw_sphere;
+    HearthDrawCapsule draw_capsule;
+    HearthDrawTransform draw_transform;
+    HearthDrawPoint draw_point;
+    /**
+     * Passed to every callback.
+     */
+    void *user_data;
+    /**
+     * 1: every shape of every enabled body (disabled bodies are not drawn): a sphere as a
+     * sphere, a capsule as a capsule, a box as its six faces (polygons), a plane as a square
+     * polygon 20 m across centred on the plane's point nearest the origin, a hull as its
+     * faces, a triangle mesh as its triangles, a heightfield as two triangles per cell
+     * without a hole (all of them: a large heightfield draws many).
+     */
+    uint8_t draw_shapes;
+    /**
+     * 1: each bounded shape's tight bounding box as 12 segments.
+     */
+    uint8_t draw_aabbs;
+    /**
+     * 1: each point of each touching contact: a point, its normal as a segment 0.25 m long,
+     * and its normal impulse of the last step as a segment along the normal of 0.1 m per N·s
+     * (when positive).
+     */
+    uint8_t draw_contacts;
+    /**
+     * 1: each unbroken joint between enabled bodies: its anchors (points), the segment between
+     * them, and a segment from each body's centre of mass to its anchor.
+     */
+    uint8_t draw_joints;
+    /**
+     * 1: each dynamic body's centre of mass and orientation (a transform).
+     */
+    uint8_t draw_centers_of_mass;
+    /**
+     * Set by `hearth_debug_draw_default()`; do not change.
+     */
+    uint32_t internal_value;
+} HearthDebugDraw;
+
+/**
  * Id of a shape inside its world. All-zero is the null id.
  */
 typedef struct HearthShapeId {
@@ -1736,20 +1839,6 @@ typedef struct HearthRecordDef {
 } HearthRecordDef;
 
 /**
- * Id of a shape inside its world. All-zero is the null id.
- */
-typedef struct HearthShapeId {
-    /**
-     * Slot of the shape.
-     */
-    uint32_t index;
-    /**
-     * Generation of the slot (0 only in the null id).
-     */
-    uint32_t generation;
-} HearthShapeId;
-
-/**
  * A body's mass properties: mass (kg), centre of mass in the body frame (m), and the
  * principal moments of inertia about the centre of mass along the body axes (kg·m²).
  */
@@ -2586,6 +2675,24 @@ HearthResult hearth_contact_sink_add(struct HearthContactSink *sink,
 HearthResult hearth_contact_sink_get_count(const struct HearthContactSink *sink,
                                            uint32_t *out_count,
                                            uint32_t *out_capacity);
+
+/**
+ * No callbacks, nothing drawn, `user_data` NULL.
+ */
+struct HearthDebugDraw hearth_debug_draw_default(void);
+
+/**
+ * Draws the world through `draw`'s callbacks as its flags ask (see `HearthDebugDraw`). The
+ * world is locked while the callbacks run. May be called from another callback (reads).
+ *
+ * Errors: `HEARTH_ERROR_NULL_POINTER` (world, draw), `HEARTH_ERROR_INVALID_ARGUMENT` (draw
+ * not from `hearth_debug_draw_default()`, a flag not 0 or 1; nothing is drawn).
+ *
+ * # Safety
+ * `world` must be NULL or a live world; `draw` NULL or readable, its callbacks NULL or
+ * callable with its `user_data`.
+ */
+HearthResult hearth_world_draw(const struct HearthWorld *world, const struct HearthDebugDraw *draw);
 
 /**
  * Sets (or with a NULL `callback` clears) the pair-filter callback
