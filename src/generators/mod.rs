@@ -587,3 +587,5 @@ impl World {
         self.generator_scratch = scratch;
     }
 }
+
+crate::snap_struct!(Attachments { list, by_slot });
