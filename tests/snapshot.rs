@@ -609,3 +609,30 @@ fn random_scenes_and_save_points_replay_bit_for_bit() {
         }
     }
 }
+
+/// The size of a settled pile's snapshot (600 steps), per body, counting everything:
+/// bodies, shapes, contacts with their manifolds and caches, the broad-phase tree, sleep
+/// islands. The target is 100 bytes per body; this format stores every field (no
+/// rebuilt caches) and takes about 894 (README "Snapshots"): asserted at most 900 so growth
+/// is seen. Also prints each section's share.
+#[test]
+fn pile_snapshot_size_per_body() {
+    let mut w = pile(4000);
+    steps(&mut w, 600);
+    let snap = bytes(&w);
+    let per_body = snap.len() as f64 / 4000.0;
+    println!(
+        "pile: {} bytes, {per_body:.1} bytes per body, {} contacts",
+        snap.len(),
+        w.contact_count()
+    );
+    let mut at = hearth::snapshot::HEADER_LEN;
+    while at < snap.len() {
+        let id = u32::from_le_bytes(snap[at..at + 4].try_into().unwrap());
+        let len = u64::from_le_bytes(snap[at + 4..at + 12].try_into().unwrap()) as usize;
+        println!("  section {id}: {len} bytes, {:.1} per body", len as f64 / 4000.0);
+        at += 12 + len;
+    }
+    assert_eq!(at, snap.len());
+    assert!(per_body <= 900.0, "{per_body:.1} bytes per body");
+}

@@ -10,6 +10,7 @@ pub mod joint;
 pub mod particle;
 pub mod record;
 pub mod shape;
+pub mod snapshot;
 pub mod soft;
 pub mod types;
 pub mod validate;

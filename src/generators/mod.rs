@@ -134,7 +134,7 @@ impl GeneratorDef {
         matches!(self, GeneratorDef::Rod { .. } | GeneratorDef::Cable { .. })
     }
 
-    fn validate(&self) -> Result<()> {
+    pub(crate) fn validate(&self) -> Result<()> {
         use GeneratorDef as G;
         match *self {
             G::Gravity { acceleration } => check_vec("acceleration", acceleration),

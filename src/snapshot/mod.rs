@@ -367,3 +367,33 @@ impl crate::world::World {
         })
     }
 }
+
+impl crate::world::World {
+    /// Sets the callback (and user data, and a contact generator's capacity) of a user
+    /// generator: after a restore into a world that did not have it, or to replace it.
+    /// `def` must be of the generator's kind (`ExternalForce` or `ExternalContact`).
+    pub fn set_user_generator_callback(
+        &mut self,
+        h: crate::pool::Handle,
+        def: &crate::generators::GeneratorDef,
+    ) -> crate::error::Result<()> {
+        use crate::generators::GeneratorDef as G;
+        let g = self
+            .generators
+            .get_mut(h)
+            .ok_or(crate::error::Error::InvalidId("generator"))?;
+        match (&g.def, def) {
+            (G::ExternalForce { .. }, G::ExternalForce { .. })
+            | (G::ExternalContact { .. }, G::ExternalContact { .. }) => {}
+            _ => {
+                return Err(crate::error::invalid(
+                    "generator: not a user generator of this kind (force callbacks go to user force \
+                     generators, contact callbacks to user contact generators)",
+                ))
+            }
+        }
+        def.validate()?;
+        g.def = *def;
+        Ok(())
+    }
+}
