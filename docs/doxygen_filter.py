@@ -33,6 +33,8 @@ RULES = [
                   r"|hearth_contact_sink_\w+|HearthContactSink|HearthGeneratedContact|Hearth(Force|Contact)Callback"
                   r"|HearthLinkEnd|HEARTH_LINK_\w+)$"),
     ("recording", r"^(hearth_record_\w+|hearth_world_record_\w+|HearthRecord\w*)$"),
+    ("snapshot", r"^(hearth_world_snapshot_\w+|hearth_world_get_user_generators_missing_callback"
+                 r"|hearth_generator_set_user_(force|contact)_callback)$"),
     ("geometry", r"^(hearth_hull_\w+|hearth_mesh_\w+|hearth_heightfield_\w+|HearthHull\w*|HearthMesh\w*"
                  r"|HearthHeightfield\w*|HEARTH_MAX_(HULL|MESH|HEIGHTFIELD)_\w+"
                  r"|hearth_shape_create_(hull|mesh|heightfield))$"),

@@ -43,12 +43,21 @@ pub(crate) fn bad<T>(msg: impl Into<String>) -> ReadResult<T> {
     Err(SnapshotError(msg.into()))
 }
 
-/// FNV-1a, 64 bits, over `bytes`.
+/// The checksum: FNV-1a 64 taken over the payload's 8-byte little-endian words (then its
+/// last bytes one at a time): eight times fewer multiplications than byte-wise FNV-1a. Each
+/// step `h = (h ^ word) · prime` is a bijection of `h`, so any change of one word (one byte,
+/// one bit) changes the result.
 pub fn fnv1a64(bytes: &[u8]) -> u64 {
+    const PRIME: u64 = 0x0000_0100_0000_01b3;
     let mut h: u64 = 0xcbf2_9ce4_8422_2325;
-    for &b in bytes {
+    let mut words = bytes.chunks_exact(8);
+    for w in &mut words {
+        h ^= u64::from_le_bytes(w.try_into().expect("8 bytes"));
+        h = h.wrapping_mul(PRIME);
+    }
+    for &b in words.remainder() {
         h ^= b as u64;
-        h = h.wrapping_mul(0x0000_0100_0000_01b3);
+        h = h.wrapping_mul(PRIME);
     }
     h
 }
@@ -85,7 +94,7 @@ impl<'a> Writer<'a> {
         }
     }
 
-    #[inline]
+    #[inline(always)]
     pub fn bytes(&mut self, b: &[u8]) {
         self.len += b.len();
         if let Some(o) = self.out.as_mut() {
