@@ -70,7 +70,9 @@ pub unsafe extern "C" fn hearth_world_snapshot_save(
     guard(|| {
         let w = idle_world(world)?;
         let out = validate::output(out_written, "out_written")?;
-        let needed = w.snapshot_size();
+        let mut bytes = Vec::new();
+        w.save_snapshot(&mut bytes);
+        let needed = bytes.len();
         if capacity < needed {
             *out = needed;
             return Err(Failure::new(
@@ -79,9 +81,6 @@ pub unsafe extern "C" fn hearth_world_snapshot_save(
             ));
         }
         let buffer = validate::output(buffer, "buffer")?;
-        let mut bytes = Vec::with_capacity(needed);
-        w.save_snapshot(&mut bytes);
-        debug_assert_eq!(bytes.len(), needed);
         std::ptr::copy_nonoverlapping(bytes.as_ptr(), buffer, bytes.len());
         *out = bytes.len();
         Ok(())

@@ -85,10 +85,10 @@ pub fn saved_size(world: &World) -> usize {
     HEADER_LEN + w.len()
 }
 
-/// Appends the world's snapshot to `out` (cleared first).
+/// Writes the world's snapshot into `out` (cleared first; a buffer reused from the last save
+/// has its capacity already, so no counting pass is made to reserve it).
 pub fn save(world: &World, out: &mut Vec<u8>) {
     out.clear();
-    out.reserve(saved_size(world));
     out.extend_from_slice(&MAGIC);
     out.extend_from_slice(&VERSION.to_le_bytes());
     out.extend_from_slice(&[0; 16]);
