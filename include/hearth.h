@@ -3357,8 +3357,8 @@ HearthResult hearth_world_snapshot_save(const struct HearthWorld *world,
  * and user data its generator of the same id has now; any other user generator comes back
  * without a callback and is skipped by `hearth_world_step` until the host sets one with
  * `hearth_generator_set_user_force_callback` or `hearth_generator_set_user_contact_callback`
- * (list them with `hearth_world_get_user_generators_missing_callback`). An active recording
- * keeps running and records the restored state as changes.
+ * (list them with `hearth_world_get_user_generators_missing_callback`). An active recording is
+ * not part of a snapshot: a restore neither stops nor restarts it.
  *
  * Errors: `HEARTH_ERROR_NULL_POINTER` (`world`, or `buffer` with a non-zero `size`),
  * `HEARTH_ERROR_INVALID_ARGUMENT` (not a Hearth snapshot, another format version,

@@ -55,6 +55,13 @@ static int same_snapshot(const HearthWorld *w, const uint8_t *bytes, size_t size
     return same;
 }
 
+static size_t g_recorded;
+static int32_t count_bytes(void *user_data, const uint8_t *bytes, size_t len) {
+    (void)bytes;
+    *(size_t *)user_data += len;
+    return 0;
+}
+
 static int g_force_calls;
 static void count_force(void *user_data, HearthWorld *world, const HearthGeneratorContext *ctx) {
     (void)world;
@@ -199,6 +206,20 @@ int main(void) {
     ENSURE(same_snapshot(fresh, snap, size));
     for (int i = 0; i < 40; i++) ENSURE_OK(hearth_world_step(fresh, 1.0f / 60.0f));
     ENSURE(same_snapshot(fresh, after, after_size));
+
+    /* A running recording is not part of a snapshot: a restore neither stops nor restarts it. */
+    {
+        HearthRecordDef rd = hearth_record_def_default();
+        rd.write = count_bytes;
+        rd.user_data = &g_recorded;
+        ENSURE_OK(hearth_world_record_start_callback(fresh, &rd));
+        const size_t before = g_recorded;
+        ENSURE_OK(hearth_world_snapshot_restore(fresh, snap, size));
+        ENSURE(g_recorded == before);
+        ENSURE_OK(hearth_world_step(fresh, 1.0f / 60.0f));
+        ENSURE(g_recorded > before);
+        ENSURE_OK(hearth_world_record_stop(fresh));
+    }
 
     /* Errors. Sizes and saves. */
     size_t n = 7;
