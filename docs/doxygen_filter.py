@@ -36,6 +36,8 @@ RULES = [
     ("events", r"^(hearth_world_(get_contact_events|get_sensor_events|get_body_events|set_pair_filter_callback"
                r"|set_pre_solve_callback)|HearthContact(Hit)?Events?|HearthSensorEvents?|HearthBody(Move)?Events?"
                r"|HearthManifoldPoint|HearthPreSolve\w*|HearthPairFilterCallback)$"),
+    ("snapshot", r"^(hearth_world_snapshot_\w+|hearth_world_get_user_generators_missing_callback"
+                 r"|hearth_generator_set_user_(force|contact)_callback)$"),
     ("geometry", r"^(hearth_hull_\w+|hearth_mesh_\w+|hearth_heightfield_\w+|HearthHull\w*|HearthMesh\w*"
                  r"|HearthHeightfield\w*|HEARTH_MAX_(HULL|MESH|HEIGHTFIELD)_\w+"
                  r"|hearth_shape_create_(hull|mesh|heightfield))$"),

@@ -4392,6 +4392,130 @@ HearthResult hearth_shape_get_body(const struct HearthWorld *world,
                                    struct HearthBodyId *out_body);
 
 /**
+ * Writes the size in bytes of the snapshot `hearth_world_snapshot_save` would write now
+ * to `*out_size`. The size changes as the world changes (bodies, contacts, particles).
+ *
+ * Errors: `HEARTH_ERROR_NULL_POINTER` (`world`, `out_size`), `HEARTH_ERROR_WORLD_LOCKED`
+ * (called from a callback during a step).
+ *
+ * # Safety
+ * `world` must be NULL or a live world; `out_size` NULL or writable.
+ */
+HearthResult hearth_world_snapshot_size(const struct HearthWorld *world, size_t *out_size);
+
+/**
+ * Saves everything about the world that affects its future into `buffer` (caller-owned,
+ * `capacity` bytes) and writes the number of bytes used to `*out_written`: world
+ * settings, bodies, shapes, shared geometry, contacts with their warm-start impulses,
+ * broad-phase tree, sleep state, joints, generators, particles and soft bodies, with every
+ * id's slot and reuse counter. Not saved: user generator callbacks and their user data,
+ * and an active recording. Restoring the bytes with `hearth_world_snapshot_restore` and
+ * stepping reproduces the original bit for bit. The format (`docs/snapshot-format.md`) is
+ * versioned and checksummed.
+ *
+ * Errors: `HEARTH_ERROR_NULL_POINTER` (`world`, `out_written`, or `buffer` with a
+ * non-zero `capacity`), `HEARTH_ERROR_BUFFER_TOO_SMALL` (`capacity` below the snapshot's
+ * size; then nothing is written to `buffer` and the size needed is written to
+ * `*out_written`), `HEARTH_ERROR_WORLD_LOCKED` (called from a callback during a step).
+ *
+ * # Safety
+ * `world` must be NULL or a live world; `buffer` NULL or writable for `capacity` bytes;
+ * `out_written` NULL or writable.
+ */
+HearthResult hearth_world_snapshot_save(const struct HearthWorld *world,
+                                        uint8_t *buffer,
+                                        size_t capacity,
+                                        size_t *out_written);
+
+/**
+ * Replaces the world's whole state with a snapshot from `hearth_world_snapshot_save` (of
+ * this world or another, of this library's format version), world settings included.
+ * The snapshot is checked and decoded in full before anything changes: on any error the
+ * world is unchanged. Afterwards stepping reproduces the saved world bit for bit.
+ *
+ * Ids keep their slot index and reuse counter. Restored into the world it was saved from,
+ * every id the host kept from that world stays valid and ids created afterwards equal
+ * those the original created after the same calls; restored into another world, ids carry
+ * that world's tag in their generation's top 12 bits, with the same index and the same low
+ * 20 bits.
+ *
+ * User generators: restored into the world they were saved from, each keeps the callback
+ * and user data its generator of the same id has now; any other user generator comes back
+ * without a callback and is skipped by `hearth_world_step` until the host sets one with
+ * `hearth_generator_set_user_force_callback` or `hearth_generator_set_user_contact_callback`
+ * (list them with `hearth_world_get_user_generators_missing_callback`). An active recording is
+ * not part of a snapshot: a restore neither stops nor restarts it.
+ *
+ * Errors: `HEARTH_ERROR_NULL_POINTER` (`world`, or `buffer` with a non-zero `size`),
+ * `HEARTH_ERROR_INVALID_ARGUMENT` (not a Hearth snapshot, another format version,
+ * truncated, or corrupted: checksum mismatch or inconsistent content; the message says
+ * which), `HEARTH_ERROR_WORLD_LOCKED` (called from a callback during a step).
+ *
+ * # Safety
+ * `world` must be NULL or a live world; `buffer` NULL or readable for `size` bytes.
+ */
+HearthResult hearth_world_snapshot_restore(struct HearthWorld *world,
+                                           const uint8_t *buffer,
+                                           size_t size);
+
+/**
+ * Lists the user generators that have no callback: those a restore brought into a world
+ * that did not have them (`hearth_world_snapshot_restore`). They are skipped by
+ * `hearth_world_step` until the host sets their callbacks with
+ * `hearth_generator_set_user_force_callback` or `hearth_generator_set_user_contact_callback`
+ * (`hearth_generator_get_type` tells which). Count-then-fill: `capacity` 0 only writes the
+ * count to `*out_count`; otherwise `out_generators` (caller-owned) receives them in slot
+ * order.
+ *
+ * Errors: `HEARTH_ERROR_NULL_POINTER` (`world`, `out_count`, or `out_generators` with a
+ * non-zero `capacity`), `HEARTH_ERROR_BUFFER_TOO_SMALL` (`capacity` below the count;
+ * nothing written).
+ *
+ * # Safety
+ * `world` must be NULL or a live world; `out_generators` NULL or writable for `capacity`
+ * ids; `out_count` NULL or writable.
+ */
+HearthResult hearth_world_get_user_generators_missing_callback(const struct HearthWorld *world,
+                                                               struct HearthGeneratorId *out_generators,
+                                                               size_t capacity,
+                                                               size_t *out_count);
+
+/**
+ * Sets the callback and user data of a user force generator (the callback of `def`, from
+ * `hearth_user_force_generator_def_default()`): after restoring a snapshot into a world that
+ * did not have the generator, or to replace the callback.
+ *
+ * Errors: `HEARTH_ERROR_NULL_POINTER` (`world`, `def`, or a NULL callback),
+ * `HEARTH_ERROR_INVALID_ID` (`generator`), `HEARTH_ERROR_INVALID_ARGUMENT` (`def` not from
+ * its default, or `generator` not a user force generator), `HEARTH_ERROR_WORLD_LOCKED`.
+ *
+ * # Safety
+ * Pointers must be NULL or valid; the callback must stay callable while the generator
+ * lives, and `user_data` valid for it.
+ */
+HearthResult hearth_generator_set_user_force_callback(struct HearthWorld *world,
+                                                      struct HearthGeneratorId generator,
+                                                      const struct HearthUserForceGeneratorDef *def);
+
+/**
+ * Sets the callback, user data and capacity of a user contact generator (from `def`, made
+ * by `hearth_user_contact_generator_def_default()`): after restoring a snapshot into a world
+ * that did not have the generator, or to replace the callback.
+ *
+ * Errors: `HEARTH_ERROR_NULL_POINTER` (`world`, `def`, or a NULL callback),
+ * `HEARTH_ERROR_INVALID_ID` (`generator`), `HEARTH_ERROR_INVALID_ARGUMENT` (`def` not from
+ * its default, capacity above 1048576, or `generator` not a user contact generator),
+ * `HEARTH_ERROR_WORLD_LOCKED`.
+ *
+ * # Safety
+ * Pointers must be NULL or valid; the callback must stay callable while the generator
+ * lives, and `user_data` valid for it.
+ */
+HearthResult hearth_generator_set_user_contact_callback(struct HearthWorld *world,
+                                                        struct HearthGeneratorId generator,
+                                                        const struct HearthUserContactGeneratorDef *def);
+
+/**
  * Defaults: at the origin, at rest, 1 kg, inextensible edges, bend compliance 0.01, no
  * volume constraint, no gas, damping 0.5, deformation damping 2, friction 0.5, no bounce,
  * vertex radius 0.01 m, full gravity, 20 sub-steps of 2 stretch passes, collides.

@@ -140,8 +140,8 @@ pub struct Events {
     pub sensor_end: Vec<SensorEvent>,
     pub body_moves: Vec<MoveEvent>,
     /// End events from destroyed contacts, appended to the step's own at its end.
-    pending_contact_end: Vec<ContactEvent>,
-    pending_sensor_end: Vec<SensorEvent>,
+    pub(crate) pending_contact_end: Vec<ContactEvent>,
+    pub(crate) pending_sensor_end: Vec<SensorEvent>,
     pub(crate) hits: Vec<HitCandidate>,
     /// Bodies put to sleep in this step.
     pub(crate) fell_asleep: Vec<u32>,

@@ -16,6 +16,7 @@ pub mod particles;
 pub mod pool;
 pub mod record;
 pub mod simd;
+pub mod snapshot;
 pub mod soft;
 pub mod step;
 pub mod world;

@@ -293,6 +293,83 @@ impl<T> Pool<T> {
     }
 }
 
+/// The reuse counter of a handle (its generation without the world tag).
+pub(crate) fn counter_of(h: Handle) -> u32 {
+    h.generation & COUNTER_MASK
+}
+
+/// A handle with `counter` and the tag of `tag`; the null handle for counter 0. `None` when
+/// the counter does not fit.
+pub(crate) fn handle_with_tag(index: u32, counter: u32, tag: u32) -> Option<Handle> {
+    if counter > COUNTER_MASK {
+        return None;
+    }
+    if counter == 0 {
+        return (index == 0).then_some(Handle::NULL);
+    }
+    Some(Handle {
+        index,
+        generation: (tag & TAG_MASK) << COUNTER_BITS | counter,
+    })
+}
+
+/// Snapshots (`snapshot/`) store a pool's slots with their reuse counters, its free list and
+/// its first counter, not its tag: read back, the pool carries the reading world's tag, so
+/// every id keeps its index and counter and a restored world hands out the same next ids.
+impl<T: crate::snapshot::Snap> crate::snapshot::Snap for Pool<T> {
+    fn put(&self, w: &mut crate::snapshot::Writer) {
+        let Pool {
+            tag: _,
+            first_counter,
+            slots,
+            free,
+            len,
+        } = self;
+        first_counter.put(w);
+        slots.len().put(w);
+        for Slot { counter, value } in slots {
+            counter.put(w);
+            value.put(w);
+        }
+        free.put(w);
+        len.put(w);
+    }
+    fn get(r: &mut crate::snapshot::Reader) -> crate::snapshot::ReadResult<Self> {
+        use crate::snapshot::bad;
+        let first_counter = u32::get(r)?;
+        let n = r.count()?;
+        let mut slots = Vec::with_capacity(n);
+        let mut live = 0;
+        for _ in 0..n {
+            let counter = u32::get(r)?;
+            if counter == 0 || counter > COUNTER_MASK {
+                return bad(format!("snapshot corrupted: slot counter {counter} out of range"));
+            }
+            let value = Option::<T>::get(r)?;
+            live += value.is_some() as usize;
+            slots.push(Slot { counter, value });
+        }
+        let free = Vec::<u32>::get(r)?;
+        let len = usize::get(r)?;
+        if len != live
+            || first_counter == 0
+            || first_counter > COUNTER_MASK
+            || free
+                .iter()
+                .any(|&i| !matches!(slots.get(i as usize), Some(s) if s.value.is_none()))
+        {
+            return bad("snapshot corrupted: a pool's slots, free list and count disagree");
+        }
+        Ok(Pool {
+            tag: r.tag & TAG_MASK,
+            first_counter,
+            slots,
+            free,
+            len,
+        })
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

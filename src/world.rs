@@ -197,7 +197,7 @@ pub struct World {
     pub soft_bodies: crate::soft::SoftBodies,
     /// The tag in every id of this world, leased from the process-wide registry (`pool.rs`)
     /// and returned when the world is dropped.
-    tag: WorldTag,
+    pub(crate) tag: WorldTag,
     /// Shared geometry used by shapes: convex hulls (issue 13, `collision/geometry_store.rs`).
     pub geometry: GeometryStore,
     /// The last step's events (`events.rs`).

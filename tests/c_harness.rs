@@ -60,6 +60,7 @@ const PROGRAMS: &[&str] = &[
     "test_events.c",
     "test_setters.c",
     "test_draw.c",
+    "test_snapshot.c",
 ];
 
 #[test]

@@ -73,6 +73,13 @@ const FIGURES: &[(&str, &str, Backing)] = &[
         Measured(&["ranges::the_largest_torque_on_the_smallest_body_leaves_it_finite"]),
     ),
     (R, "0.1 s", Range),
+    // README: snapshots.
+    (R, "894 B/body", Measured(&["snapshot::pile_snapshot_size_per_body"])),
+    (
+        R,
+        "100 B/body",
+        Setting("issue 15's size target, quoted as not met yet"),
+    ),
     (R, "1 ms", Range),
     (
         R,
@@ -562,7 +569,7 @@ const FIGURES: &[(&str, &str, Backing)] = &[
 
 const UNITS: &[&str] = &[
     "m/s²", "m/s", "ms/step", "ms", "mm", "cm", "µs", "µg", "kg·m²", "kg/m³", "kg", "km", "N·m·s", "N·m", "N·s", "N",
-    "rad/s", "rad", "Hz", "J", "%", "°", "×", "m", "s", "M",
+    "rad/s", "rad", "Hz", "J", "%", "°", "×", "m", "s", "M", "B/body",
 ];
 
 /// Every "number unit" in `text`: an ASCII number (digits, decimal point or thousands

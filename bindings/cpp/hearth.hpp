@@ -1149,6 +1149,57 @@ public:
         HEARTH_CPP_READ(SensorEvents, hearth_world_get_sensor_events(world_, &out));
     }
     Ret<BodyEvents> body_events() const { HEARTH_CPP_READ(BodyEvents, hearth_world_get_body_events(world_, &out)); }
+    // Snapshots (rollback, replays): docs/snapshot-format.md.
+    /** Bytes save_snapshot() returns now (hearth_world_snapshot_size). */
+    Ret<size_t> snapshot_size() const { HEARTH_CPP_READ(size_t, hearth_world_snapshot_size(world_, &out)); }
+    /** Everything that affects the world's future, as bytes (hearth_world_snapshot_save). */
+    Ret<std::vector<uint8_t>> save_snapshot() const {
+        size_t size = 0;
+        HearthResult r = hearth_world_snapshot_size(world_, &size);
+        std::vector<uint8_t> out(r == HEARTH_OK ? size : 0);
+        if (r == HEARTH_OK) {
+            size_t written = 0;
+            r = hearth_world_snapshot_save(world_, out.data(), out.size(), &written);
+            out.resize(r == HEARTH_OK ? written : 0);
+        }
+        return P::template value<std::vector<uint8_t>>(r, std::move(out));
+    }
+    /**
+     * Restores a snapshot of this world or another (hearth_world_snapshot_restore); on error
+     * (Code::InvalidArgument: truncated, corrupted, another version) nothing changes. Into
+     * the world it came from, lambda generators keep running; into another, set their
+     * callbacks again (user_generators_missing_callback lists them).
+     */
+    Ret<void> restore_snapshot(const uint8_t *data, size_t size) const {
+        return P::check(hearth_world_snapshot_restore(world_, data, size));
+    }
+    Ret<void> restore_snapshot(const std::vector<uint8_t> &bytes) const {
+        return restore_snapshot(bytes.data(), bytes.size());
+    }
+    /** User generators without a callback (hearth_world_get_user_generators_missing_callback). */
+    Ret<std::vector<Generator>> user_generators_missing_callback() const {
+        size_t count = 0;
+        HearthResult r = hearth_world_get_user_generators_missing_callback(world_, nullptr, 0, &count);
+        std::vector<GeneratorId> ids(r == HEARTH_OK ? count : 0);
+        if (r == HEARTH_OK && count > 0) {
+            r = hearth_world_get_user_generators_missing_callback(world_, ids.data(), ids.size(), &count);
+        }
+        std::vector<Generator> out;
+        if (r == HEARTH_OK) {
+            for (const GeneratorId &id : ids) {
+                out.push_back(Generator(world_, id));
+            }
+        }
+        return P::template value<std::vector<Generator>>(r, std::move(out));
+    }
+    /** Sets a user force generator's callback (hearth_generator_set_user_force_callback). */
+    Ret<void> set_user_force_callback(const Generator &g, const UserForceGeneratorDef &def) const {
+        return P::check(hearth_generator_set_user_force_callback(world_, g.id(), &def));
+    }
+    /** Sets a user contact generator's callback (hearth_generator_set_user_contact_callback). */
+    Ret<void> set_user_contact_callback(const Generator &g, const UserContactGeneratorDef &def) const {
+        return P::check(hearth_generator_set_user_contact_callback(world_, g.id(), &def));
+    }
 
     // Bodies.
     Ret<Body> create_body(const BodyDef &def) const {

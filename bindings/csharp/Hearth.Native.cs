@@ -1857,6 +1857,24 @@ namespace Hearth
         public static extern Result hearth_world_record_stop(WorldHandle world);
 
         [DllImport(Lib, CallingConvention = CallingConvention.Cdecl)]
+        public static extern Result hearth_world_snapshot_size(WorldHandle world, out UIntPtr outSize);
+
+        [DllImport(Lib, CallingConvention = CallingConvention.Cdecl)]
+        public static extern Result hearth_world_snapshot_save(WorldHandle world, [Out] byte[] buffer, UIntPtr capacity, out UIntPtr outWritten);
+
+        [DllImport(Lib, CallingConvention = CallingConvention.Cdecl)]
+        public static extern Result hearth_world_snapshot_restore(WorldHandle world, [In] byte[] buffer, UIntPtr size);
+
+        [DllImport(Lib, CallingConvention = CallingConvention.Cdecl)]
+        public static extern Result hearth_world_get_user_generators_missing_callback(WorldHandle world, [Out] GeneratorId[] outGenerators, UIntPtr capacity, out UIntPtr outCount);
+
+        [DllImport(Lib, CallingConvention = CallingConvention.Cdecl)]
+        public static extern Result hearth_generator_set_user_force_callback(WorldHandle world, GeneratorId generator, [In] ref UserForceGeneratorDef def);
+
+        [DllImport(Lib, CallingConvention = CallingConvention.Cdecl)]
+        public static extern Result hearth_generator_set_user_contact_callback(WorldHandle world, GeneratorId generator, [In] ref UserContactGeneratorDef def);
+
+        [DllImport(Lib, CallingConvention = CallingConvention.Cdecl)]
         public static extern ShapeDef hearth_shape_def_default();
 
         [DllImport(Lib, CallingConvention = CallingConvention.Cdecl)]

@@ -836,6 +836,112 @@ namespace Hearth
             return new Generator(this, id);
         }
 
+        // ---- snapshots (rollback, replays; docs/snapshot-format.md) ------------------------
+
+        /// <summary>hearth_world_snapshot_size: bytes SaveSnapshot returns now.</summary>
+        public int SnapshotSize
+        {
+            get
+            {
+                UIntPtr size;
+                Check(Native.hearth_world_snapshot_size(Handle, out size), "hearth_world_snapshot_size");
+                return checked((int)(ulong)size);
+            }
+        }
+
+        /// <summary>hearth_world_snapshot_save: everything that affects the world's future
+        /// (user generator callbacks and a running recording excepted).</summary>
+        public byte[] SaveSnapshot()
+        {
+            var buffer = new byte[SnapshotSize];
+            UIntPtr written;
+            Check(Native.hearth_world_snapshot_save(Handle, buffer, (UIntPtr)(uint)buffer.Length, out written), "hearth_world_snapshot_save");
+            if ((int)(ulong)written != buffer.Length)
+            {
+                Array.Resize(ref buffer, (int)(ulong)written);
+            }
+            return buffer;
+        }
+
+        /// <summary>
+        /// hearth_world_snapshot_restore: a snapshot of this world or another. On error
+        /// (InvalidArgument: truncated, corrupted, another version) nothing changes. Into the
+        /// world it came from, handlers keep running; into another, set them again with
+        /// SetUserForceCallback / SetUserContactCallback (GetUserGeneratorsMissingCallback).
+        /// </summary>
+        public void RestoreSnapshot(byte[] snapshot)
+        {
+            if (snapshot == null)
+            {
+                throw new ArgumentNullException("snapshot");
+            }
+            Check(Native.hearth_world_snapshot_restore(Handle, snapshot, (UIntPtr)(uint)snapshot.Length), "hearth_world_snapshot_restore");
+        }
+
+        /// <summary>hearth_world_get_user_generators_missing_callback: user generators a
+        /// restore brought in without a callback (skipped by Step until set).</summary>
+        public GeneratorId[] GetUserGeneratorsMissingCallback()
+        {
+            UIntPtr count;
+            Check(Native.hearth_world_get_user_generators_missing_callback(Handle, null, UIntPtr.Zero, out count), "hearth_world_get_user_generators_missing_callback");
+            var ids = new GeneratorId[(int)(ulong)count];
+            if (ids.Length > 0)
+            {
+                Check(Native.hearth_world_get_user_generators_missing_callback(Handle, ids, (UIntPtr)(uint)ids.Length, out count), "hearth_world_get_user_generators_missing_callback");
+            }
+            return ids;
+        }
+
+        /// <summary>hearth_generator_set_user_force_callback: <paramref name="handler"/> for a
+        /// user force generator (after a restore into another world, or to replace it).</summary>
+        public void SetUserForceCallback(GeneratorId generator, UserForceHandler handler)
+        {
+            if (handler == null)
+            {
+                throw new ArgumentNullException("handler");
+            }
+            WorldHandle world = Handle;
+            var registration = new Registration { World = this, ForceHandler = handler };
+            UserForceGeneratorDef def = UserForceGeneratorDef.Default();
+            def.Callback = ForceTrampolinePointer;
+            def.UserData = Allocate(registration);
+            Replace(generator, registration, Native.hearth_generator_set_user_force_callback(world, generator, ref def), "hearth_generator_set_user_force_callback");
+        }
+
+        /// <summary>hearth_generator_set_user_contact_callback: <paramref name="handler"/> for a
+        /// user contact generator, adding up to <paramref name="capacity"/> contacts a step.</summary>
+        public void SetUserContactCallback(GeneratorId generator, UserContactHandler handler, uint capacity)
+        {
+            if (handler == null)
+            {
+                throw new ArgumentNullException("handler");
+            }
+            WorldHandle world = Handle;
+            var registration = new Registration { World = this, ContactHandler = handler, Sink = new ContactSink() };
+            UserContactGeneratorDef def = UserContactGeneratorDef.Default();
+            def.Callback = ContactTrampolinePointer;
+            def.UserData = Allocate(registration);
+            def.Capacity = capacity;
+            Replace(generator, registration, Native.hearth_generator_set_user_contact_callback(world, generator, ref def), "hearth_generator_set_user_contact_callback");
+        }
+
+        private void Replace(GeneratorId generator, Registration registration, Result result, string function)
+        {
+            if (result != Result.Ok)
+            {
+                string detail = Native.LastErrorMessage();
+                registration.Release();
+                throw new HearthException(result, function, detail);
+            }
+            registration.Call = new GeneratorCall(this, generator);
+            Registration old;
+            if (registrations.TryGetValue(generator, out old))
+            {
+                old.Release();
+            }
+            registrations[generator] = registration;
+        }
+
         // Called inside a native callback: must not throw.
         // ---- recording (for the browser viewer, viewer/index.html) -------------------------
 

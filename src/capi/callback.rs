@@ -335,6 +335,9 @@ unsafe fn collect(handle: &HearthWorld, scratch: *mut CallbackScratch, contact: 
     s.gens.clear();
     for (h, g) in w.generators.iter() {
         match g.def {
+            // Restored from a snapshot into a world that did not have it: no callback until
+            // the host sets one (capi/snapshot.rs), so nothing to call.
+            GeneratorDef::ExternalForce { callback: 0, .. } | GeneratorDef::ExternalContact { callback: 0, .. } => {}
             GeneratorDef::ExternalForce { callback, user_data } if !contact => s.gens.push((h, callback, user_data, 0)),
             GeneratorDef::ExternalContact {
                 callback,

@@ -14,6 +14,7 @@ pub mod query;
 pub mod record;
 pub mod setters;
 pub mod shape;
+pub mod snapshot;
 pub mod soft;
 pub mod types;
 pub mod validate;

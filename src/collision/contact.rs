@@ -514,3 +514,23 @@ pub struct GeneratedContact {
     pub restitution: f32,
     pub friction: f32,
 }
+
+// Snapshots store the cached local frames: the narrow phase reuses them while the relative
+// pose is unchanged, so they decide future manifolds.
+crate::snap_struct!(ManifoldLocal {
+    normal,
+    local_a,
+    local_b,
+});
+crate::snap_struct!(ManifoldCache {
+    valid,
+    relative_p,
+    relative_q,
+    local,
+});
+crate::snap_struct!(ChildManifold {
+    manifold,
+    impulses,
+    friction,
+    local,
+});

@@ -310,3 +310,22 @@ mod tests {
         assert_eq!(w.geometry.hull_users(h).unwrap(), 0);
     }
 }
+
+impl<T: crate::snapshot::Snap> crate::snapshot::Snap for Stored<T> {
+    fn put(&self, w: &mut crate::snapshot::Writer) {
+        let Stored { value, users } = self;
+        value.put(w);
+        users.put(w);
+    }
+    fn get(r: &mut crate::snapshot::Reader) -> crate::snapshot::ReadResult<Self> {
+        Ok(Stored {
+            value: crate::snapshot::Snap::get(r)?,
+            users: crate::snapshot::Snap::get(r)?,
+        })
+    }
+}
+crate::snap_struct!(GeometryStore {
+    hulls,
+    meshes,
+    heightfields,
+});

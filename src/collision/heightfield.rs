@@ -446,3 +446,14 @@ mod tests {
         assert!(Heightfield::new(4, 4, &h, Some(&holes[..8])).is_err());
     }
 }
+
+crate::snap_struct!(Level { columns, rows, range });
+crate::snap_struct!(Heightfield {
+    rows,
+    columns,
+    heights,
+    holes,
+    levels,
+    min_height,
+    max_height,
+});

@@ -134,7 +134,7 @@ impl GeneratorDef {
         matches!(self, GeneratorDef::Rod { .. } | GeneratorDef::Cable { .. })
     }
 
-    fn validate(&self) -> Result<()> {
+    pub(crate) fn validate(&self) -> Result<()> {
         use GeneratorDef as G;
         match *self {
             G::Gravity { acceleration } => check_vec("acceleration", acceleration),
@@ -587,3 +587,5 @@ impl World {
         self.generator_scratch = scratch;
     }
 }
+
+crate::snap_struct!(Attachments { list, by_slot });

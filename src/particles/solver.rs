@@ -834,3 +834,28 @@ fn link_ends(def: &GeneratorDef) -> (End, End) {
         _ => (End::World(Vec3::ZERO), End::World(Vec3::ZERO)),
     }
 }
+
+// Snapshots keep what one step hands the next: the warm-start impulses of particle
+// constraints and the bodies particles acted on (their gravity is deferred to this stage).
+// Everything else is rewritten by each step before it is read.
+crate::snap_struct!(Scratch {
+    warm_prev,
+    warm_next,
+    carried,
+    deferred;
+    skip constraints,
+    simple,
+    found,
+    hits,
+    planes,
+    coupled,
+    coupled_index,
+    w,
+    count,
+    parent,
+    min_sleep,
+    links,
+    moving,
+    wake,
+    block,
+});

@@ -714,3 +714,15 @@ fn solve_volume(s: &mut SoftBody, alpha: f32) {
         s.pos[i] += s.w[i] * lambda * s.grad[i];
     }
 }
+
+// Snapshots keep what one step hands the next: the bodies soft bodies acted on and their
+// deferred gravity. Everything else is rewritten by each step before it is read.
+crate::snap_struct!(SoftScratch {
+    carried,
+    deferred;
+    skip planes,
+    candidates,
+    wake,
+    coupled,
+    coupled_index,
+});

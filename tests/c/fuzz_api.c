@@ -3082,6 +3082,157 @@ static void op_events(FWorld *fw) {
     default: {
         HearthResult e2 = f == F_NULL_WORLD ? HEARTH_ERROR_NULL_POINTER : HEARTH_OK;
         CALL(hearth_world_set_pre_solve_callback(w, chance(70) ? pre_solve_callback : NULL, fw), e2, NULL, NULL, 0);
+/* ------------------------------------------------------------------------------ snapshots */
+/* Save, then restore the same bytes into the world (its tracked objects stay as they are) and
+ * into a fresh world, each saving the same bytes again; or a failing call: NULLs, a buffer too
+ * small (the size needed still reported), the snapshot cut short or with a bit flipped. */
+static uint8_t *g_snap_buf;
+static size_t g_snap_cap;
+
+static void op_snapshot(FWorld *fw) {
+    FAULTS(F_NULL_WORLD, F_NULL_IN, F_NULL_OUT, F_NUMBER);
+    HearthWorld *w = W(fw, f);
+    size_t size = 0;
+    {
+        HearthResult e = f == F_NULL_WORLD || f == F_NULL_OUT ? HEARTH_ERROR_NULL_POINTER : HEARTH_OK;
+        CALL(hearth_world_snapshot_size(w, f == F_NULL_OUT ? NULL : &size), e, NULL, NULL, 0);
+        if (r != HEARTH_OK) return;
+    }
+    if (size > g_snap_cap) {
+        g_snap_cap = size * 2;
+        g_snap_buf = (uint8_t *)realloc(g_snap_buf, g_snap_cap);
+    }
+    if (f == F_NUMBER && size > 0) {
+        /* Too small: BUFFER_TOO_SMALL with the size needed in out_written, the buffer untouched. */
+        size_t written = 0;
+        size_t cap = rnd((uint32_t)size);
+        memset(g_snap_buf, SENTINEL, size);
+        CALL(hearth_world_snapshot_save(fw->w, g_snap_buf, cap, &written), HEARTH_ERROR_BUFFER_TOO_SMALL, NULL,
+             g_snap_buf, size);
+        if (written != size) fail("snapshot", "a too-small save did not report the size needed");
+        return;
+    }
+    size_t written = 0;
+    {
+        HearthResult e = f == F_NULL_IN ? HEARTH_ERROR_NULL_POINTER : HEARTH_OK;
+        CALL(hearth_world_snapshot_save(fw->w, f == F_NULL_IN ? NULL : g_snap_buf, size, &written), e, NULL, NULL, 0);
+        if (r != HEARTH_OK) return;
+    }
+    if (written != size) fail("snapshot", "save wrote another size than snapshot_size said");
+    switch (rnd(4)) {
+    case 0: { /* cut short */
+        size_t len = rnd((uint32_t)size);
+        CALL(hearth_world_snapshot_restore(fw->w, len == 0 && chance(50) ? NULL : g_snap_buf, len),
+             HEARTH_ERROR_INVALID_ARGUMENT, NULL, NULL, 0);
+        break;
+    }
+    case 1: { /* a bit flipped */
+        size_t bit = (size_t)rnd((uint32_t)(size * 8));
+        g_snap_buf[bit / 8] ^= (uint8_t)(1u << (bit % 8));
+        CALL(hearth_world_snapshot_restore(fw->w, g_snap_buf, size), HEARTH_ERROR_INVALID_ARGUMENT, NULL, NULL, 0);
+        break;
+    }
+    case 2: { /* into a fresh world, which then saves the same bytes */
+        HearthWorldDef wd = hearth_world_def_default();
+        HearthWorld *fresh = NULL;
+        if (hearth_world_create(&wd, &fresh) != HEARTH_OK) return; /* the world limit */
+        {
+            CALL(hearth_world_snapshot_restore(fresh, g_snap_buf, size), HEARTH_OK, NULL, NULL, 0);
+        }
+        uint8_t *again = (uint8_t *)malloc(size);
+        size_t n = 0;
+        mark("hearth_world_snapshot_save");
+        if (hearth_world_snapshot_save(fresh, again, size, &n) != HEARTH_OK || n != size ||
+            memcmp(again, g_snap_buf, size) != 0)
+            fail("snapshot", "a fresh world restored from a snapshot saves other bytes");
+        free(again);
+        /* Its user generators lost their callbacks: list them and set them again. */
+        size_t missing = 0;
+        {
+            CALL(hearth_world_get_user_generators_missing_callback(fresh, NULL, 0, &missing), HEARTH_OK, NULL, NULL, 0);
+        }
+        if (missing > 0) {
+            HearthGeneratorId *ids = (HearthGeneratorId *)malloc(missing * sizeof *ids);
+            size_t got = 0;
+            if (missing > 1) {
+                CALL(hearth_world_get_user_generators_missing_callback(fresh, ids, missing - 1, &got),
+                     HEARTH_ERROR_BUFFER_TOO_SMALL, NULL, NULL, 0);
+            }
+            {
+                CALL(hearth_world_get_user_generators_missing_callback(fresh, ids, missing, &got), HEARTH_OK, NULL, NULL, 0);
+            }
+            for (size_t i = 0; i < got; i++) {
+                uint32_t type = 0;
+                mark("hearth_generator_get_type");
+                if (hearth_generator_get_type(fresh, ids[i], &type) != HEARTH_OK) fail("snapshot", "generator type");
+                HearthUserForceGeneratorDef fd = hearth_user_force_generator_def_default();
+                fd.callback = force_callback;
+                HearthUserContactGeneratorDef cd = hearth_user_contact_generator_def_default();
+                cd.callback = contact_callback;
+                int is_force = type == HEARTH_GENERATOR_USER_FORCE;
+                if (is_force) { /* the other kind's setter is refused */
+                    { CALL(hearth_generator_set_user_contact_callback(fresh, ids[i], &cd), HEARTH_ERROR_INVALID_ARGUMENT, "generator", NULL, 0); }
+                    { CALL(hearth_generator_set_user_force_callback(fresh, ids[i], &fd), HEARTH_OK, NULL, NULL, 0); }
+                } else {
+                    { CALL(hearth_generator_set_user_force_callback(fresh, ids[i], &fd), HEARTH_ERROR_INVALID_ARGUMENT, "generator", NULL, 0); }
+                    { CALL(hearth_generator_set_user_contact_callback(fresh, ids[i], &cd), HEARTH_OK, NULL, NULL, 0); }
+                }
+            }
+            free(ids);
+            {
+                CALL(hearth_world_get_user_generators_missing_callback(fresh, NULL, 0, &missing), HEARTH_OK, NULL, NULL, 0);
+            }
+            if (missing != 0) fail("snapshot", "user generators still miss callbacks after setting them");
+        }
+        hearth_world_destroy(fresh);
+        break;
+    }
+    default: { /* into the same world: nothing changes, so saving again gives the same bytes */
+        {
+            HearthResult e = f == F_NULL_WORLD ? HEARTH_ERROR_NULL_POINTER : HEARTH_OK;
+            CALL(hearth_world_snapshot_restore(w, g_snap_buf, size), e, NULL, NULL, 0);
+        }
+        size_t missing = 1;
+        {
+            HearthResult e = f == F_NULL_OUT ? HEARTH_ERROR_NULL_POINTER : HEARTH_OK;
+            CALL(hearth_world_get_user_generators_missing_callback(fw->w, NULL, 0, f == F_NULL_OUT ? NULL : &missing), e,
+                 NULL, NULL, 0);
+            if (r == HEARTH_OK && missing != 0) fail("snapshot", "a same-world restore dropped a callback");
+        }
+        uint8_t *again = (uint8_t *)malloc(size);
+        size_t n = 0;
+        if (hearth_world_snapshot_save(fw->w, again, size, &n) != HEARTH_OK || n != size ||
+            memcmp(again, g_snap_buf, size) != 0)
+            fail("snapshot", "save, restore, save changed the bytes");
+        free(again);
+        /* Set each user generator's callback again (a contact generator's capacity may change). */
+        for (int i = 0; i < fw->n[K_GEN]; i++) {
+            const uint32_t type = fw->live[K_GEN][i].meta;
+            if (type != HEARTH_GENERATOR_USER_FORCE && type != HEARTH_GENERATOR_USER_CONTACT) continue;
+            HearthGeneratorId g = gen_id(fw->live[K_GEN][i].id);
+            HearthUserForceGeneratorDef fd = hearth_user_force_generator_def_default();
+            fd.callback = force_callback;
+            fd.user_data = fw;
+            HearthUserContactGeneratorDef cd = hearth_user_contact_generator_def_default();
+            cd.callback = contact_callback;
+            cd.user_data = fw;
+            cd.capacity = rnd(4);
+            const int is_force = type == HEARTH_GENERATOR_USER_FORCE;
+            if (is_force) {
+                { CALL(hearth_generator_set_user_contact_callback(fw->w, g, &cd), HEARTH_ERROR_INVALID_ARGUMENT, "generator", NULL, 0); }
+                { CALL(hearth_generator_set_user_force_callback(fw->w, g, &fd), HEARTH_OK, NULL, NULL, 0); }
+            } else {
+                { CALL(hearth_generator_set_user_force_callback(fw->w, g, &fd), HEARTH_ERROR_INVALID_ARGUMENT, "generator", NULL, 0); }
+                { CALL(hearth_generator_set_user_contact_callback(fw->w, g, &cd), HEARTH_OK, NULL, NULL, 0); }
+            }
+        }
+        if (fw->n[K_GEN] > 0) {
+            /* a stale generator id */
+            HearthUserForceGeneratorDef fd = hearth_user_force_generator_def_default();
+            fd.callback = force_callback;
+            CALL(hearth_generator_set_user_force_callback(fw->w, gen_id(bad_id(fw, K_GEN)), &fd), HEARTH_ERROR_INVALID_ID,
+                 NULL, NULL, 0);
+        }
         break;
     }
     }
@@ -3283,6 +3434,7 @@ static const Op OPS[] = {
     {"soft_create", op_soft_create, 1},
     {"soft_other", op_soft_other, 4},
     {"record", op_record, 1},
+    {"snapshot", op_snapshot, 2},
     {"geometry_create", op_geometry_create, 2},
     {"geometry_other", op_geometry_other, 2},
     {"geometry_shape", op_geometry_shape, 2},
@@ -3371,5 +3523,6 @@ int main(int argc, char **argv) {
     printf("\n");
     free(g_before.data);
     free(g_after.data);
+    free(g_snap_buf);
     return ensure_report("fuzz_api");
 }

@@ -830,6 +830,55 @@ static void test_recording_start_failure() {
 // Shared geometry: a box dropped on a mesh floor rests at the analytic height (0.5 m), a hull
 // cube on a heightfield at 1.0 m; counts, the refusal to free geometry in use, a mesh refused
 // on a dynamic body.
+static int g_snapshot_force_calls = 0;
+static void snapshot_force(void *, HearthWorld *, const HearthGeneratorContext *) { g_snapshot_force_calls++; }
+
+static void test_snapshots() {
+    hearth::World w = make_world();
+    add_ground(w);
+    hearth::Body ball = add_ball(w, hearth::vec3(0, 3, 0));
+    int lambda_calls = 0;
+    w.add_force_generator([&](hearth::ForceContext &) { lambda_calls++; });
+    for (int i = 0; i < 10; i++) {
+        w.step(DT);
+    }
+    const std::vector<uint8_t> snap = w.save_snapshot();
+    CHECK(snap.size() == w.snapshot_size());
+    for (int i = 0; i < 20; i++) {
+        w.step(DT);
+    }
+    const hearth::Transform first = ball.transform();
+    const std::vector<uint8_t> after = w.save_snapshot();
+    w.restore_snapshot(snap);
+    CHECK(w.save_snapshot() == snap);
+    for (int i = 0; i < 20; i++) {
+        w.step(DT);
+    }
+    const hearth::Transform again = ball.transform();
+    CHECK(std::memcmp(&first, &again, sizeof first) == 0); // bit for bit, the same handle
+    CHECK(w.save_snapshot() == after);
+    CHECK(lambda_calls == 50); // the lambda kept in the same world
+    CHECK(w.user_generators_missing_callback().empty());
+    std::vector<uint8_t> bad = snap;
+    bad[bad.size() / 2] ^= 1;
+    CHECK_THROWS(w.restore_snapshot(bad), hearth::Code::InvalidArgument);
+    CHECK_THROWS(w.restore_snapshot(snap.data(), snap.size() - 1), hearth::Code::InvalidArgument);
+    CHECK(w.save_snapshot() == after); // unchanged
+
+    hearth::World fresh = make_world();
+    fresh.restore_snapshot(snap);
+    const std::vector<hearth::Generator> missing = fresh.user_generators_missing_callback();
+    CHECK(missing.size() == 1 && missing[0].type() == hearth::GeneratorType::UserForce);
+    hearth::UserForceGeneratorDef def = hearth::user_force_generator_def();
+    def.callback = &snapshot_force;
+    fresh.set_user_force_callback(missing[0], def);
+    CHECK_THROWS(fresh.set_user_contact_callback(missing[0], hearth::user_contact_generator_def()),
+                 hearth::Code::NullPointer);
+    CHECK(fresh.user_generators_missing_callback().empty());
+    fresh.step(DT);
+    CHECK(g_snapshot_force_calls == 1);
+}
+
 static void test_geometry() {
     hearth::World w = make_world();
     std::vector<hearth::Vec3> v;
@@ -1129,6 +1178,7 @@ static void run_throwing_tests() {
     test_builtin_generators();
     test_recording();
     test_recording_start_failure();
+    test_snapshots();
     test_geometry();
     test_queries_and_filters();
 }

@@ -1434,6 +1434,74 @@ internal static class HearthTests
 
     // ---- driver -------------------------------------------------------------------------------
 
+    private static bool SameBytes(byte[] a, byte[] b)
+    {
+        if (a.Length != b.Length)
+        {
+            return false;
+        }
+        for (int i = 0; i < a.Length; i++)
+        {
+            if (a[i] != b[i])
+            {
+                return false;
+            }
+        }
+        return true;
+    }
+
+    private static void TestSnapshots()
+    {
+        using (var world = new World())
+        {
+            Ground(world);
+            Body box = DynamicBox(world, new Vec3(0f, 3f, 0f), 0.5f);
+            int calls = 0;
+            world.CreateUserForceGenerator(call => { calls++; });
+            for (int i = 0; i < 10; i++)
+            {
+                world.Step(Dt);
+            }
+            byte[] snap = world.SaveSnapshot();
+            Equal(snap.Length, world.SnapshotSize, "SnapshotSize");
+            for (int i = 0; i < 20; i++)
+            {
+                world.Step(Dt);
+            }
+            Transform first = box.Transform;
+            byte[] after = world.SaveSnapshot();
+            world.RestoreSnapshot(snap);
+            Ensure(SameBytes(world.SaveSnapshot(), snap), "save, restore, save: the same bytes");
+            for (int i = 0; i < 20; i++)
+            {
+                world.Step(Dt);
+            }
+            Ensure(box.Transform.Equals(first), "the same handle, the same pose");
+            Ensure(SameBytes(world.SaveSnapshot(), after), "the replay is bit for bit");
+            Equal(calls, 50, "the handler kept in the same world");
+            Equal(world.GetUserGeneratorsMissingCallback().Length, 0, "no callback missing");
+            byte[] bad = (byte[])snap.Clone();
+            bad[bad.Length / 2] ^= 1;
+            Fails(Result.InvalidArgument, () => world.RestoreSnapshot(bad), "a flipped bit");
+            Fails(Result.InvalidArgument, () => world.RestoreSnapshot(new byte[10]), "truncated");
+            Ensure(SameBytes(world.SaveSnapshot(), after), "failed restores change nothing");
+
+            using (var fresh = new World())
+            {
+                fresh.RestoreSnapshot(snap);
+                GeneratorId[] missing = fresh.GetUserGeneratorsMissingCallback();
+                Equal(missing.Length, 1, "the user generator is listed");
+                Equal(fresh.GetGenerator(missing[0]).Type, GeneratorType.UserForce, "its type");
+                int freshCalls = 0;
+                Fails(Result.InvalidArgument, () => fresh.SetUserContactCallback(missing[0], (call, sink) => { }, 4), "other kind");
+                fresh.SetUserForceCallback(missing[0], call => { freshCalls++; });
+                Equal(fresh.GetUserGeneratorsMissingCallback().Length, 0, "set again");
+                fresh.Step(Dt);
+                Equal(freshCalls, 1, "the new handler runs");
+            }
+        }
+    }
+
     private static void TestRecording()
     {
         string path = System.IO.Path.Combine(System.IO.Path.GetTempPath(), "hearth_csharp_test_" + System.Diagnostics.Process.GetCurrentProcess().Id + ".hrec");
@@ -1642,6 +1710,7 @@ internal static class HearthTests
             new KeyValuePair<string, Action>("soft bodies", TestSoftBodies),
             new KeyValuePair<string, Action>("soft body settings", TestSoftBodySettings),
             new KeyValuePair<string, Action>("recording", TestRecording),
+            new KeyValuePair<string, Action>("snapshots", TestSnapshots),
             new KeyValuePair<string, Action>("shared geometry", TestGeometry),
             new KeyValuePair<string, Action>("queries and filters", TestQueriesAndFilters),
             new KeyValuePair<string, Action>("events, sensors and step callbacks", TestEventsAndStepCallbacks),

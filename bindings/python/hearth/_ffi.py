@@ -960,6 +960,21 @@ _fn("hearth_record_def_default", HearthRecordDef)
 _fn("hearth_world_record_start_file", HearthResult, POINTER(HearthWorld), c_char_p, POINTER(HearthRecordDef))
 _fn("hearth_world_record_start_callback", HearthResult, POINTER(HearthWorld), POINTER(HearthRecordDef))
 _fn("hearth_world_record_stop", HearthResult, POINTER(HearthWorld))
+_fn("hearth_world_snapshot_size", HearthResult, POINTER(HearthWorld), POINTER(c_size_t))
+_fn("hearth_world_snapshot_save", HearthResult, POINTER(HearthWorld), POINTER(c_uint8), c_size_t, POINTER(c_size_t))
+_fn("hearth_world_snapshot_restore", HearthResult, POINTER(HearthWorld), POINTER(c_uint8), c_size_t)
+_fn(
+    "hearth_world_get_user_generators_missing_callback", HearthResult, POINTER(HearthWorld),
+    POINTER(HearthGeneratorId), c_size_t, POINTER(c_size_t),
+)
+_fn(
+    "hearth_generator_set_user_force_callback", HearthResult, POINTER(HearthWorld), HearthGeneratorId,
+    POINTER(HearthUserForceGeneratorDef),
+)
+_fn(
+    "hearth_generator_set_user_contact_callback", HearthResult, POINTER(HearthWorld), HearthGeneratorId,
+    POINTER(HearthUserContactGeneratorDef),
+)
 _fn("hearth_shape_def_default", HearthShapeDef)
 _fn(
     "hearth_shape_create_sphere", HearthResult, POINTER(HearthWorld), HearthBodyId, POINTER(HearthShapeDef),

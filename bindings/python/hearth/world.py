@@ -191,6 +191,59 @@ class World:
 
         flags = dict(shapes=shapes, aabbs=aabbs, contacts=contacts, joints=joints, centers_of_mass=centers_of_mass)
         draw(self, drawer, flags)
+    # -- snapshots (rollback, replays)
+    def snapshot_size(self):
+        """`hearth_world_snapshot_size`: bytes `save_snapshot()` returns now."""
+        out = ctypes.c_size_t()
+        lib.hearth_world_snapshot_size(self._ptr, byref(out))
+        return out.value
+
+    def save_snapshot(self):
+        """`hearth_world_snapshot_save`: everything that affects the world's future, as bytes
+        (user generator callbacks and a running recording excepted)."""
+        size = self.snapshot_size()
+        buf = (ctypes.c_uint8 * max(size, 1))()
+        written = ctypes.c_size_t()
+        lib.hearth_world_snapshot_save(self._ptr, buf, size, byref(written))
+        return bytes(buf[: written.value])
+
+    def restore_snapshot(self, data):
+        """`hearth_world_snapshot_restore` from bytes of `save_snapshot()` (of this world or
+        another). Raises InvalidArgument (nothing changed) for a truncated, corrupted or
+        other-version snapshot. Restored into the world it came from, the Python callables of
+        user generators keep running; restored elsewhere, set them again with
+        `set_force_callback` / `set_contact_callback` (`generators_missing_callbacks()` lists
+        which)."""
+        data = bytes(data)
+        buf = (ctypes.c_uint8 * max(len(data), 1)).from_buffer_copy(data.ljust(1, b"\0"))
+        lib.hearth_world_snapshot_restore(self._ptr, buf, len(data))
+
+    def generators_missing_callbacks(self):
+        """`hearth_world_get_user_generators_missing_callback`: user generators restored
+        without a callback (skipped by `step()` until set)."""
+        count = ctypes.c_size_t()
+        lib.hearth_world_get_user_generators_missing_callback(self._ptr, None, 0, byref(count))
+        ids = (_ffi.HearthGeneratorId * max(count.value, 1))()
+        lib.hearth_world_get_user_generators_missing_callback(self._ptr, ids, count.value, byref(count))
+        return [Generator(self, ids[i]) for i in range(count.value)]
+
+    def set_force_callback(self, generator, callback):
+        """`hearth_generator_set_user_force_callback`: `callback(world, context)` for a user
+        force generator (after a restore into another world, or to replace it)."""
+        trampoline = force_trampoline(self, callback)
+        gd = _def(lib.hearth_user_force_generator_def_default, {})
+        gd.callback = trampoline
+        lib.hearth_generator_set_user_force_callback(self._ptr, generator._id, byref(gd))
+        self._callbacks[(generator._id.index, generator._id.generation)] = trampoline
+
+    def set_contact_callback(self, generator, callback, **fields):
+        """`hearth_generator_set_user_contact_callback`: `callback(world, context, sink)` for a
+        user contact generator; keywords as for `create_contact_generator` (`capacity`)."""
+        trampoline = contact_trampoline(self, callback)
+        gd = _def(lib.hearth_user_contact_generator_def_default, fields)
+        gd.callback = trampoline
+        lib.hearth_generator_set_user_contact_callback(self._ptr, generator._id, byref(gd))
+        self._callbacks[(generator._id.index, generator._id.generation)] = trampoline
 
     def _callback_failed(self, error):
         if self._callback_error is None:

@@ -648,3 +648,20 @@ mod rebuild;
 
 #[cfg(test)]
 mod tests;
+
+// Snapshots store the tree node for node: its shape decides the order of pairs.
+crate::snap_struct!(Node {
+    aabb,
+    parent,
+    child1,
+    child2,
+    user_data,
+    height,
+});
+crate::snap_struct!(DynamicTree {
+    nodes,
+    root,
+    free_list,
+    node_count,
+    proxy_count,
+});

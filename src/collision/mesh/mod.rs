@@ -361,3 +361,13 @@ mod tests {
             .contains("degenerate"));
     }
 }
+
+crate::snap_struct!(TriangleMesh {
+    vertices,
+    triangles,
+    flags,
+    original,
+    nodes,
+    degenerate,
+    bounds,
+});

@@ -1,0 +1,154 @@
+//! Restoring: check the frame, decode every section into a new world state, and only then
+//! swap it into the target world, so a failing restore leaves the world as it was.
+
+use super::write::section;
+use super::{bad, fnv1a64, ReadResult, Reader, Snap, SnapshotError, HEADER_LEN, MAGIC, VERSION};
+use crate::generators::GeneratorDef;
+use crate::world::{World, WorldSettings};
+
+/// Reads the section `id`, which must come next, with `body`, which must read it exactly.
+fn get_section<T>(r: &mut Reader, id: u32, body: impl FnOnce(&mut Reader) -> ReadResult<T>) -> ReadResult<T> {
+    let got = u32::get(r)?;
+    if got != id {
+        return bad(format!("snapshot corrupted: section {got} where section {id} belongs"));
+    }
+    let len = u64::get(r)?;
+    if len > r.remaining() as u64 {
+        return bad(format!(
+            "snapshot truncated: section {id} is {len} bytes, {} left",
+            r.remaining()
+        ));
+    }
+    let before = r.remaining();
+    let v = body(r)?;
+    if (before - r.remaining()) as u64 != len {
+        return bad(format!("snapshot corrupted: section {id} is not {len} bytes long"));
+    }
+    Ok(v)
+}
+
+/// Checks magic, version, length and checksum; returns the payload.
+fn payload(bytes: &[u8]) -> ReadResult<&[u8]> {
+    if bytes.len() < HEADER_LEN {
+        return bad(format!(
+            "snapshot truncated: {} bytes, shorter than its {HEADER_LEN}-byte header",
+            bytes.len()
+        ));
+    }
+    if bytes[..8] != MAGIC {
+        return bad("not a Hearth snapshot (magic bytes differ)");
+    }
+    let version = u32::from_le_bytes(bytes[8..12].try_into().expect("4 bytes"));
+    if version != VERSION {
+        return bad(format!(
+            "snapshot format version {version} is not supported (this library reads version {VERSION})"
+        ));
+    }
+    let len = u64::from_le_bytes(bytes[12..20].try_into().expect("8 bytes"));
+    let sum = u64::from_le_bytes(bytes[20..28].try_into().expect("8 bytes"));
+    let payload = &bytes[HEADER_LEN..];
+    if len != payload.len() as u64 {
+        return bad(format!(
+            "snapshot truncated or padded: header says {len} payload bytes, buffer holds {}",
+            payload.len()
+        ));
+    }
+    if fnv1a64(payload) != sum {
+        return bad("snapshot corrupted: checksum mismatch");
+    }
+    Ok(payload)
+}
+
+/// Restores `world` from `bytes` (see the module docs of `snapshot`). On error the world is
+/// unchanged.
+pub fn restore(world: &mut World, bytes: &[u8]) -> Result<(), SnapshotError> {
+    let mut r = Reader::new(payload(bytes)?, world.tag());
+    let r = &mut r;
+    use section::*;
+    let settings: WorldSettings = get_section(r, SETTINGS, Snap::get)?;
+    settings
+        .validate()
+        .map_err(|e| SnapshotError(format!("snapshot corrupted: its world settings are invalid: {e}")))?;
+    let geometry = get_section(r, GEOMETRY, Snap::get)?;
+    let bodies = get_section(r, BODIES, Snap::get)?;
+    let shapes = get_section(r, SHAPES, Snap::get)?;
+    let (contacts, awake_contacts) = get_section(r, CONTACTS, |r| Ok((Snap::get(r)?, Snap::get(r)?)))?;
+    let broad = get_section(r, BROAD_PHASE, Snap::get)?;
+    let (awake_bodies, islands, counters) =
+        get_section(r, SLEEP, |r| Ok((Snap::get(r)?, Snap::get(r)?, Snap::get(r)?)))?;
+    let mut generators: crate::pool::Pool<crate::generators::Generator> = get_section(r, GENERATORS, Snap::get)?;
+    let particles = get_section(r, PARTICLES, Snap::get)?;
+    let joints = get_section(r, JOINTS, Snap::get)?;
+    let soft_bodies = get_section(r, SOFT_BODIES, Snap::get)?;
+    let (pending_contact_end, pending_sensor_end) =
+        get_section(r, EVENTS, |r| Ok((Snap::get(r)?, Snap::get(r)?)))?;
+    if r.remaining() != 0 {
+        return bad(format!(
+            "snapshot corrupted: {} bytes after the last section",
+            r.remaining()
+        ));
+    }
+
+    // User generators: keep the callback the target world's generator of the same id and
+    // kind has now; others stay without one until the host sets it.
+    let keys: Vec<_> = generators.iter().map(|(h, _)| h).collect();
+    for h in keys {
+        let old = world.generators.get(h).map(|g| g.def);
+        let g = generators.get_mut(h).expect("listed");
+        match (&mut g.def, old) {
+            (
+                GeneratorDef::ExternalForce { callback, user_data },
+                Some(GeneratorDef::ExternalForce {
+                    callback: c,
+                    user_data: u,
+                }),
+            ) => {
+                *callback = c;
+                *user_data = u;
+            }
+            (
+                GeneratorDef::ExternalContact {
+                    callback,
+                    user_data,
+                    capacity,
+                },
+                Some(GeneratorDef::ExternalContact {
+                    callback: c,
+                    user_data: u,
+                    capacity: k,
+                }),
+            ) if *capacity == k => {
+                *callback = c;
+                *user_data = u;
+            }
+            _ => {}
+        }
+    }
+
+    // Everything decoded: swap in. Scratch keeps its capacity (every step rewrites it before
+    // reading); the contact batches follow the restored lane width.
+    let lanes_changed = world.settings.lane_width != settings.lane_width;
+    world.settings = settings;
+    world.geometry = geometry;
+    world.bodies = bodies;
+    world.shapes = shapes;
+    world.contacts = contacts;
+    world.awake_contacts = awake_contacts;
+    world.broad = broad;
+    world.awake_bodies = awake_bodies;
+    world.islands = islands;
+    world.counters = counters;
+    world.generators = generators;
+    world.particles = particles;
+    world.joints = joints;
+    world.soft_bodies = soft_bodies;
+    world.generated_contacts.clear();
+    // The last step's events belonged to the state replaced; ends still owed come along.
+    world.events = crate::events::Events::default();
+    world.events.pending_contact_end = pending_contact_end;
+    world.events.pending_sensor_end = pending_sensor_end;
+    if lanes_changed {
+        world.solver.batches = crate::dynamics::contact_wide::Batches::new(settings.lane_width);
+    }
+    Ok(())
+}

@@ -1,0 +1,855 @@
+//! [`Snap`] for every stored type with public fields, and for the stored enums. Types with
+//! private fields list theirs next to their definition (`snap_struct!` at the end of their
+//! module): `DynamicTree`, `GeometryStore`, `TriangleMesh`, `Heightfield`, the contact
+//! caches, generator `Attachments`, soft-body face contacts and the particle and soft-body
+//! carry-over state.
+
+use super::{bad, ReadResult, Reader, Snap, Writer};
+use crate::collision::aabb::Aabb;
+use crate::collision::broad_phase::BroadPhase;
+use crate::collision::contact::{Contact, FrictionImpulse, PointImpulse};
+use crate::collision::filter::Filter;
+use crate::collision::hull::{ConvexHull, EdgeGauss, Face, HalfEdge, Plane, VertexLanes};
+use crate::collision::mesh::bvh::Node as BvhNode;
+use crate::collision::narrow_phase::{Manifold, ManifoldPoint, SatCache};
+use crate::collision::shape::{Geometry, MassProperties, Shape, ShapeDef};
+use crate::dynamics::body::{Body, BodyType};
+use crate::events::{ContactEvent, SensorEvent};
+use crate::dynamics::joints::{
+    BallParams, DistanceParams, HingeParams, Impulses, Joint, JointDef, JointKind, Joints, SliderParams,
+};
+use crate::generators::{End, Generator, GeneratorDef, Spring};
+use crate::math::Transform;
+use crate::particles::{ContactOther, ExpiredParticle, ParticleSettings, Particles, UserParticleContact};
+use crate::pool::Handle;
+use crate::snap_struct;
+use crate::soft::solver::PinAt;
+use crate::soft::{FaceContact, Pin, SoftBodies, SoftBody, SoftBodyDef, Spring as SoftSpring, Tether, VertexContact};
+use crate::world::{Integrator, LaneWidth, StepCounters, WorldSettings};
+
+/// Ids keep index and reuse counter; the world tag is the reading world's.
+impl Snap for Handle {
+    fn put(&self, w: &mut Writer) {
+        self.index.put(w);
+        crate::pool::counter_of(*self).put(w);
+    }
+    fn get(r: &mut Reader) -> ReadResult<Self> {
+        let index = u32::get(r)?;
+        let counter = u32::get(r)?;
+        crate::pool::handle_with_tag(index, counter, r.tag).map_or_else(
+            || bad(format!("snapshot corrupted: id counter {counter} out of range")),
+            Ok,
+        )
+    }
+}
+
+snap_struct!(Transform { p, q });
+snap_struct!(WorldSettings {
+    gravity,
+    substeps,
+    velocity_iterations,
+    integrator,
+    enable_sleep,
+    sleep_threshold,
+    time_to_sleep,
+    contact_hertz,
+    contact_damping_ratio,
+    contact_push_max_velocity,
+    restitution_threshold,
+    linear_slop,
+    max_linear_speed,
+    max_angular_speed,
+    lane_width,
+    hit_event_threshold,
+});
+snap_struct!(StepCounters {
+    awake_bodies,
+    contacts,
+    touching_contacts,
+    pairs_tested,
+    proxies_moved,
+});
+snap_struct!(Body {
+    body_type,
+    xf,
+    center,
+    local_center,
+    v,
+    w,
+    force,
+    torque,
+    mass,
+    inv_mass,
+    inertia_local,
+    inv_inertia_local,
+    isotropic,
+    inv_inertia_world,
+    linear_damping,
+    angular_damping,
+    gravity_scale,
+    allow_sleep,
+    awake,
+    motion,
+    sleep_time,
+    user_data,
+    shapes,
+    contacts,
+    awake_index,
+    sleep_island,
+    solver_index,
+    kinematic_target,
+    kinematic_stop,
+    enable_move_events,
+    reported_xf,
+    mass_override,
+    enabled,
+});
+snap_struct!(Aabb { min, max });
+snap_struct!(ShapeDef {
+    density,
+    static_friction,
+    dynamic_friction,
+    restitution,
+    user_data,
+    rolling_resistance,
+    torsional_friction,
+    filter,
+    is_sensor,
+    enable_contact_events,
+    enable_hit_events,
+    enable_sensor_events,
+});
+snap_struct!(Filter {
+    category_bits,
+    mask_bits,
+    group_index,
+});
+snap_struct!(ContactEvent {
+    shape_a,
+    shape_b,
+    body_a,
+    body_b,
+});
+snap_struct!(SensorEvent {
+    sensor_shape,
+    visitor_shape,
+    sensor_body,
+    visitor_body,
+});
+snap_struct!(Shape {
+    body,
+    geometry,
+    def,
+    proxy,
+    aabb,
+    fat_aabb,
+    in_move_buffer,
+    extent,
+});
+snap_struct!(MassProperties { mass, center, inertia });
+snap_struct!(PointImpulse { normal });
+snap_struct!(FrictionImpulse {
+    tangent,
+    twist,
+    rolling,
+    sliding,
+});
+snap_struct!(ManifoldPoint { point, separation, id });
+snap_struct!(Manifold { normal, points, count });
+snap_struct!(Contact {
+    shape_a,
+    shape_b,
+    body_a,
+    body_b,
+    manifold,
+    impulses,
+    friction,
+    static_friction,
+    dynamic_friction,
+    restitution,
+    rolling_resistance,
+    torsional_friction,
+    touching,
+    awake_index,
+    key,
+    radius_a,
+    radius_b,
+    size,
+    cache,
+    multi,
+    more,
+    sat,
+    event_flags,
+    reported,
+    disabled,
+});
+snap_struct!(BroadPhase {
+    tree,
+    move_buffer,
+    planes,
+    pairs;
+    skip candidates
+});
+snap_struct!(Plane { normal, offset });
+snap_struct!(Face { first, count });
+snap_struct!(HalfEdge { origin, twin, face });
+snap_struct!(EdgeGauss {
+    n1,
+    n2,
+    n2_x_n1,
+    v0,
+    v1,
+});
+snap_struct!(ConvexHull {
+    vertices,
+    planes,
+    faces,
+    half_edges,
+    edges,
+    edge_directions,
+    edge_gauss,
+    radius,
+    unit_mass,
+    area,
+    min,
+    max,
+    bound_radius,
+    lanes,
+});
+snap_struct!(VertexLanes { x, y, z });
+snap_struct!(BvhNode { min, data, max, count });
+
+// ------------------------------------------------------------------ generators
+snap_struct!(Spring {
+    other,
+    local_point,
+    rest_length,
+    stiffness,
+    damping,
+});
+snap_struct!(Generator {
+    def,
+    bodies,
+    particles,
+    broken,
+    elapsed,
+    warm,
+});
+
+// ------------------------------------------------------------------ particles
+snap_struct!(ParticleSettings {
+    velocity_iterations,
+    position_iterations,
+});
+snap_struct!(ExpiredParticle {
+    id,
+    position,
+    velocity,
+    user_data,
+});
+snap_struct!(UserParticleContact {
+    particle,
+    other,
+    point,
+    normal,
+    penetration,
+    restitution,
+    friction,
+});
+snap_struct!(Particles {
+    ids,
+    handle,
+    pos,
+    vel,
+    force,
+    accel,
+    inv_mass,
+    radius,
+    damping,
+    gravity_scale,
+    restitution,
+    friction,
+    lifetime,
+    motion,
+    sleep_time,
+    flags,
+    user_data,
+    expired,
+    user_contacts,
+    settings,
+    removed_since_prune,
+    scratch,
+});
+
+// ------------------------------------------------------------------ joints
+snap_struct!(BallParams {
+    enable_swing_limit,
+    swing_limit,
+    enable_twist_limit,
+    lower_twist,
+    upper_twist,
+});
+snap_struct!(HingeParams {
+    enable_limit,
+    lower,
+    upper,
+    enable_motor,
+    motor_speed,
+    max_motor_torque,
+    enable_spring,
+    spring_hertz,
+    spring_damping_ratio,
+});
+snap_struct!(DistanceParams {
+    length,
+    enable_limit,
+    min_length,
+    max_length,
+    enable_spring,
+    spring_hertz,
+    spring_damping_ratio,
+});
+snap_struct!(SliderParams {
+    enable_limit,
+    lower,
+    upper,
+    enable_motor,
+    motor_speed,
+    max_motor_force,
+});
+snap_struct!(JointDef {
+    kind,
+    body_a,
+    body_b,
+    frame_a,
+    frame_b,
+    collide_connected,
+    break_force,
+    break_torque,
+});
+snap_struct!(Impulses {
+    linear,
+    angular,
+    axial,
+    motor,
+    lower,
+    upper,
+    cone,
+});
+snap_struct!(Joint {
+    def,
+    a,
+    b,
+    broken,
+    impulses,
+    force,
+    torque,
+});
+snap_struct!(Joints {
+    pool,
+    per_body,
+    broken;
+    skip constraints
+});
+
+// ------------------------------------------------------------------ soft bodies
+snap_struct!(SoftBodyDef {
+    transform,
+    velocity,
+    mass,
+    edge_compliance,
+    bend_compliance,
+    preserve_volume,
+    volume_compliance,
+    pressure,
+    damping,
+    deformation_damping,
+    friction,
+    restitution,
+    vertex_radius,
+    gravity_scale,
+    substeps,
+    iterations,
+    collide,
+    user_data,
+});
+snap_struct!(Pin { vertex, body, local });
+snap_struct!(SoftSpring {
+    a,
+    b,
+    rest,
+    tension_only,
+});
+snap_struct!(Tether { vertex, pin, max });
+snap_struct!(VertexContact {
+    n,
+    offset,
+    point,
+    body,
+    coupled,
+    sleeper,
+    friction,
+    restitution,
+    active,
+});
+snap_struct!(FaceContact {
+    triangle,
+    bary,
+    point,
+    coupled,
+    body,
+    friction,
+});
+snap_struct!(SoftBody {
+    def,
+    pos,
+    vel,
+    prev,
+    inv_mass,
+    w,
+    rest,
+    triangles,
+    edges,
+    bends,
+    pins,
+    tethers,
+    pin_at,
+    contacts,
+    body_contacts,
+    face_contacts,
+    held,
+    touching,
+    old,
+    grad,
+    rest_volume,
+    rest_area,
+    skin,
+    neighbours,
+    longest_edge,
+    impulses,
+    has_impulses,
+});
+snap_struct!(SoftBodies { pool, live, scratch });
+
+// ------------------------------------------------------------------ enums
+
+/// An enum's variant tag.
+fn tag(r: &mut Reader, what: &str, n: u8) -> ReadResult<u8> {
+    let t = u8::get(r)?;
+    if t >= n {
+        return bad(format!("snapshot corrupted: {what} variant {t} unknown"));
+    }
+    Ok(t)
+}
+
+macro_rules! snap_unit_enum {
+    ($t:ty, $what:literal: $($v:path),*) => {
+        impl Snap for $t {
+            fn put(&self, w: &mut Writer) {
+                let all = [$($v),*];
+                (all.iter().position(|x| x == self).expect("listed variant") as u8).put(w)
+            }
+            fn get(r: &mut Reader) -> ReadResult<Self> {
+                let all = [$($v),*];
+                Ok(all[tag(r, $what, all.len() as u8)? as usize])
+            }
+        }
+    };
+}
+snap_unit_enum!(BodyType, "body type": BodyType::Static, BodyType::Kinematic, BodyType::Dynamic);
+snap_unit_enum!(Integrator, "integrator": Integrator::SemiImplicitEuler, Integrator::Rk4);
+snap_unit_enum!(LaneWidth, "lane width": LaneWidth::Auto, LaneWidth::Four);
+
+impl Snap for Geometry {
+    fn put(&self, w: &mut Writer) {
+        match self {
+            Geometry::Sphere { center, radius } => {
+                0u8.put(w);
+                center.put(w);
+                radius.put(w);
+            }
+            Geometry::Box {
+                center,
+                rotation,
+                half_extents,
+            } => {
+                1u8.put(w);
+                center.put(w);
+                rotation.put(w);
+                half_extents.put(w);
+            }
+            Geometry::Capsule { a, b, radius } => {
+                2u8.put(w);
+                a.put(w);
+                b.put(w);
+                radius.put(w);
+            }
+            Geometry::Plane { normal, offset } => {
+                3u8.put(w);
+                normal.put(w);
+                offset.put(w);
+            }
+            Geometry::Hull { hull, local, scale } => {
+                4u8.put(w);
+                hull.put(w);
+                local.put(w);
+                scale.put(w);
+            }
+            Geometry::Mesh { mesh, local, scale } => {
+                5u8.put(w);
+                mesh.put(w);
+                local.put(w);
+                scale.put(w);
+            }
+            Geometry::Heightfield {
+                heightfield,
+                local,
+                scale,
+            } => {
+                6u8.put(w);
+                heightfield.put(w);
+                local.put(w);
+                scale.put(w);
+            }
+        }
+    }
+    fn get(r: &mut Reader) -> ReadResult<Self> {
+        Ok(match tag(r, "geometry", 7)? {
+            0 => Geometry::Sphere {
+                center: Snap::get(r)?,
+                radius: Snap::get(r)?,
+            },
+            1 => Geometry::Box {
+                center: Snap::get(r)?,
+                rotation: Snap::get(r)?,
+                half_extents: Snap::get(r)?,
+            },
+            2 => Geometry::Capsule {
+                a: Snap::get(r)?,
+                b: Snap::get(r)?,
+                radius: Snap::get(r)?,
+            },
+            3 => Geometry::Plane {
+                normal: Snap::get(r)?,
+                offset: Snap::get(r)?,
+            },
+            4 => Geometry::Hull {
+                hull: Snap::get(r)?,
+                local: Snap::get(r)?,
+                scale: Snap::get(r)?,
+            },
+            5 => Geometry::Mesh {
+                mesh: Snap::get(r)?,
+                local: Snap::get(r)?,
+                scale: Snap::get(r)?,
+            },
+            _ => Geometry::Heightfield {
+                heightfield: Snap::get(r)?,
+                local: Snap::get(r)?,
+                scale: Snap::get(r)?,
+            },
+        })
+    }
+}
+
+impl Snap for SatCache {
+    fn put(&self, w: &mut Writer) {
+        match *self {
+            SatCache::None => 0u8.put(w),
+            SatCache::FaceA(f) => {
+                1u8.put(w);
+                f.put(w)
+            }
+            SatCache::FaceB(f) => {
+                2u8.put(w);
+                f.put(w)
+            }
+            SatCache::Edges(a, b) => {
+                3u8.put(w);
+                a.put(w);
+                b.put(w)
+            }
+        }
+    }
+    fn get(r: &mut Reader) -> ReadResult<Self> {
+        Ok(match tag(r, "SAT cache", 4)? {
+            0 => SatCache::None,
+            1 => SatCache::FaceA(Snap::get(r)?),
+            2 => SatCache::FaceB(Snap::get(r)?),
+            _ => SatCache::Edges(Snap::get(r)?, Snap::get(r)?),
+        })
+    }
+}
+
+impl Snap for JointKind {
+    fn put(&self, w: &mut Writer) {
+        match self {
+            JointKind::Ball(p) => {
+                0u8.put(w);
+                p.put(w)
+            }
+            JointKind::Hinge(p) => {
+                1u8.put(w);
+                p.put(w)
+            }
+            JointKind::Fixed => 2u8.put(w),
+            JointKind::Distance(p) => {
+                3u8.put(w);
+                p.put(w)
+            }
+            JointKind::Slider(p) => {
+                4u8.put(w);
+                p.put(w)
+            }
+        }
+    }
+    fn get(r: &mut Reader) -> ReadResult<Self> {
+        Ok(match tag(r, "joint kind", 5)? {
+            0 => JointKind::Ball(Snap::get(r)?),
+            1 => JointKind::Hinge(Snap::get(r)?),
+            2 => JointKind::Fixed,
+            3 => JointKind::Distance(Snap::get(r)?),
+            _ => JointKind::Slider(Snap::get(r)?),
+        })
+    }
+}
+
+impl Snap for End {
+    fn put(&self, w: &mut Writer) {
+        match self {
+            End::World(p) => {
+                0u8.put(w);
+                p.put(w)
+            }
+            End::Body { body, local } => {
+                1u8.put(w);
+                body.put(w);
+                local.put(w)
+            }
+            End::Particle(h) => {
+                2u8.put(w);
+                h.put(w)
+            }
+        }
+    }
+    fn get(r: &mut Reader) -> ReadResult<Self> {
+        Ok(match tag(r, "spring end", 3)? {
+            0 => End::World(Snap::get(r)?),
+            1 => End::Body {
+                body: Snap::get(r)?,
+                local: Snap::get(r)?,
+            },
+            _ => End::Particle(Snap::get(r)?),
+        })
+    }
+}
+
+impl Snap for ContactOther {
+    fn put(&self, w: &mut Writer) {
+        match self {
+            ContactOther::World => 0u8.put(w),
+            ContactOther::Body(b) => {
+                1u8.put(w);
+                b.put(w)
+            }
+            ContactOther::Particle(h) => {
+                2u8.put(w);
+                h.put(w)
+            }
+        }
+    }
+    fn get(r: &mut Reader) -> ReadResult<Self> {
+        Ok(match tag(r, "particle contact", 3)? {
+            0 => ContactOther::World,
+            1 => ContactOther::Body(Snap::get(r)?),
+            _ => ContactOther::Particle(Snap::get(r)?),
+        })
+    }
+}
+
+impl Snap for PinAt {
+    fn put(&self, w: &mut Writer) {
+        match self {
+            PinAt::Fixed(p) => {
+                0u8.put(w);
+                p.put(w)
+            }
+            PinAt::Body { k, arm } => {
+                1u8.put(w);
+                k.put(w);
+                arm.put(w)
+            }
+        }
+    }
+    fn get(r: &mut Reader) -> ReadResult<Self> {
+        Ok(match tag(r, "pin", 2)? {
+            0 => PinAt::Fixed(Snap::get(r)?),
+            _ => PinAt::Body {
+                k: Snap::get(r)?,
+                arm: Snap::get(r)?,
+            },
+        })
+    }
+}
+
+/// User generators store no callback: their function pointer and user data mean nothing in
+/// another process. They are read back as 0 (no callback) and `World::restore` puts back the
+/// callbacks the target world holds (same world) or leaves them for the host to re-register.
+impl Snap for GeneratorDef {
+    fn put(&self, w: &mut Writer) {
+        match self {
+            GeneratorDef::Gravity { acceleration } => {
+                0u8.put(w);
+                acceleration.put(w)
+            }
+            GeneratorDef::Drag { k1, k2 } => {
+                1u8.put(w);
+                k1.put(w);
+                k2.put(w)
+            }
+            GeneratorDef::Spring(s) => {
+                2u8.put(w);
+                s.put(w)
+            }
+            GeneratorDef::Bungee(s) => {
+                3u8.put(w);
+                s.put(w)
+            }
+            GeneratorDef::StiffSpring {
+                anchor,
+                local_point,
+                stiffness,
+                damping,
+            } => {
+                4u8.put(w);
+                anchor.put(w);
+                local_point.put(w);
+                stiffness.put(w);
+                damping.put(w)
+            }
+            GeneratorDef::Buoyancy {
+                normal,
+                surface,
+                max_depth,
+                volume,
+                liquid_density,
+                local_point,
+            } => {
+                5u8.put(w);
+                normal.put(w);
+                surface.put(w);
+                max_depth.put(w);
+                volume.put(w);
+                liquid_density.put(w);
+                local_point.put(w)
+            }
+            GeneratorDef::Explosion {
+                center,
+                blast_radius,
+                blast_impulse,
+                shock_speed,
+                shock_thickness,
+                shock_force,
+                max_radius,
+                affect_all,
+            } => {
+                6u8.put(w);
+                center.put(w);
+                blast_radius.put(w);
+                blast_impulse.put(w);
+                shock_speed.put(w);
+                shock_thickness.put(w);
+                shock_force.put(w);
+                max_radius.put(w);
+                affect_all.put(w)
+            }
+            GeneratorDef::Rod { a, b, length } => {
+                7u8.put(w);
+                a.put(w);
+                b.put(w);
+                length.put(w)
+            }
+            GeneratorDef::Cable {
+                a,
+                b,
+                max_length,
+                restitution,
+            } => {
+                8u8.put(w);
+                a.put(w);
+                b.put(w);
+                max_length.put(w);
+                restitution.put(w)
+            }
+            GeneratorDef::ExternalForce {
+                callback: _,
+                user_data: _,
+            } => 9u8.put(w),
+            GeneratorDef::ExternalContact {
+                callback: _,
+                user_data: _,
+                capacity,
+            } => {
+                10u8.put(w);
+                capacity.put(w)
+            }
+        }
+    }
+    fn get(r: &mut Reader) -> ReadResult<Self> {
+        Ok(match tag(r, "generator", 11)? {
+            0 => GeneratorDef::Gravity {
+                acceleration: Snap::get(r)?,
+            },
+            1 => GeneratorDef::Drag {
+                k1: Snap::get(r)?,
+                k2: Snap::get(r)?,
+            },
+            2 => GeneratorDef::Spring(Snap::get(r)?),
+            3 => GeneratorDef::Bungee(Snap::get(r)?),
+            4 => GeneratorDef::StiffSpring {
+                anchor: Snap::get(r)?,
+                local_point: Snap::get(r)?,
+                stiffness: Snap::get(r)?,
+                damping: Snap::get(r)?,
+            },
+            5 => GeneratorDef::Buoyancy {
+                normal: Snap::get(r)?,
+                surface: Snap::get(r)?,
+                max_depth: Snap::get(r)?,
+                volume: Snap::get(r)?,
+                liquid_density: Snap::get(r)?,
+                local_point: Snap::get(r)?,
+            },
+            6 => GeneratorDef::Explosion {
+                center: Snap::get(r)?,
+                blast_radius: Snap::get(r)?,
+                blast_impulse: Snap::get(r)?,
+                shock_speed: Snap::get(r)?,
+                shock_thickness: Snap::get(r)?,
+                shock_force: Snap::get(r)?,
+                max_radius: Snap::get(r)?,
+                affect_all: Snap::get(r)?,
+            },
+            7 => GeneratorDef::Rod {
+                a: Snap::get(r)?,
+                b: Snap::get(r)?,
+                length: Snap::get(r)?,
+            },
+            8 => GeneratorDef::Cable {
+                a: Snap::get(r)?,
+                b: Snap::get(r)?,
+                max_length: Snap::get(r)?,
+                restitution: Snap::get(r)?,
+            },
+            9 => GeneratorDef::ExternalForce {
+                callback: 0,
+                user_data: 0,
+            },
+            _ => GeneratorDef::ExternalContact {
+                callback: 0,
+                user_data: 0,
+                capacity: Snap::get(r)?,
+            },
+        })
+    }
+}
