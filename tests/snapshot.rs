@@ -613,7 +613,7 @@ fn random_scenes_and_save_points_replay_bit_for_bit() {
 /// The size of a settled pile's snapshot (600 steps), per body, counting everything:
 /// bodies, shapes, contacts with their manifolds and caches, the broad-phase tree, sleep
 /// islands. The target is 100 bytes per body; this format stores every field (no
-/// rebuilt caches) and takes about 894 (README "Snapshots"): asserted at most 900 so growth
+/// rebuilt caches) and takes about 952 (README "Snapshots"): asserted at most 960 so growth
 /// is seen. Also prints each section's share.
 #[test]
 fn pile_snapshot_size_per_body() {
@@ -634,5 +634,5 @@ fn pile_snapshot_size_per_body() {
         at += 12 + len;
     }
     assert_eq!(at, snap.len());
-    assert!(per_body <= 900.0, "{per_body:.1} bytes per body");
+    assert!(per_body <= 960.0, "{per_body:.1} bytes per body");
 }

@@ -1951,6 +1951,8 @@ namespace Hearth
                 return f;
             }
             set { HearthException.Check(Native.hearth_shape_set_filter(World.Handle, Id, value), "hearth_shape_set_filter"); }
+        }
+
         /// <summary>hearth_shape_get_restitution / hearth_shape_set_restitution.</summary>
         public float Restitution
         {

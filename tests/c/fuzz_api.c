@@ -3003,6 +3003,10 @@ static void op_query(FWorld *fw) {
         HearthResult e = f == F_NULL_WORLD || f == F_NULL_OUT ? HEARTH_ERROR_NULL_POINTER : s ? HEARTH_OK : HEARTH_ERROR_INVALID_ID;
         CALL(hearth_shape_get_filter(W(fw, f), id, f == F_NULL_OUT ? NULL : &out), e, NULL, &out, sizeof out);
         (void)r;
+        break;
+    }
+    }
+}
 
 /* ------------------------------------------------------------------ events and filters */
 /* The pair filter and pre-solve callbacks: they read (an event read and gravity), try a
@@ -3082,6 +3086,11 @@ static void op_events(FWorld *fw) {
     default: {
         HearthResult e2 = f == F_NULL_WORLD ? HEARTH_ERROR_NULL_POINTER : HEARTH_OK;
         CALL(hearth_world_set_pre_solve_callback(w, chance(70) ? pre_solve_callback : NULL, fw), e2, NULL, NULL, 0);
+        break;
+    }
+    }
+}
+
 /* ------------------------------------------------------------------------------ snapshots */
 /* Save, then restore the same bytes into the world (its tracked objects stay as they are) and
  * into a fresh world, each saving the same bytes again; or a failing call: NULLs, a buffer too

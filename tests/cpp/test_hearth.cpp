@@ -994,6 +994,7 @@ static void test_queries_and_filters() {
         invalid = e.code() == hearth::Code::InvalidArgument;
     }
     CHECK(invalid);
+}
 
 static void test_events_and_step_callbacks() {
     hearth::World w = make_world(true);
@@ -1070,6 +1071,8 @@ static void test_events_and_step_callbacks() {
     p.clear_pre_solve();
     p.clear_pair_filter();
     p.step(DT);
+}
+
 static void test_runtime_setters() {
     hearth::World w = make_world(true);
     add_ground(w);
