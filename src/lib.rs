@@ -15,6 +15,7 @@ pub mod pool;
 pub mod record;
 pub mod simd;
 pub mod soft;
+pub mod state_hash;
 pub mod step;
 pub mod world;
 
