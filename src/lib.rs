@@ -10,6 +10,7 @@ pub mod error;
 pub mod generators;
 pub(crate) mod hash;
 pub mod math;
+pub mod parallel;
 pub mod particles;
 pub mod pool;
 pub mod record;

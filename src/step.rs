@@ -138,50 +138,54 @@ impl World {
     }
 
     fn collide(&mut self, dt: f32) {
-        self.scratch_wake.clear();
-        let mut touching = 0;
-        let mut i = self.awake_contacts.len();
-        while i > 0 {
-            i -= 1;
-            let ci = self.awake_contacts[i];
+        // Every awake contact is updated in parallel: a task writes only to its own contacts
+        // and to their result slots. What changes the world's lists (destroyed contacts,
+        // woken sleepers) is merged after, on this thread, in the serial order.
+        let n = self.awake_contacts.len();
+        self.narrow_results.clear();
+        self.narrow_results.resize(n, 0);
+        {
             let World {
                 contacts,
                 shapes,
                 bodies,
                 geometry,
+                awake_contacts,
+                narrow_results,
+                tasks,
                 ..
             } = self;
-            let c = contacts.at_mut(ci);
-            let (sa, sb) = (shapes.at(c.shape_a), shapes.at(c.shape_b));
-            let (ba, bb) = (bodies.at(c.body_a), bodies.at(c.body_b));
-            if !fat_overlap(
-                &sa.fat_aabb,
-                sa.proxy,
-                &sb.fat_aabb,
-                sb.proxy,
-                &sb.geometry,
-                &bb.xf,
-                &sa.geometry,
-                &ba.xf,
-            ) {
+            let (contacts, results) = (contacts.disjoint(), crate::parallel::Disjoint::new(narrow_results));
+            let awake_contacts = &*awake_contacts;
+            let (shapes, bodies, geometry) = (&*shapes, &*bodies, &*geometry);
+            crate::parallel::run(&**tasks, n as u32, NARROW_MIN_RANGE, &|start, end, _| {
+                let (start, end) = (start as usize, end as usize);
+                for (k, &ci) in awake_contacts[start..end].iter().enumerate() {
+                    // SAFETY: `awake_contacts` lists each contact once and `start + k` is this
+                    // task's own index.
+                    let (c, r) = unsafe { (contacts.at_mut(ci), results.at(start + k)) };
+                    *r = update_contact(c, shapes, bodies, geometry, dt);
+                }
+            });
+        }
+        self.scratch_wake.clear();
+        let mut touching = 0;
+        let mut i = n;
+        while i > 0 {
+            i -= 1;
+            // Destroying swaps the last awake contact into place `i`, which was already
+            // merged, so `awake_contacts[j]` for `j <= i` is still the contact updated at `j`.
+            let (ci, r) = (self.awake_contacts[i], self.narrow_results[i]);
+            if r & DESTROY != 0 {
                 self.destroy_contact(ci);
                 continue;
             }
-            let motion = (bb.v - ba.v).length() + ba.w.length() * sa.extent + bb.w.length() * sb.extent;
-            let speculative = SPECULATIVE_DISTANCE + motion * dt;
-            if apart(sa, &ba.xf, sb, &bb.xf, speculative) {
-                // Tight boxes further apart than the speculative distance: no points, and the
-                // narrow phase is skipped.
-                c.clear();
-            } else {
-                c.update(geometry, sa, &ba.xf, sb, &bb.xf, speculative);
-            }
-            touching += c.touching as usize;
-            if c.touching && (!ba.awake || !bb.awake) {
-                let sleeper = if ba.awake { c.body_b } else { c.body_a };
-                if !bodies.at(sleeper).is_static() {
-                    self.scratch_wake.push(sleeper);
-                }
+            touching += (r & TOUCHING != 0) as usize;
+            let c = self.contacts.at(ci);
+            if r & WAKE_A != 0 {
+                self.scratch_wake.push(c.body_a);
+            } else if r & WAKE_B != 0 {
+                self.scratch_wake.push(c.body_b);
             }
         }
         let mut wake = std::mem::take(&mut self.scratch_wake);
@@ -218,6 +222,55 @@ impl World {
             }
         }
     }
+}
+
+/// Contacts per narrow-phase task, at least.
+const NARROW_MIN_RANGE: u32 = 16;
+/// Narrow-phase results: the pair's fat boxes parted, it touches, the sleeper to wake.
+const DESTROY: u8 = 1;
+const TOUCHING: u8 = 2;
+const WAKE_A: u8 = 4;
+const WAKE_B: u8 = 8;
+
+/// Updates one awake contact's manifold; returns its `DESTROY`, `TOUCHING` and `WAKE_*` bits.
+fn update_contact(
+    c: &mut crate::collision::contact::Contact,
+    shapes: &crate::pool::Pool<crate::collision::shape::Shape>,
+    bodies: &crate::pool::Pool<crate::dynamics::body::Body>,
+    geometry: &crate::collision::geometry_store::GeometryStore,
+    dt: f32,
+) -> u8 {
+    let (sa, sb) = (shapes.at(c.shape_a), shapes.at(c.shape_b));
+    let (ba, bb) = (bodies.at(c.body_a), bodies.at(c.body_b));
+    if !fat_overlap(
+        &sa.fat_aabb,
+        sa.proxy,
+        &sb.fat_aabb,
+        sb.proxy,
+        &sb.geometry,
+        &bb.xf,
+        &sa.geometry,
+        &ba.xf,
+    ) {
+        return DESTROY;
+    }
+    let motion = (bb.v - ba.v).length() + ba.w.length() * sa.extent + bb.w.length() * sb.extent;
+    let speculative = SPECULATIVE_DISTANCE + motion * dt;
+    if apart(sa, &ba.xf, sb, &bb.xf, speculative) {
+        // Tight boxes further apart than the speculative distance: no points, and the
+        // narrow phase is skipped.
+        c.clear();
+    } else {
+        c.update(geometry, sa, &ba.xf, sb, &bb.xf, speculative);
+    }
+    let mut r = if c.touching { TOUCHING } else { 0 };
+    if c.touching && (!ba.awake || !bb.awake) {
+        let (sleeper, bit) = if ba.awake { (bb, WAKE_B) } else { (ba, WAKE_A) };
+        if !sleeper.is_static() {
+            r |= bit;
+        }
+    }
+    r
 }
 
 /// Are two shapes' tight bounds further apart than `margin` (so no contact point can exist)?

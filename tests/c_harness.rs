@@ -56,6 +56,7 @@ const PROGRAMS: &[&str] = &[
     "test_record.c",
     "test_ranges.c",
     "test_geometry.c",
+    "test_threads.c",
 ];
 
 #[test]

@@ -154,3 +154,152 @@ fn stepping_twice_in_a_process_gives_the_same_hash() {
     let b = run(scene, steps, settings(LaneWidth::Auto));
     assert_eq!(a, b);
 }
+
+/// Every golden scene at `workers` threads of the world's own pool.
+fn check_golden_with(name: &str, make: impl Fn() -> World) {
+    let golden = read_golden();
+    for (scene_name, steps, scene) in golden_scenes() {
+        let mut w = make();
+        scene(&mut w);
+        for _ in 0..steps {
+            w.step(DT).unwrap();
+        }
+        let want = golden.iter().find(|g| g.0 == scene_name).expect("golden entry").2;
+        assert_eq!(
+            w.state_hash(),
+            want,
+            "{scene_name} with {name}: the hash differs from tests/golden_hashes.txt"
+        );
+    }
+}
+
+#[test]
+fn worker_counts_one_to_four_give_the_golden_hashes() {
+    for workers in 1..=4 {
+        for lanes in [LaneWidth::Four, LaneWidth::Auto] {
+            check_golden_with(&format!("{workers} workers, {lanes:?} lanes"), || {
+                World::new(WorldSettings {
+                    worker_count: workers,
+                    ..settings(lanes)
+                })
+                .unwrap()
+            });
+        }
+    }
+}
+
+/// A host job system that cuts every task into ranges of random length (at least the
+/// minimum), deals them to `threads` fresh threads at random and runs each thread's ranges
+/// in a shuffled order: whatever the threads and order, the results must not change.
+struct ShufflingHost {
+    threads: u32,
+    seed: std::sync::Mutex<u64>,
+}
+
+impl ShufflingHost {
+    fn next(&self) -> u64 {
+        // splitmix64 over a shared seed: the cut and the deal differ on every task.
+        let mut s = self.seed.lock().unwrap();
+        *s = s.wrapping_add(0x9E37_79B9_7F4A_7C15);
+        let mut z = *s;
+        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+        z ^ (z >> 31)
+    }
+}
+
+impl hearth::parallel::TaskRunner for ShufflingHost {
+    fn worker_count(&self) -> u32 {
+        self.threads
+    }
+
+    fn run(&self, count: u32, min_range: u32, task: &hearth::parallel::Task) {
+        let mut ranges = Vec::new();
+        let mut start = 0;
+        while start < count {
+            let len = min_range + (self.next() % (2 * min_range as u64 + 1)) as u32;
+            let end = (start + len).min(count);
+            ranges.push((start, end));
+            start = end;
+        }
+        let mut deal: Vec<Vec<(u32, u32)>> = vec![Vec::new(); self.threads as usize];
+        for r in ranges {
+            deal[(self.next() % self.threads as u64) as usize].push(r);
+        }
+        for list in &mut deal {
+            for i in (1..list.len()).rev() {
+                list.swap(i, (self.next() % (i as u64 + 1)) as usize);
+            }
+        }
+        std::thread::scope(|scope| {
+            for (worker, list) in deal.iter().enumerate() {
+                scope.spawn(move || {
+                    for &(s, e) in list {
+                        task(s, e, worker as u32);
+                    }
+                });
+            }
+        });
+    }
+}
+
+#[test]
+fn a_host_that_shuffles_tasks_onto_random_threads_gives_the_golden_hashes() {
+    for (threads, seed) in [(2u32, 1u64), (3, 2), (4, 3), (7, 4)] {
+        check_golden_with(&format!("a shuffling host on {threads} threads, seed {seed}"), || {
+            let mut w = World::new(settings(LaneWidth::Auto)).unwrap();
+            w.set_task_runner(Box::new(ShufflingHost {
+                threads,
+                seed: std::sync::Mutex::new(seed),
+            }))
+            .unwrap();
+            assert_eq!(w.settings.worker_count, threads);
+            w
+        });
+    }
+}
+
+#[test]
+fn worker_counts_outside_one_to_sixty_four_are_refused() {
+    for bad in [0, 65, u32::MAX] {
+        let e = World::new(WorldSettings {
+            worker_count: bad,
+            ..WorldSettings::default()
+        })
+        .err()
+        .expect("refused");
+        assert!(e.to_string().contains("worker_count"), "{e}");
+    }
+    let mut w = World::new(WorldSettings::default()).unwrap();
+    let e = w
+        .set_task_runner(Box::new(ShufflingHost {
+            threads: 0,
+            seed: std::sync::Mutex::new(0),
+        }))
+        .expect_err("refused");
+    assert!(e.to_string().contains("worker_count"), "{e}");
+    assert_eq!(w.settings.worker_count, 1, "unchanged");
+}
+
+#[test]
+fn two_pooled_worlds_step_side_by_side_and_drop_cleanly() {
+    // Two worlds with their own threads in one process, stepped alternately, then dropped
+    // (their threads joined): both match the single-threaded run.
+    let (_, steps, scene) = golden_scenes()[0];
+    let want = run(scene, steps, settings(LaneWidth::Auto));
+    let make = || {
+        let mut w = World::new(WorldSettings {
+            worker_count: 3,
+            ..settings(LaneWidth::Auto)
+        })
+        .unwrap();
+        scene(&mut w);
+        w
+    };
+    let (mut a, mut b) = (make(), make());
+    for _ in 0..steps {
+        a.step(DT).unwrap();
+        b.step(DT).unwrap();
+    }
+    assert_eq!((a.state_hash(), b.state_hash()), (want, want));
+}

@@ -579,6 +579,15 @@ class HearthSoftBodySettings(_Struct):
     ]
 
 
+# void (*HearthTaskFn)(uint32_t start, uint32_t end, uint32_t worker_index, void *task_context)
+HearthTaskFn = CFUNCTYPE(None, c_uint32, c_uint32, c_uint32, c_void_p)
+# void *(*HearthEnqueueTaskFn)(HearthTaskFn task, uint32_t item_count, uint32_t min_range, void *task_context,
+#                              void *user_context)
+HearthEnqueueTaskFn = CFUNCTYPE(c_void_p, HearthTaskFn, c_uint32, c_uint32, c_void_p, c_void_p)
+# void (*HearthFinishTaskFn)(void *user_task, void *user_context)
+HearthFinishTaskFn = CFUNCTYPE(None, c_void_p, c_void_p)
+
+
 class HearthWorldDef(_Struct):
     _fields_ = [
         ("gravity", HearthVec3),
@@ -595,6 +604,10 @@ class HearthWorldDef(_Struct):
         ("velocity_iterations", c_uint32),
         ("internal_value", c_uint32),
         ("max_angular_speed", c_float),
+        ("worker_count", c_uint32),
+        ("enqueue_task", HearthEnqueueTaskFn),
+        ("finish_task", HearthFinishTaskFn),
+        ("user_task_context", c_void_p),
     ]
 
 
@@ -628,7 +641,12 @@ FUNCTIONS = {}
 
 # Exported functions and types that the Pythonic layer deliberately does not wrap, with the
 # reason. The parity test fails for any header item that is neither wrapped nor listed here.
-NOT_WRAPPED = {}
+NOT_WRAPPED = {
+    "HearthTaskFn": "a job system in Python would run the ranges under the GIL, one at a time:"
+    " World(worker_count=n) uses the library's own threads instead",
+    "HearthEnqueueTaskFn": "see HearthTaskFn",
+    "HearthFinishTaskFn": "see HearthTaskFn",
+}
 
 
 def _fn(name, restype, *argtypes):
@@ -987,6 +1005,7 @@ _fn("hearth_world_step", HearthResult, POINTER(HearthWorld), c_float)
 _fn("hearth_world_set_gravity", HearthResult, POINTER(HearthWorld), HearthVec3)
 _fn("hearth_world_get_gravity", HearthResult, POINTER(HearthWorld), POINTER(HearthVec3))
 _fn("hearth_world_get_counters", HearthResult, POINTER(HearthWorld), POINTER(HearthWorldCounters))
+_fn("hearth_world_get_hash", HearthResult, POINTER(HearthWorld), POINTER(c_uint64))
 _fn(
     "hearth_world_get_transforms", HearthResult, POINTER(HearthWorld), POINTER(HearthBodyId), c_size_t,
     POINTER(HearthTransform),
