@@ -38,7 +38,7 @@ RULES = [
                  r"|hearth_shape_create_(hull|mesh|heightfield))$"),
     ("shape", r"^(hearth_shape_\w+|HearthShape\w*|HearthSphere|HearthBox|HearthCapsule|HearthPlane)$"),
     ("body", r"^(hearth_body_\w+|HearthBody\w*|HEARTH_BODY_\w+)$"),
-    ("world", r"^(hearth_world_\w+|HearthWorld\w*|HEARTH_INTEGRATOR_\w+)$"),
+    ("world", r"^(hearth_world_\w+|HearthWorld\w*|HEARTH_INTEGRATOR_\w+|Hearth(Task|EnqueueTask|FinishTask)Fn)$"),
 ]
 COMPILED = [(group, re.compile(pattern)) for group, pattern in RULES]
 
