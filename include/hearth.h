@@ -1750,10 +1750,11 @@ typedef struct HearthWorldDef {
     float max_angular_speed;
     /**
      * Threads a step may use, 1..=64. Default 1: everything on the stepping thread. Above 1,
-     * the parallel stages (the narrow phase) run on the host's job system when
-     * `enqueue_task` and `finish_task` are set, else on `worker_count − 1` threads the world
-     * starts and parks between steps. Results are bit for bit the same at every count, on
-     * any threads, in any order (`hearth_world_get_hash`).
+     * the parallel stages (the narrow phase, bodies into and out of the solver) run on the
+     * host's job system when `enqueue_task` and `finish_task` are set, else on
+     * `worker_count − 1` threads the world starts and parks between steps. Results are bit
+     * for bit the same at every count, on any threads, in any order
+     * (`hearth_world_get_hash`).
      */
     uint32_t worker_count;
     /**

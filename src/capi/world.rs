@@ -81,10 +81,11 @@ pub struct HearthWorldDef {
     /// offsets stay.)
     pub max_angular_speed: f32,
     /// Threads a step may use, 1..=64. Default 1: everything on the stepping thread. Above 1,
-    /// the parallel stages (the narrow phase) run on the host's job system when
-    /// `enqueue_task` and `finish_task` are set, else on `worker_count − 1` threads the world
-    /// starts and parks between steps. Results are bit for bit the same at every count, on
-    /// any threads, in any order (`hearth_world_get_hash`).
+    /// the parallel stages (the narrow phase, bodies into and out of the solver) run on the
+    /// host's job system when `enqueue_task` and `finish_task` are set, else on
+    /// `worker_count − 1` threads the world starts and parks between steps. Results are bit
+    /// for bit the same at every count, on any threads, in any order
+    /// (`hearth_world_get_hash`).
     pub worker_count: u32,
     /// The host's enqueue callback (`HearthEnqueueTaskFn`), or NULL (default). Set both
     /// `enqueue_task` and `finish_task`, or neither. Both are called on the stepping thread;
