@@ -3,12 +3,16 @@
 //! prints it as a throughput of steps/s). Scenes come from `hearth::scenes`.
 //!
 //! `cargo bench --bench scenes` runs all; `cargo bench --bench scenes -- pyramid` one.
+//!
+//! The `threads` group steps `pile`, `pyramid_large` and `spheres_grid` at 1 and 2 workers
+//! (the world's own threads, `WorldSettings::worker_count`): `cargo bench --bench scenes --
+//! threads`. Results are bit for bit the same at both counts (tests/threads.rs).
 
 #[path = "../tests/scenes/mod.rs"]
 #[allow(dead_code)]
 mod scenes;
-use criterion::{criterion_group, criterion_main, BatchSize, Criterion, Throughput};
-use hearth::World;
+use criterion::{criterion_group, criterion_main, BatchSize, BenchmarkId, Criterion, Throughput};
+use hearth::{World, WorldSettings};
 
 const STEPS: u64 = 600;
 const DT: f32 = 1.0 / 60.0;
@@ -41,6 +45,36 @@ fn bench_scene(c: &mut Criterion, name: &str, sleep: bool, build: fn(&mut World)
     group.finish();
 }
 
+fn bench_workers(c: &mut Criterion, name: &str, sleep: bool, build: fn(&mut World)) {
+    let mut group = c.benchmark_group("threads");
+    group.sample_size(10);
+    group.throughput(Throughput::Elements(STEPS));
+    for workers in [1u32, 2] {
+        group.bench_with_input(BenchmarkId::new(name, workers), &workers, |b, &workers| {
+            b.iter_batched(
+                || {
+                    let mut w = World::new(WorldSettings {
+                        enable_sleep: sleep,
+                        worker_count: workers,
+                        ..WorldSettings::default()
+                    })
+                    .unwrap();
+                    build(&mut w);
+                    w
+                },
+                |mut w| {
+                    for _ in 0..STEPS {
+                        w.step(DT).unwrap();
+                    }
+                    w
+                },
+                BatchSize::PerIteration,
+            )
+        });
+    }
+    group.finish();
+}
+
 fn benches(c: &mut Criterion) {
     bench_scene(c, "pyramid", false, |w| {
         scenes::pyramid(w, 10);
@@ -68,6 +102,15 @@ fn benches(c: &mut Criterion) {
         scenes::spheres_grid(w, 100);
     });
     bench_scene(c, "spheres_grid", true, |w| {
+        scenes::spheres_grid(w, 100);
+    });
+    bench_workers(c, "pile", true, |w| {
+        scenes::pile(w, 4000);
+    });
+    bench_workers(c, "pyramid_large", false, |w| {
+        scenes::pyramid(w, 20);
+    });
+    bench_workers(c, "spheres_grid", false, |w| {
         scenes::spheres_grid(w, 100);
     });
 }

@@ -46,7 +46,7 @@ RULES = [
     ("shape", r"^(hearth_shape_\w+|HearthShape\w*|HearthSphere|HearthBox|HearthCapsule|HearthPlane)$"),
     ("body", r"^(hearth_body_\w+|HearthBody\w*|HearthMassData|HEARTH_BODY_\w+)$"),
     ("draw", r"^(hearth_world_draw|hearth_debug_draw_default|HearthDebugDraw|HearthDraw\w+)$"),
-    ("world", r"^(hearth_world_\w+|HearthWorld\w*|HEARTH_INTEGRATOR_\w+)$"),
+    ("world", r"^(hearth_world_\w+|HearthWorld\w*|HEARTH_INTEGRATOR_\w+|Hearth(Task|EnqueueTask|FinishTask)Fn)$"),
 ]
 COMPILED = [(group, re.compile(pattern)) for group, pattern in RULES]
 

@@ -1,7 +1,8 @@
 //! Quick wall-clock ms/step of the standard scenes, for development. The criterion benches in
 //! `benches/` are the record. `cargo run --release --example timing [filter]`; the settings
 //! can be varied with SUBSTEPS=n, ITERATIONS=n and LANES=4 (no AVX2), the run with STEPS=n (default 600) and
-//! SLEEP=0/1 (only the scenes with sleep off/on; for profilers such as callgrind).
+//! SLEEP=0/1 (only the scenes with sleep off/on; for profilers such as callgrind), the threads
+//! with WORKERS=n (default 1).
 
 #[path = "../tests/scenes/mod.rs"]
 #[allow(dead_code)]
@@ -42,6 +43,7 @@ fn main() {
         } else {
             LaneWidth::Auto
         },
+        worker_count: env("WORKERS", 1),
         ..defaults
     };
     let steps = env("STEPS", 600);

@@ -2174,6 +2174,37 @@ typedef struct HearthSoftBodySettings {
 } HearthSoftBodySettings;
 
 /**
+ * A range of work Hearth hands the host: call it with `start < end <= item_count` (the
+ * count passed to the enqueue callback), a `worker_index` below the world's
+ * `worker_count` that no other range running at the same moment uses, and the
+ * `task_context` the enqueue callback was given. Every index of `0..item_count` must be
+ * covered by exactly one call. Any thread may call it, in any order; it returns normally
+ * (Hearth catches its own failures and reports them from `hearth_world_step`).
+ */
+typedef void (*HearthTaskFn)(uint32_t start, uint32_t end, uint32_t worker_index, void *task_context);
+
+/**
+ * The host's enqueue callback: arrange for `task` to run over `0..item_count` (split into
+ * ranges of at least `min_range` items, except perhaps the last, or run whole) with
+ * `task_context`, and return a handle the finish callback will wait on. Returning NULL
+ * tells Hearth the task has already run to completion inside this call (and the finish
+ * callback is not called). Called on the thread that called `hearth_world_step`, several
+ * times per step; `user_context` is the def's `user_task_context`.
+ */
+typedef void *(*HearthEnqueueTaskFn)(HearthTaskFn task,
+                                     uint32_t item_count,
+                                     uint32_t min_range,
+                                     void *task_context,
+                                     void *user_context);
+
+/**
+ * The host's finish callback: wait until every range of the task behind `user_task` (a
+ * non-NULL handle the enqueue callback returned) has returned, then release the handle.
+ * Called on the thread that called `hearth_world_step`.
+ */
+typedef void (*HearthFinishTaskFn)(void *user_task, void *user_context);
+
+/**
  * Settings of a world. Get one from `hearth_world_def_default()`, then edit it.
  */
 typedef struct HearthWorldDef {
@@ -2246,6 +2277,30 @@ typedef struct HearthWorldDef {
      * (m/s, 0..=1e4). Default 1.
      */
     float hit_event_threshold;
+    /**
+     * Threads a step may use, 1..=64. Default 1: everything on the stepping thread. Above 1,
+     * the parallel stages (the narrow phase, bodies into and out of the solver) run on the
+     * host's job system when `enqueue_task` and `finish_task` are set, else on
+     * `worker_count − 1` threads the world starts and parks between steps. Results are bit
+     * for bit the same at every count, on any threads, in any order
+     * (`hearth_world_get_hash`).
+     */
+    uint32_t worker_count;
+    /**
+     * The host's enqueue callback (`HearthEnqueueTaskFn`), or NULL (default). Set both
+     * `enqueue_task` and `finish_task`, or neither. Both are called on the stepping thread;
+     * the ranges they run may call no Hearth function.
+     */
+    HearthEnqueueTaskFn enqueue_task;
+    /**
+     * The host's finish callback (`HearthFinishTaskFn`), or NULL (default).
+     */
+    HearthFinishTaskFn finish_task;
+    /**
+     * Passed to `enqueue_task` and `finish_task` as `user_context`; Hearth never reads it.
+     * Default NULL.
+     */
+    void *user_task_context;
 } HearthWorldDef;
 
 /**
@@ -3172,6 +3227,24 @@ HearthResult hearth_heightfield_create(struct HearthWorld *world,
  */
 HearthResult hearth_heightfield_destroy(struct HearthWorld *world,
                                         struct HearthHeightfieldId heightfield);
+
+/**
+ * Writes a 64-bit FNV-1a hash of the world's motion state to `*out_hash`: every live body in
+ * id order (its id's slot index, position, rotation, linear and angular velocity, awake flag and sleep
+ * timer), every live particle in storage order (slot index, position, velocity) and every live
+ * soft body in id order (slot index, each vertex's position and velocity), floats by their bit patterns.
+ * Two worlds stepped with the same calls have the same hash at any worker count, on four or
+ * eight SIMD lanes. Contacts, warm-start impulses, pending forces and settings are not hashed (they show in
+ * the motion a step later). Allowed from callbacks (a read).
+ *
+ * Errors: `HEARTH_ERROR_NULL_POINTER` (world or out_hash NULL). `*out_hash` is written only
+ * on success.
+ *
+ * # Safety
+ * `world` must be NULL or a live world; `out_hash` NULL or writable.
+ */
+HearthResult hearth_world_get_hash(const struct HearthWorld *world,
+                                   uint64_t *out_hash);
 
 /**
  * Defaults: identity frames, no limits, unbreakable, no collision between the bodies.
@@ -4985,8 +5058,10 @@ struct HearthWorldDef hearth_world_def_default(void);
  * are never accepted by another while both live.
  *
  * Errors: `HEARTH_ERROR_NULL_POINTER` (def or out_world NULL),
- * `HEARTH_ERROR_INVALID_ARGUMENT` (def not from `hearth_world_def_default()`, or a field out
- * of range), `HEARTH_ERROR_LIMIT_REACHED` (4,095 worlds are alive). `*out_world` is written
+ * `HEARTH_ERROR_INVALID_ARGUMENT` (def not from `hearth_world_def_default()`, a field out
+ * of range, `worker_count` outside 1..=64, or only one of `enqueue_task` and `finish_task`
+ * set), `HEARTH_ERROR_LIMIT_REACHED` (4,095 worlds are alive, or the world's worker
+ * threads could not be started). `*out_world` is written
  * only on success.
  *
  * # Safety

@@ -254,6 +254,12 @@ impl<T> Pool<T> {
         self.slots[index as usize].value.as_ref().expect("live slot")
     }
 
+    /// The pool's slots for tasks on several threads, each reaching objects by slot index
+    /// that no other running task reaches (`parallel::Disjoint`).
+    pub(crate) fn disjoint(&mut self) -> DisjointPool<'_, T> {
+        DisjointPool(crate::parallel::Disjoint::new(&mut self.slots))
+    }
+
     #[inline]
     pub fn at_mut(&mut self, index: u32) -> &mut T {
         self.slots[index as usize].value.as_mut().expect("live slot")
@@ -367,6 +373,21 @@ impl<T: crate::snapshot::Snap> crate::snapshot::Snap for Pool<T> {
             free,
             len,
         })
+    }
+}
+
+/// A pool's live objects by slot index, for tasks that each own distinct slots.
+pub(crate) struct DisjointPool<'a, T>(crate::parallel::Disjoint<'a, Slot<T>>);
+
+impl<T> DisjointPool<'_, T> {
+    /// The live object in slot `index`.
+    ///
+    /// # Safety
+    /// While the returned reference lives, no other call may ask for the same `index`.
+    #[allow(clippy::mut_from_ref)]
+    #[inline]
+    pub(crate) unsafe fn at_mut(&self, index: u32) -> &mut T {
+        self.0.at(index as usize).value.as_mut().expect("live slot")
     }
 }
 

@@ -173,62 +173,61 @@ impl World {
     }
 
     fn collide(&mut self, dt: f32) {
-        self.scratch_wake.clear();
-        let mut touching = 0;
-        let mut i = self.awake_contacts.len();
-        while i > 0 {
-            i -= 1;
-            let ci = self.awake_contacts[i];
+        // Every awake contact is updated in parallel: a task writes only to its own contacts
+        // and to their result slots. What changes the world's lists (destroyed contacts,
+        // woken sleepers) is merged after, on this thread, in the serial order.
+        let n = self.awake_contacts.len();
+        self.narrow_results.clear();
+        self.narrow_results.resize(n, 0);
+        {
             let World {
                 contacts,
                 shapes,
                 bodies,
                 geometry,
+                awake_contacts,
+                narrow_results,
+                tasks,
                 ..
             } = self;
-            let c = contacts.at_mut(ci);
-            c.disabled = false;
-            let (sa, sb) = (shapes.at(c.shape_a), shapes.at(c.shape_b));
-            let (ba, bb) = (bodies.at(c.body_a), bodies.at(c.body_b));
-            if !fat_overlap(
-                &sa.fat_aabb,
-                sa.proxy,
-                &sb.fat_aabb,
-                sb.proxy,
-                &sb.geometry,
-                &bb.xf,
-                &sa.geometry,
-                &ba.xf,
-            ) {
+            let (contacts, results) = (contacts.disjoint(), crate::parallel::Disjoint::new(narrow_results));
+            let awake_contacts = &*awake_contacts;
+            let (shapes, bodies, geometry) = (&*shapes, &*bodies, &*geometry);
+            crate::parallel::run(&**tasks, n as u32, NARROW_MIN_RANGE, &|start, end, _| {
+                let (start, end) = (start as usize, end as usize);
+                for (k, &ci) in awake_contacts[start..end].iter().enumerate() {
+                    // SAFETY: `awake_contacts` lists each contact once and `start + k` is this
+                    // task's own index.
+                    let (c, r) = unsafe { (contacts.at_mut(ci), results.at(start + k)) };
+                    *r = update_contact(c, shapes, bodies, geometry, dt);
+                }
+            });
+        }
+        self.scratch_wake.clear();
+        let mut touching = 0;
+        let mut i = n;
+        while i > 0 {
+            i -= 1;
+            // Destroying swaps the last awake contact into place `i`, which was already
+            // merged, so `awake_contacts[j]` for `j <= i` is still the contact updated at `j`.
+            let (ci, r) = (self.awake_contacts[i], self.narrow_results[i]);
+            if r & DESTROY != 0 {
                 self.destroy_contact(ci);
                 continue;
             }
-            let (spin_a, spin_b) = (ba.w.length(), bb.w.length());
-            let motion = (bb.v - ba.v).length() + spin_a * sa.extent + spin_b * sb.extent;
-            // A sensor measures overlap only: no speculative points.
-            let speculative = if c.event_flags & crate::events::SENSOR != 0 {
-                0.0
-            } else {
-                SPECULATIVE_DISTANCE + motion * dt
-            };
-            if apart(sa, &ba.xf, sb, &bb.xf, speculative) {
-                // Tight boxes further apart than the speculative distance: no points, and the
-                // narrow phase is skipped.
-                c.clear();
-            } else {
-                c.update(geometry, sa, &ba.xf, sb, &bb.xf, speculative);
-            }
+            touching += (r & TOUCHING != 0) as usize;
+            let c = self.contacts.at(ci);
             if c.event_flags != 0 {
-                self.contact_events_after_update(ci, motion, spin_a + spin_b);
+                let (sa, sb) = (self.shapes.at(c.shape_a), self.shapes.at(c.shape_b));
+                let (ba, bb) = (self.bodies.at(c.body_a), self.bodies.at(c.body_b));
+                let (motion, spin) = (contact_motion(sa, ba, sb, bb), ba.w.length() + bb.w.length());
+                self.contact_events_after_update(ci, motion, spin);
             }
             let c = self.contacts.at(ci);
-            let (ba, bb) = (self.bodies.at(c.body_a), self.bodies.at(c.body_b));
-            touching += c.touching as usize;
-            if c.touching && (!ba.awake || !bb.awake) {
-                let sleeper = if ba.awake { c.body_b } else { c.body_a };
-                if !self.bodies.at(sleeper).is_static() {
-                    self.scratch_wake.push(sleeper);
-                }
+            if r & WAKE_A != 0 {
+                self.scratch_wake.push(c.body_a);
+            } else if r & WAKE_B != 0 {
+                self.scratch_wake.push(c.body_b);
             }
         }
         let mut wake = std::mem::take(&mut self.scratch_wake);
@@ -265,6 +264,77 @@ impl World {
             }
         }
     }
+}
+
+/// Contacts per narrow-phase task, at least.
+const NARROW_MIN_RANGE: u32 = 16;
+/// Narrow-phase results: the pair's fat boxes parted, it touches, the sleeper to wake.
+const DESTROY: u8 = 1;
+const TOUCHING: u8 = 2;
+const WAKE_A: u8 = 4;
+const WAKE_B: u8 = 8;
+
+/// Updates one awake contact's manifold; returns its `DESTROY`, `TOUCHING` and `WAKE_*` bits.
+fn update_contact(
+    c: &mut crate::collision::contact::Contact,
+    shapes: &crate::pool::Pool<crate::collision::shape::Shape>,
+    bodies: &crate::pool::Pool<crate::dynamics::body::Body>,
+    geometry: &crate::collision::geometry_store::GeometryStore,
+    dt: f32,
+) -> u8 {
+    c.disabled = false;
+    let (sa, sb) = (shapes.at(c.shape_a), shapes.at(c.shape_b));
+    let (ba, bb) = (bodies.at(c.body_a), bodies.at(c.body_b));
+    if !fat_overlap(
+        &sa.fat_aabb,
+        sa.proxy,
+        &sb.fat_aabb,
+        sb.proxy,
+        &sb.geometry,
+        &bb.xf,
+        &sa.geometry,
+        &ba.xf,
+    ) {
+        return DESTROY;
+    }
+    let motion = contact_motion(sa, ba, sb, bb);
+    // A sensor measures overlap only: no speculative points.
+    let speculative = if c.event_flags & crate::events::SENSOR != 0 {
+        0.0
+    } else {
+        SPECULATIVE_DISTANCE + motion * dt
+    };
+    if apart(sa, &ba.xf, sb, &bb.xf, speculative) {
+        // Tight boxes further apart than the speculative distance: no points, and the
+        // narrow phase is skipped.
+        c.clear();
+    } else {
+        c.update(geometry, sa, &ba.xf, sb, &bb.xf, speculative);
+    }
+    if c.event_flags & crate::events::SENSOR != 0 {
+        // A sensor never touches for the solver and wakes nothing; its overlap is read from
+        // the points in the merge (`contact_events_after_update`).
+        return 0;
+    }
+    let mut r = if c.touching { TOUCHING } else { 0 };
+    if c.touching && (!ba.awake || !bb.awake) {
+        let (sleeper, bit) = if ba.awake { (bb, WAKE_B) } else { (ba, WAKE_A) };
+        if !sleeper.is_static() {
+            r |= bit;
+        }
+    }
+    r
+}
+
+/// Relative speed bound of two shapes' surfaces: their bodies' relative linear speed plus
+/// each one's spin times its shape's extent.
+fn contact_motion(
+    sa: &crate::collision::shape::Shape,
+    ba: &crate::dynamics::body::Body,
+    sb: &crate::collision::shape::Shape,
+    bb: &crate::dynamics::body::Body,
+) -> f32 {
+    (bb.v - ba.v).length() + ba.w.length() * sa.extent + bb.w.length() * sb.extent
 }
 
 /// Are two shapes' tight bounds further apart than `margin` (so no contact point can exist)?

@@ -66,6 +66,10 @@ pub struct WorldSettings {
     pub lane_width: LaneWidth,
     /// Approach speed above which a contact with hit events reports a hit (m/s).
     pub hit_event_threshold: f32,
+    /// Threads a step may use, 1..=64 (default 1). Above 1 the world starts `worker_count −
+    /// 1` threads of its own, parked between steps, unless the host supplies its job system
+    /// with `World::set_task_runner`. Results are bit for bit the same at every count.
+    pub worker_count: u32,
 }
 
 /// Default `WorldSettings::max_angular_speed`: 100π rad/s.
@@ -90,6 +94,7 @@ impl Default for WorldSettings {
             max_angular_speed: DEFAULT_MAX_ANGULAR_SPEED,
             lane_width: LaneWidth::Auto,
             hit_event_threshold: 1.0,
+            worker_count: 1,
         }
     }
 }
@@ -130,6 +135,13 @@ impl WorldSettings {
         )?;
         check_range("hit_event_threshold", self.hit_event_threshold, 0.0, MAX_SPEED, " m/s")?;
         check_range("linear_slop", self.linear_slop, 0.0, MAX_LENGTH, " m")?;
+        if self.worker_count == 0 || self.worker_count > crate::parallel::MAX_WORKERS {
+            return Err(invalid(format!(
+                "worker_count must be in 1..={}, got {}",
+                crate::parallel::MAX_WORKERS,
+                self.worker_count
+            )));
+        }
         check_range("max_linear_speed", self.max_linear_speed, 1.0e-3, MAX_SPEED, " m/s")?;
         check_range(
             "max_angular_speed",
@@ -202,6 +214,11 @@ pub struct World {
     pub geometry: GeometryStore,
     /// The last step's events (`events.rs`).
     pub(crate) events: crate::events::Events,
+    /// Runs the parallel stages (`parallel/`): `Serial`, the world's own `ThreadPool`, or the
+    /// host's job system.
+    pub(crate) tasks: Box<dyn crate::parallel::TaskRunner>,
+    /// The narrow phase's result per awake contact (`step.rs`, `collide`).
+    pub(crate) narrow_results: Vec<u8>,
 }
 
 impl World {
@@ -214,6 +231,13 @@ impl World {
             ))
         })?;
         let tag = lease.stamp();
+        let tasks: Box<dyn crate::parallel::TaskRunner> = if settings.worker_count > 1 {
+            Box::new(crate::parallel::ThreadPool::new(settings.worker_count).map_err(|e| {
+                Error::LimitReached(format!("could not start {} worker threads: {e}", settings.worker_count))
+            })?)
+        } else {
+            Box::new(crate::parallel::Serial)
+        };
         Ok(World {
             settings,
             bodies: Pool::new(tag),
@@ -240,7 +264,25 @@ impl World {
             tag: lease,
             geometry: GeometryStore::new(tag),
             events: Default::default(),
+            tasks,
+            narrow_results: Vec::new(),
         })
+    }
+
+    /// Runs the world's parallel stages on `runner` (a host's job system) from the next step
+    /// on, replacing the world's own threads. `settings.worker_count` becomes
+    /// `runner.worker_count()`. Results do not depend on the runner.
+    pub fn set_task_runner(&mut self, runner: Box<dyn crate::parallel::TaskRunner>) -> Result<()> {
+        let n = runner.worker_count();
+        if n == 0 || n > crate::parallel::MAX_WORKERS {
+            return Err(invalid(format!(
+                "the task runner's worker_count must be in 1..={}, got {n}",
+                crate::parallel::MAX_WORKERS
+            )));
+        }
+        self.settings.worker_count = n;
+        self.tasks = runner;
+        Ok(())
     }
 
     // ---------------------------------------------------------------- bodies

@@ -61,6 +61,7 @@ const PROGRAMS: &[&str] = &[
     "test_setters.c",
     "test_draw.c",
     "test_snapshot.c",
+    "test_threads.c",
 ];
 
 #[test]

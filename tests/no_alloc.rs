@@ -92,6 +92,31 @@ fn steady_steps_do_not_allocate() {
     scenes::spheres_grid(&mut w, 30);
     assert_eq!(allocations_per_step(&mut w, 60, 120), 0, "spheres grid (sleep off)");
 
+    // At every worker count: the world's own parked threads, and a host job system (C
+    // callbacks) that runs each task in two ranges. The counter counts every thread.
+    for workers in [2, 4] {
+        let settings = hearth::WorldSettings {
+            enable_sleep: false,
+            worker_count: workers,
+            ..Default::default()
+        };
+        let mut w = hearth::World::new(settings).unwrap();
+        scenes::pyramid(&mut w, 10);
+        assert_eq!(
+            allocations_per_step(&mut w, 120, 120),
+            0,
+            "pyramid at {workers} workers"
+        );
+        let mut w = hearth::World::new(settings).unwrap();
+        scenes::pile(&mut w, 400);
+        assert_eq!(allocations_per_step(&mut w, 240, 60), 0, "pile at {workers} workers");
+    }
+    assert_eq!(
+        capi_scene::hosted_pyramid_allocations(),
+        0,
+        "pyramid on a host job system"
+    );
+
     let mut w = scenes::world(true);
     scenes::tower(&mut w, 10);
     assert_eq!(allocations_per_step(&mut w, 600, 60), 0, "sleeping tower");
@@ -192,6 +217,90 @@ mod capi_scene {
 
     fn ok(r: HearthResult) {
         assert_eq!(r, HEARTH_OK, "a C API call failed");
+    }
+
+    unsafe extern "C" fn enqueue(
+        task: hearth::capi::tasks::HearthTaskFn,
+        count: u32,
+        _min_range: u32,
+        task_context: *mut std::ffi::c_void,
+        _user: *mut std::ffi::c_void,
+    ) -> *mut std::ffi::c_void {
+        let task = task.unwrap();
+        task(count / 2, count, 1, task_context);
+        if count / 2 > 0 {
+            task(0, count / 2, 0, task_context);
+        }
+        std::ptr::null_mut()
+    }
+
+    unsafe extern "C" fn finish(_: *mut std::ffi::c_void, _: *mut std::ffi::c_void) {}
+
+    /// Allocations in 120 steps of a 5-layer pyramid of boxes on a plane, after 120 of
+    /// warm-up, in a world whose tasks run through a host's enqueue callback.
+    pub fn hosted_pyramid_allocations() -> usize {
+        unsafe {
+            let mut wd = hearth_world_def_default();
+            wd.worker_count = 2;
+            wd.enable_sleep = 0;
+            wd.enqueue_task = Some(enqueue);
+            wd.finish_task = Some(finish);
+            let mut world = std::ptr::null_mut();
+            ok(hearth_world_create(&wd, &mut world));
+            let mut ground = HearthBodyId::default();
+            ok(hearth_body_create(world, &hearth_body_def_default(), &mut ground));
+            let plane = HearthPlane {
+                normal: v(0.0, 1.0, 0.0),
+                offset: 0.0,
+            };
+            let mut shape = HearthShapeId::default();
+            ok(hearth_shape_create_plane(
+                world,
+                ground,
+                &hearth_shape_def_default(),
+                &plane,
+                &mut shape,
+            ));
+            for layer in 0..5 {
+                for i in 0..5 - layer {
+                    for k in 0..5 - layer {
+                        let mut bd = hearth_body_def_default();
+                        bd.r#type = HEARTH_BODY_DYNAMIC;
+                        let off = layer as f32 * 0.5;
+                        bd.transform.position = v(i as f32 + off, 0.5 + layer as f32, k as f32 + off);
+                        let mut b = HearthBodyId::default();
+                        ok(hearth_body_create(world, &bd, &mut b));
+                        let cube = HearthBox {
+                            center: v(0.0, 0.0, 0.0),
+                            rotation: HearthQuat {
+                                x: 0.0,
+                                y: 0.0,
+                                z: 0.0,
+                                w: 1.0,
+                            },
+                            half_extents: v(0.5, 0.5, 0.5),
+                        };
+                        ok(hearth_shape_create_box(
+                            world,
+                            b,
+                            &hearth_shape_def_default(),
+                            &cube,
+                            &mut shape,
+                        ));
+                    }
+                }
+            }
+            for _ in 0..120 {
+                ok(hearth_world_step(world, 1.0 / 60.0));
+            }
+            let before = super::ALLOCATIONS.load(super::Ordering::Relaxed);
+            for _ in 0..120 {
+                ok(hearth_world_step(world, 1.0 / 60.0));
+            }
+            let n = super::ALLOCATIONS.load(super::Ordering::Relaxed) - before;
+            hearth_world_destroy(world);
+            n
+        }
     }
 
     fn v(x: f32, y: f32, z: f32) -> HearthVec3 {

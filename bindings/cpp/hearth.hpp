@@ -72,6 +72,10 @@ using MeshId = HearthMeshId;
 using HeightfieldId = HearthHeightfieldId;
 
 using WorldDef = HearthWorldDef;
+/** A job system's callbacks (plain function pointers; see HearthWorldDef::enqueue_task). */
+using TaskFn = HearthTaskFn;
+using EnqueueTaskFn = HearthEnqueueTaskFn;
+using FinishTaskFn = HearthFinishTaskFn;
 using WorldCounters = HearthWorldCounters;
 using RecordDef = HearthRecordDef;
 using BodyDef = HearthBodyDef;
@@ -242,6 +246,20 @@ enum class GeneratorType : uint32_t {
 
 // Defaults: always start a def from these (the C layer rejects defs made any other way).
 inline WorldDef world_def() noexcept { return hearth_world_def_default(); }
+/**
+ * The default def stepping on `workers` threads (1..=64): the host's job system when `enqueue`
+ * and `finish` are given (`context` is passed to both as `user_context`), else threads the
+ * world starts itself. Results are bit for bit those of one thread (`state_hash()`).
+ */
+inline WorldDef threaded_world_def(uint32_t workers, EnqueueTaskFn enqueue = nullptr, FinishTaskFn finish = nullptr,
+                                   void *context = nullptr) noexcept {
+    WorldDef d = hearth_world_def_default();
+    d.worker_count = workers;
+    d.enqueue_task = enqueue;
+    d.finish_task = finish;
+    d.user_task_context = context;
+    return d;
+}
 inline RecordDef record_def() noexcept { return hearth_record_def_default(); }
 inline BodyDef body_def() noexcept { return hearth_body_def_default(); }
 inline BodyDef body_def(BodyType type, Vec3 position = Vec3{0, 0, 0}) noexcept {
@@ -1140,6 +1158,8 @@ public:
     Ret<void> draw(const DebugDraw &d) const { return P::check(hearth_world_draw(world_, &d)); }
     Ret<void> set_gravity(Vec3 g) const { return P::check(hearth_world_set_gravity(world_, g)); }
     Ret<WorldCounters> counters() const { HEARTH_CPP_READ(WorldCounters, hearth_world_get_counters(world_, &out)); }
+    /** hearth_world_get_hash: equal for equal runs at any worker count and lane width. */
+    Ret<uint64_t> state_hash() const { HEARTH_CPP_READ(uint64_t, hearth_world_get_hash(world_, &out)); }
 
     // Events of the last step: arrays owned by the world, valid until the next step or destroy.
     Ret<ContactEvents> contact_events() const {

@@ -192,6 +192,25 @@ namespace Hearth
         /// <summary>Set by <c>hearth_debug_draw_default()</c>; do not change.</summary>
         public uint InternalValue;
     }
+    /// HearthTaskFn: <c>void (*)(uint32_t start, uint32_t end, uint32_t worker_index, void *task_context)</c>,
+    /// the range task Hearth hands a job system's <see cref="EnqueueTaskFn"/>: call it over disjoint ranges
+    /// covering <c>0..item_count</c> once, on any threads, with a worker index below the world's worker count.
+    /// </summary>
+    [UnmanagedFunctionPointer(CallingConvention.Cdecl)]
+    public delegate void TaskFn(uint start, uint end, uint workerIndex, IntPtr taskContext);
+
+    /// <summary>
+    /// HearthEnqueueTaskFn: <c>void *(*)(HearthTaskFn task, uint32_t item_count, uint32_t min_range, void *task_context, void *user_context)</c>.
+    /// Returns a handle for <see cref="FinishTaskFn"/>, or IntPtr.Zero when the task already ran. Set
+    /// <c>WorldDef.EnqueueTask</c> to <c>Marshal.GetFunctionPointerForDelegate</c> of one (and keep the
+    /// delegate alive as long as the world).
+    /// </summary>
+    [UnmanagedFunctionPointer(CallingConvention.Cdecl)]
+    public delegate IntPtr EnqueueTaskFn(IntPtr task, uint itemCount, uint minRange, IntPtr taskContext, IntPtr userContext);
+
+    /// <summary>HearthFinishTaskFn: <c>void (*)(void *user_task, void *user_context)</c>: waits for every range of the task.</summary>
+    [UnmanagedFunctionPointer(CallingConvention.Cdecl)]
+    public delegate void FinishTaskFn(IntPtr userTask, IntPtr userContext);
 
     /// <summary>A 3D vector of <c>float</c> (metres, m/s, N, ... by context).</summary>
     [StructLayout(LayoutKind.Sequential)]
@@ -1341,6 +1360,14 @@ namespace Hearth
         public float MaxAngularSpeed;
         /// <summary>Approach speed above which a contact with hit events reports a hit (m/s, 0..=1e4). Default 1.</summary>
         public float HitEventThreshold;
+        /// <summary>Threads a step may use, 1..=64. Default 1. Above 1 the world runs its parallel stages on the job system of <c>EnqueueTask</c>/<c>FinishTask</c>, or on threads of its own. Results are bit for bit the same at every count (<c>World.StateHash</c>).</summary>
+        public uint WorkerCount;
+        /// <summary>A <see cref="EnqueueTaskFn"/> function pointer, or IntPtr.Zero (default). Set both or neither.</summary>
+        public IntPtr EnqueueTask;
+        /// <summary>A <see cref="FinishTaskFn"/> function pointer, or IntPtr.Zero (default).</summary>
+        public IntPtr FinishTask;
+        /// <summary>Passed to <c>EnqueueTask</c> and <c>FinishTask</c> as <c>user_context</c>. Default IntPtr.Zero.</summary>
+        public IntPtr UserTaskContext;
     }
 
     /// <summary>How to record a world (hearth_world_record_start_file / _callback).</summary>
@@ -2074,6 +2101,8 @@ namespace Hearth
 
         [DllImport(Lib, CallingConvention = CallingConvention.Cdecl)]
         public static extern Result hearth_world_get_counters(WorldHandle world, out WorldCounters value);
+        [DllImport(Lib, CallingConvention = CallingConvention.Cdecl)]
+        public static extern Result hearth_world_get_hash(WorldHandle world, out ulong hash);
 
         [DllImport(Lib, CallingConvention = CallingConvention.Cdecl)]
         public static extern Result hearth_world_get_transforms(WorldHandle world, [In] BodyId[] bodies, UIntPtr count, [Out] Transform[] outTransforms);

@@ -620,6 +620,17 @@ namespace Hearth
             set { Check(Native.hearth_world_set_gravity(Handle, value), "hearth_world_set_gravity"); }
         }
 
+        /// <summary>hearth_world_get_hash: a 64-bit hash of the world's motion state, equal for equal runs at any worker count.</summary>
+        public ulong StateHash
+        {
+            get
+            {
+                ulong value;
+                Check(Native.hearth_world_get_hash(Handle, out value), "hearth_world_get_hash");
+                return value;
+            }
+        }
+
         /// <summary>hearth_world_get_counters.</summary>
         public WorldCounters Counters
         {

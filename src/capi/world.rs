@@ -85,6 +85,22 @@ pub struct HearthWorldDef {
     /// Approach speed above which a contact whose shapes enable hit events reports a hit
     /// (m/s, 0..=1e4). Default 1.
     pub hit_event_threshold: f32,
+    /// Threads a step may use, 1..=64. Default 1: everything on the stepping thread. Above 1,
+    /// the parallel stages (the narrow phase, bodies into and out of the solver) run on the
+    /// host's job system when `enqueue_task` and `finish_task` are set, else on
+    /// `worker_count − 1` threads the world starts and parks between steps. Results are bit
+    /// for bit the same at every count, on any threads, in any order
+    /// (`hearth_world_get_hash`).
+    pub worker_count: u32,
+    /// The host's enqueue callback (`HearthEnqueueTaskFn`), or NULL (default). Set both
+    /// `enqueue_task` and `finish_task`, or neither. Both are called on the stepping thread;
+    /// the ranges they run may call no Hearth function.
+    pub enqueue_task: super::tasks::HearthEnqueueTaskFn,
+    /// The host's finish callback (`HearthFinishTaskFn`), or NULL (default).
+    pub finish_task: super::tasks::HearthFinishTaskFn,
+    /// Passed to `enqueue_task` and `finish_task` as `user_context`; Hearth never reads it.
+    /// Default NULL.
+    pub user_task_context: *mut std::os::raw::c_void,
 }
 
 /// The world handle: opaque to C. Owns everything in the world. One thread at a time.
@@ -189,6 +205,7 @@ pub(crate) fn settings_from_def(def: &HearthWorldDef) -> Result<WorldSettings, F
         max_angular_speed: def.max_angular_speed,
         velocity_iterations: def.velocity_iterations,
         hit_event_threshold: def.hit_event_threshold,
+        worker_count: def.worker_count,
         ..WorldSettings::default()
     };
     s.validate()?;
@@ -215,6 +232,10 @@ pub extern "C" fn hearth_world_def_default() -> HearthWorldDef {
         internal_value: DEF_COOKIE,
         max_angular_speed: s.max_angular_speed,
         hit_event_threshold: s.hit_event_threshold,
+        worker_count: s.worker_count,
+        enqueue_task: None,
+        finish_task: None,
+        user_task_context: std::ptr::null_mut(),
     }
 }
 
@@ -223,8 +244,10 @@ pub extern "C" fn hearth_world_def_default() -> HearthWorldDef {
 /// are never accepted by another while both live.
 ///
 /// Errors: `HEARTH_ERROR_NULL_POINTER` (def or out_world NULL),
-/// `HEARTH_ERROR_INVALID_ARGUMENT` (def not from `hearth_world_def_default()`, or a field out
-/// of range), `HEARTH_ERROR_LIMIT_REACHED` (4,095 worlds are alive). `*out_world` is written
+/// `HEARTH_ERROR_INVALID_ARGUMENT` (def not from `hearth_world_def_default()`, a field out
+/// of range, `worker_count` outside 1..=64, or only one of `enqueue_task` and `finish_task`
+/// set), `HEARTH_ERROR_LIMIT_REACHED` (4,095 worlds are alive, or the world's worker
+/// threads could not be started). `*out_world` is written
 /// only on success.
 ///
 /// # Safety
@@ -238,7 +261,24 @@ pub unsafe extern "C" fn hearth_world_create(
         let def = validate::input(def, "def")?;
         let out = validate::output(out_world, "out_world")?;
         let settings = settings_from_def(def)?;
-        let world = World::new(settings)?;
+        let host = super::tasks::HostTasks::from_def(
+            def.enqueue_task,
+            def.finish_task,
+            def.user_task_context,
+            settings.worker_count,
+        )?;
+        let world = match host {
+            // The host's job system replaces the world's own threads: none are started.
+            Some(host) => {
+                let mut world = World::new(WorldSettings {
+                    worker_count: 1,
+                    ..settings
+                })?;
+                world.set_task_runner(Box::new(host))?;
+                world
+            }
+            None => World::new(settings)?,
+        };
         let boxed = Box::new(HearthWorld {
             locked: Cell::new(false),
             phase: Cell::new(PHASE_IDLE),

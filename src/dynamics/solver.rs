@@ -16,6 +16,7 @@ use crate::dynamics::contact_solver::{self, ContactRef, Sources};
 use crate::dynamics::contact_wide;
 use crate::dynamics::integrate_wide;
 use crate::math::{clamp_length, clamp_length_f64, integrate_rotation, Mat3, Quat, Vec3};
+use crate::parallel::Disjoint;
 use crate::world::{Integrator, World};
 use glam::{DMat3, DQuat, DVec3};
 
@@ -392,61 +393,112 @@ pub fn prepare_bodies(world: &mut World, dt: f32, h: f32) {
         rk4: false,
         arrive: false,
     });
-    for &bi in &world.awake_bodies {
-        let body: &mut Body = world.bodies.at_mut(bi);
-        body.solver_index = scratch.states.len() as u32;
-        let dynamic = body.is_dynamic();
-        if body.kinematic_stop && body.kinematic_target.is_none() {
-            // It reached its target in the last step and was given nothing new: it stays.
-            body.v = Vec3::ZERO;
-            body.w = Vec3::ZERO;
+    // One slot per awake body after the shared static one, filled in parallel: the task for
+    // awake body k writes only that body and slot k + 1.
+    let n = world.awake_bodies.len();
+    let (state0, vel0, sim0, drive0) = (scratch.states[0], scratch.vel[0], scratch.sims[0], scratch.drives[0]);
+    scratch.states.resize(n + 1, state0);
+    scratch.vel.resize(n + 1, vel0);
+    scratch.sims.resize(n + 1, sim0);
+    scratch.drives.resize(n + 1, drive0);
+    let World {
+        bodies,
+        awake_bodies,
+        tasks,
+        ..
+    } = world;
+    let bodies = bodies.disjoint();
+    let awake_bodies = &*awake_bodies;
+    let slots = (
+        Disjoint::new(&mut scratch.states[1..]),
+        Disjoint::new(&mut scratch.vel[1..]),
+        Disjoint::new(&mut scratch.sims[1..]),
+        Disjoint::new(&mut scratch.drives[1..]),
+    );
+    crate::parallel::run(&**tasks, n as u32, BODY_MIN_RANGE, &|start, end, _| {
+        let start = start as usize;
+        for (j, &bi) in awake_bodies[start..end as usize].iter().enumerate() {
+            let k = start + j;
+            // SAFETY: the awake list holds each body once; `k` is this task's own slot.
+            let (body, state, vel, sim, drive) = unsafe {
+                (
+                    bodies.at_mut(bi),
+                    slots.0.at(k),
+                    slots.1.at(k),
+                    slots.2.at(k),
+                    slots.3.at(k),
+                )
+            };
+            (*state, *vel, *sim, *drive) = prepare_body(body, bi, k as u32 + 1, gravity, dt, h, (max_v, max_w));
         }
-        body.kinematic_stop = false;
-        let arrive = !dynamic && kinematic_target_velocity(body, dt, max_v, max_w);
-        body.update_world_inertia();
-        scratch
-            .states
-            .push(BodyState::new(body.inv_mass, body.inv_inertia_world));
-        scratch.vel.push(Velocity::new(body.v, body.w));
-        let (lin_accel, torque) = if dynamic {
-            bounded_drive(body, gravity, h, max_v, max_w)
-        } else {
-            (Vec3::ZERO, Vec3::ZERO)
-        };
-        let gyroscopic = dynamic && has_gyroscopic_term(&body.inertia_local);
-        let (principal, moments) = if gyroscopic {
-            principal_axes(&body.inertia_local)
-        } else {
-            (DQuat::IDENTITY, DVec3::ZERO)
-        };
-        scratch.drives.push(Drive {
-            rows: [
-                (h * lin_accel).extend(1.0 / (1.0 + h * body.linear_damping)).to_array(),
-                [1.0 / (1.0 + h * body.angular_damping), 0.0, 0.0, 0.0],
-            ],
-            path: match (dynamic, gyroscopic || torque != Vec3::ZERO) {
-                (false, _) => Path::Kinematic,
-                (true, false) => Path::Plain,
-                (true, true) => Path::General,
-            },
-        });
-        scratch.sims.push(BodySim {
-            body: bi,
-            lin_accel,
-            torque,
-            lin_damping: body.linear_damping,
-            ang_damping: body.angular_damping,
-            q0: body.xf.q,
-            inertia: body.inertia_local,
-            inv_inertia: body.inv_inertia_local,
-            gyroscopic,
-            principal,
-            moments,
-            dynamic,
-            rk4: false,
-            arrive,
-        });
+    });
+}
+
+/// Awake bodies per task, at least, in the per-body stages.
+const BODY_MIN_RANGE: u32 = 64;
+
+/// Refreshes one awake body for the step and gives its solver state, velocity, simulation
+/// data and drive (`solver_index` is its slot).
+fn prepare_body(
+    body: &mut Body,
+    bi: u32,
+    solver_index: u32,
+    gravity: Vec3,
+    dt: f32,
+    h: f32,
+    (max_v, max_w): (f32, f32),
+) -> (BodyState, Velocity, BodySim, Drive) {
+    body.solver_index = solver_index;
+    let dynamic = body.is_dynamic();
+    if body.kinematic_stop && body.kinematic_target.is_none() {
+        // It reached its target in the last step and was given nothing new: it stays.
+        body.v = Vec3::ZERO;
+        body.w = Vec3::ZERO;
     }
+    body.kinematic_stop = false;
+    let arrive = !dynamic && kinematic_target_velocity(body, dt, max_v, max_w);
+    body.update_world_inertia();
+    let state = BodyState::new(body.inv_mass, body.inv_inertia_world);
+    let vel = Velocity::new(body.v, body.w);
+    let (lin_accel, torque) = if dynamic {
+        bounded_drive(body, gravity, h, max_v, max_w)
+    } else {
+        (Vec3::ZERO, Vec3::ZERO)
+    };
+    let gyroscopic = dynamic && has_gyroscopic_term(&body.inertia_local);
+    let (principal, moments) = if gyroscopic {
+        principal_axes(&body.inertia_local)
+    } else {
+        (DQuat::IDENTITY, DVec3::ZERO)
+    };
+    let drive = Drive {
+        rows: [
+            (h * lin_accel).extend(1.0 / (1.0 + h * body.linear_damping)).to_array(),
+            [1.0 / (1.0 + h * body.angular_damping), 0.0, 0.0, 0.0],
+        ],
+        path: match (dynamic, gyroscopic || torque != Vec3::ZERO) {
+            (false, _) => Path::Kinematic,
+            (true, false) => Path::Plain,
+            (true, true) => Path::General,
+        },
+    };
+    let sim = BodySim {
+        body: bi,
+        lin_accel,
+        torque,
+        lin_damping: body.linear_damping,
+        ang_damping: body.angular_damping,
+        q0: body.xf.q,
+        inertia: body.inertia_local,
+        inv_inertia: body.inv_inertia_local,
+        gyroscopic,
+        principal,
+        moments,
+        dynamic,
+        rk4: false,
+        arrive,
+    };
+    (state, vel, sim, drive)
 }
 
 /// Sets a kinematic body's velocities to reach its target transform by the end of a step of
@@ -768,22 +820,35 @@ fn guard_velocities(vel: &mut [Velocity], limits: (f32, f32)) {
 /// Velocities are capped at the limits once more: the last relax sweep and restitution
 /// come after the last position update.
 fn finalize_bodies(world: &mut World) {
-    let scratch = &world.solver;
-    let limits = (world.settings.max_linear_speed, world.settings.max_angular_speed);
-    for ((s, u), sim) in scratch.states.iter().zip(&scratch.vel).zip(&scratch.sims).skip(1) {
-        let body = world.bodies.at_mut(sim.body);
-        body.v = clamp_length(u.v, limits.0);
-        body.w = clamp_length(u.w, limits.1);
-        let q = (s.dq() * sim.q0).normalize();
-        body.set_center_rotation(body.center + s.dp(), q);
-        if sim.arrive {
-            if let Some(target) = body.kinematic_target.take() {
-                body.set_transform(target);
-                body.kinematic_stop = true;
+    let World {
+        solver: scratch,
+        bodies,
+        settings,
+        tasks,
+        ..
+    } = world;
+    let limits = (settings.max_linear_speed, settings.max_angular_speed);
+    let bodies = bodies.disjoint();
+    let n = scratch.sims.len() - 1;
+    let (states, vel, sims) = (&scratch.states[1..], &scratch.vel[1..], &scratch.sims[1..]);
+    crate::parallel::run(&**tasks, n as u32, BODY_MIN_RANGE, &|start, end, _| {
+        for k in start as usize..end as usize {
+            let (s, u, sim) = (&states[k], &vel[k], &sims[k]);
+            // SAFETY: each solver slot belongs to a distinct awake body.
+            let body = unsafe { bodies.at_mut(sim.body) };
+            body.v = clamp_length(u.v, limits.0);
+            body.w = clamp_length(u.w, limits.1);
+            let q = (s.dq() * sim.q0).normalize();
+            body.set_center_rotation(body.center + s.dp(), q);
+            if sim.arrive {
+                if let Some(target) = body.kinematic_target.take() {
+                    body.set_transform(target);
+                    body.kinematic_stop = true;
+                }
             }
+            body.update_world_inertia();
+            body.force = Vec3::ZERO;
+            body.torque = Vec3::ZERO;
         }
-        body.update_world_inertia();
-        body.force = Vec3::ZERO;
-        body.torque = Vec3::ZERO;
-    }
+    });
 }

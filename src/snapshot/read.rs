@@ -128,7 +128,10 @@ pub fn restore(world: &mut World, bytes: &[u8]) -> Result<(), SnapshotError> {
     // Everything decoded: swap in. Scratch keeps its capacity (every step rewrites it before
     // reading); the contact batches follow the restored lane width.
     let lanes_changed = world.settings.lane_width != settings.lane_width;
+    // Threads are the target world's own (results do not depend on them).
+    let workers = world.settings.worker_count;
     world.settings = settings;
+    world.settings.worker_count = workers;
     world.geometry = geometry;
     world.bodies = bodies;
     world.shapes = shapes;

@@ -61,6 +61,7 @@ snap_struct!(WorldSettings {
     max_angular_speed,
     lane_width,
     hit_event_threshold,
+    worker_count,
 });
 snap_struct!(StepCounters {
     awake_bodies,

@@ -58,6 +58,10 @@ fn put_world(world: &World, w: &mut Writer) {
         generator_scratch: _,
         body_springs: _,
         tag: _,
+        // The world's own threads or the host's job system: not state (results are the same
+        // at every worker count); a restored world keeps its own.
+        tasks: _,
+        narrow_results: _,
     } = world;
     use section::*;
     put_section(w, SETTINGS, |w| settings.put(w));

@@ -615,6 +615,27 @@ static void forget_world(FWorld *fw) {
     fw->w = NULL;
 }
 
+/* A job system that runs a task at once, in two ranges, the second first (enqueue returns
+ * NULL: done), or defers it to finish (enqueue returns a handle). */
+typedef struct { HearthTaskFn task; uint32_t count; void *ctx; } FuzzTask;
+static FuzzTask g_fuzz_task;
+static void *fuzz_enqueue(HearthTaskFn task, uint32_t count, uint32_t min_range, void *ctx, void *user) {
+    (void)min_range;
+    if (user) {
+        g_fuzz_task.task = task; g_fuzz_task.count = count; g_fuzz_task.ctx = ctx;
+        return &g_fuzz_task;
+    }
+    uint32_t half = count / 2;
+    if (half < count) task(half, count, 1, ctx);
+    if (half > 0) task(0, half, 0, ctx);
+    return NULL;
+}
+static void fuzz_finish(void *user_task, void *user) {
+    (void)user;
+    FuzzTask *t = (FuzzTask *)user_task;
+    t->task(0, t->count, 0, t->ctx);
+}
+
 static HearthWorldDef good_world_def(void) {
     HearthWorldDef d = hearth_world_def_default();
     if (chance(50)) return d;
@@ -635,6 +656,13 @@ static HearthWorldDef good_world_def(void) {
     if (chance(10)) d.contact_push_max_velocity = flog(0.01f, 100);
     if (chance(10)) d.restitution_threshold = frange(0, 10);
     if (chance(10)) d.time_to_sleep = frange(0, 5);
+    if (chance(10)) d.worker_count = 1 + rnd(3);
+    if (chance(10)) {
+        d.worker_count = 2;
+        d.enqueue_task = fuzz_enqueue;
+        d.finish_task = fuzz_finish;
+        d.user_task_context = chance(50) ? &g_fuzz_task : NULL;
+    }
     return d;
 }
 
@@ -642,7 +670,11 @@ static HearthWorldDef good_world_def(void) {
 static const char *spoil_world_def(HearthWorldDef *d, Fault f) {
     if (f == F_FLAG) { d->enable_sleep = bad_flag(); return "enable_sleep"; }
     if (f == F_CODE) { d->integrator = 2 + rnd(1000); return "integrator"; }
-    switch (rnd(11)) {
+    switch (rnd(13)) {
+    case 10: d->worker_count = chance(50) ? 0 : 65 + rnd(1000); return "worker_count";
+    case 11:
+        if (chance(50)) { d->enqueue_task = fuzz_enqueue; d->finish_task = NULL; return "finish_task"; }
+        d->enqueue_task = NULL; d->finish_task = fuzz_finish; return "enqueue_task";
     case 9: d->max_angular_speed = outside(1e-3f, MAX_ANGULAR_SPEED); return "max_angular_speed";
     case 0: d->gravity = chance(50) ? spoil3(d->gravity, nonfinite()) : scale3(dir3(), MAX_ACCELERATION * (1.01f + unit())); return "gravity";
     case 1: d->substeps = chance(50) ? 0 : 65 + rnd(1000); return "substeps";
@@ -2421,6 +2453,11 @@ static void op_misc(FWorld *fw) {
         memset(&c, SENTINEL, sizeof c);
         CALL(hearth_world_get_counters(w, nul ? NULL : &c), f == F_NULL_WORLD || nul ? HEARTH_ERROR_NULL_POINTER : HEARTH_OK, NULL, &c, sizeof c);
         if (r == HEARTH_OK && c.body_count != (uint32_t)fw->n[K_BODY]) fail("counters", "body count differs from the tracked one");
+        uint64_t hash;
+        memset(&hash, SENTINEL, sizeof hash);
+        {
+            CALL(hearth_world_get_hash(w, nul ? NULL : &hash), f == F_NULL_WORLD || nul ? HEARTH_ERROR_NULL_POINTER : HEARTH_OK, NULL, &hash, sizeof hash);
+        }
         break;
     }
     case 5: {

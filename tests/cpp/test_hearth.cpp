@@ -14,9 +14,11 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <algorithm>
 #include <memory>
 #include <stdexcept>
 #include <string>
+#include <thread>
 #include <type_traits>
 #include <vector>
 
@@ -1160,6 +1162,64 @@ static void test_debug_draw() {
     CHECK(n.segments == 24 && n.polygons == 0);
     d.draw_aabbs = 3;
     CHECK_THROWS(w.draw(d), hearth::Code::InvalidArgument);
+// A job system of plain function pointers: each task's ranges are dealt to two std::threads
+// (odd and even chunks, last first); finish joins them.
+struct ThreadJob {
+    hearth::TaskFn task;
+    uint32_t count, chunk;
+    void *context;
+    std::thread threads[2];
+};
+
+static void *thread_enqueue(hearth::TaskFn task, uint32_t count, uint32_t min_range, void *context, void *user) {
+    ++*static_cast<int *>(user);
+    ThreadJob *job = new ThreadJob{task, count, min_range > 0 ? min_range : 1, context, {}};
+    for (uint32_t t = 0; t < 2; t++) {
+        job->threads[t] = std::thread([job, t] {
+            const uint32_t chunks = (job->count + job->chunk - 1) / job->chunk;
+            for (uint32_t k = chunks; k-- > 0;) {
+                if (k % 2 != t) continue;
+                const uint32_t start = k * job->chunk;
+                job->task(start, std::min(start + job->chunk, job->count), t, job->context);
+            }
+        });
+    }
+    return job;
+}
+
+static void thread_finish(void *user_task, void *) {
+    ThreadJob *job = static_cast<ThreadJob *>(user_task);
+    for (std::thread &t : job->threads) t.join();
+    delete job;
+}
+
+static uint64_t pile_hash(const hearth::WorldDef &def) {
+    hearth::World w(def);
+    add_ground(w);
+    for (int i = 0; i < 200; i++) {
+        const hearth::Vec3 p = hearth::vec3((i % 10) * 1.05f - 5.0f, 0.5f + (i / 10 % 4) * 1.1f, (i / 40) * 1.05f);
+        hearth::Body b = w.create_body(hearth::BodyType::Dynamic, p);
+        if (i % 2 == 0) b.add(hearth::sphere(0.5f)); else b.add(hearth::box(hearth::vec3(0.5f, 0.5f, 0.5f)));
+    }
+    const uint64_t before = w.state_hash();
+    for (int i = 0; i < 30; i++) w.step(DT);
+    CHECK(w.state_hash() != before);
+    return w.state_hash();
+}
+
+static void test_threads_give_the_same_hash() {
+    const uint64_t one = pile_hash(hearth::world_def());
+    CHECK(pile_hash(hearth::threaded_world_def(3)) == one);
+    int enqueued = 0;
+    CHECK(pile_hash(hearth::threaded_world_def(2, thread_enqueue, thread_finish, &enqueued)) == one);
+    CHECK(enqueued > 0);
+    bool threw = false;
+    try {
+        hearth::World bad(hearth::threaded_world_def(0));
+    } catch (const hearth::Error &e) {
+        threw = e.code() == hearth::Code::InvalidArgument && e.message().find("worker_count") != std::string::npos;
+    }
+    CHECK(threw);
 }
 
 static void run_throwing_tests() {
@@ -1184,6 +1244,7 @@ static void run_throwing_tests() {
     test_snapshots();
     test_geometry();
     test_queries_and_filters();
+    test_threads_give_the_same_hash();
 }
 #endif // HEARTH_CPP_EXCEPTIONS
 

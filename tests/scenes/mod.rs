@@ -544,4 +544,56 @@ pub fn set_events(world: &mut World, on: bool) {
     for h in bodies {
         world.bodies.get_mut(h).unwrap().enable_move_events = on;
     }
+// ---------------------------------------------------------------- joints and soft bodies
+
+/// A chain of `n` boxes (0.4 × 0.2 × 0.2 m) on ball joints, hung from a world anchor 6 m up
+/// and laid out horizontally, so it swings down and its end strikes a box ground below.
+pub fn joint_chain(world: &mut World, n: usize) -> Vec<BodyHandle> {
+    use hearth::joints::BallParams;
+    use hearth::{JointDef, JointKind};
+    ground_box(world, 20.0);
+    let anchor = Vec3::new(0.0, 6.0, 0.0);
+    let mut links: Vec<BodyHandle> = Vec::with_capacity(n);
+    for i in 0..n {
+        let c = anchor + Vec3::new(0.4 * i as f32 + 0.2, 0.0, 0.0);
+        let b = dynamic_box(world, c, Vec3::new(0.2, 0.1, 0.1), &material());
+        let point = anchor + Vec3::new(0.4 * i as f32, 0.0, 0.0);
+        let mut def = JointDef::new(JointKind::Ball(BallParams::default()));
+        def.body_a = b;
+        def.frame_a = Transform::new(point - c, Quat::IDENTITY);
+        match links.last() {
+            Some(&prev) => {
+                def.body_b = prev;
+                let pc = world.transform(prev).unwrap().p;
+                def.frame_b = Transform::new(point - pc, Quat::IDENTITY);
+            }
+            None => def.frame_b = Transform::new(point, Quat::IDENTITY),
+        }
+        world.create_joint(&def).unwrap();
+        links.push(b);
+    }
+    links
+}
+
+/// A pressurised soft ball (an icosphere of radius 0.5 m, 162 vertices, 2 kg) dropped from
+/// 2 m onto a ground plane beside a tower of three boxes it bounces against.
+pub fn soft_ball(world: &mut World) -> hearth::soft::SoftBodyHandle {
+    use hearth::soft::{mesh, SoftBodyDef};
+    ground_plane(world);
+    for i in 0..3 {
+        dynamic_box(
+            world,
+            Vec3::new(1.2, H + 2.0 * H * i as f32, 0.0),
+            Vec3::splat(H),
+            &material(),
+        );
+    }
+    let def = SoftBodyDef {
+        transform: Transform::new(Vec3::new(0.3, 2.0, 0.0), Quat::IDENTITY),
+        velocity: Vec3::new(1.0, 0.0, 0.0),
+        mass: 2.0,
+        pressure: 2000.0,
+        ..Default::default()
+    };
+    world.create_soft_body(&def, &mesh::icosphere(0.5, 2), None).unwrap()
 }

@@ -674,6 +674,87 @@ internal static class HearthTests
         }
     }
 
+    // ---- threads and the state hash -------------------------------------------------------------
+
+    private static ulong PileHash(WorldDef def)
+    {
+        using (var w = new World(def))
+        {
+            Ground(w);
+            for (int i = 0; i < 200; i++)
+            {
+                var p = new Vec3((i % 10) * 1.05f - 5f, 0.5f + (i / 10 % 4) * 1.1f, (i / 40) * 1.05f);
+                if (i % 2 == 0) DynamicSphere(w, p, 0.5f); else DynamicBox(w, p, 0.5f);
+            }
+            ulong before = w.StateHash;
+            Run(w, 30);
+            Ensure(w.StateHash != before, "the pile moved");
+            return w.StateHash;
+        }
+    }
+
+    // A managed job system: each task's ranges are dealt to two System.Threading threads,
+    // which run them last first; FinishTask joins them.
+    private static int enqueued;
+    private static IntPtr ManagedEnqueue(IntPtr task, uint count, uint minRange, IntPtr taskContext, IntPtr userContext)
+    {
+        enqueued++;
+        var run = Marshal.GetDelegateForFunctionPointer<TaskFn>(task);
+        uint chunk = Math.Max(minRange, 1u);
+        uint chunks = (count + chunk - 1) / chunk;
+        var threads = new System.Threading.Thread[2];
+        for (uint t = 0; t < 2; t++)
+        {
+            uint worker = t;
+            threads[t] = new System.Threading.Thread(() =>
+            {
+                for (uint k = chunks; k-- > 0;)
+                {
+                    if (k % 2 != worker) continue;
+                    uint start = k * chunk;
+                    run(start, Math.Min(start + chunk, count), worker, taskContext);
+                }
+            });
+            threads[t].Start();
+        }
+        return GCHandle.ToIntPtr(GCHandle.Alloc(threads));
+    }
+
+    private static void ManagedFinish(IntPtr userTask, IntPtr userContext)
+    {
+        var handle = GCHandle.FromIntPtr(userTask);
+        foreach (var t in (System.Threading.Thread[])handle.Target) t.Join();
+        handle.Free();
+    }
+
+    private static readonly EnqueueTaskFn managedEnqueue = ManagedEnqueue;
+    private static readonly FinishTaskFn managedFinish = ManagedFinish;
+
+    private static void TestWorkerCountsAndAJobSystemGiveTheSameHash()
+    {
+        Equal(WorldDef.Default().WorkerCount, 1u, "default worker count");
+        ulong one = PileHash(WorldDef.Default());
+        Equal(PileHash(WorldDef.Default()), one, "twice in a process");
+        WorldDef threaded = WorldDef.Default();
+        threaded.WorkerCount = 3;
+        Equal(PileHash(threaded), one, "three threads of the world's own");
+        WorldDef hosted = WorldDef.Default();
+        hosted.WorkerCount = 2;
+        hosted.EnqueueTask = Marshal.GetFunctionPointerForDelegate(managedEnqueue);
+        hosted.FinishTask = Marshal.GetFunctionPointerForDelegate(managedFinish);
+        enqueued = 0;
+        Equal(PileHash(hosted), one, "a managed job system on two threads");
+        Ensure(enqueued > 0, "the job system was used");
+        WorldDef bad = WorldDef.Default();
+        bad.WorkerCount = 65;
+        HearthException e = Fails(Result.InvalidArgument, () => new World(bad), "65 workers");
+        Ensure(e.Message.Contains("worker_count"), "the message names worker_count");
+        bad = WorldDef.Default();
+        bad.EnqueueTask = hosted.EnqueueTask;
+        e = Fails(Result.InvalidArgument, () => new World(bad), "enqueue without finish");
+        Ensure(e.Message.Contains("finish_task"), "the message names finish_task");
+    }
+
     // ---- callbacks ----------------------------------------------------------------------------
 
     private static void TestForceGeneratorMakesABodyHover()
@@ -1698,6 +1779,7 @@ internal static class HearthTests
             new KeyValuePair<string, Action>("error paths", TestErrorPaths),
             new KeyValuePair<string, Action>("rolling resistance and torsional friction", TestRollingResistanceAndTorsionalFriction),
             new KeyValuePair<string, Action>("disposal", TestDisposal),
+            new KeyValuePair<string, Action>("worker counts and a job system give the same hash", TestWorkerCountsAndAJobSystemGiveTheSameHash),
             new KeyValuePair<string, Action>("force generator makes a body hover", TestForceGeneratorMakesABodyHover),
             new KeyValuePair<string, Action>("callback exception is rethrown from Step", TestCallbackExceptionIsRethrownFromStep),
             new KeyValuePair<string, Action>("generator call only valid inside the callback", TestGeneratorCallIsOnlyValidInsideTheCallback),

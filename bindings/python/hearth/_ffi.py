@@ -606,6 +606,15 @@ class HearthSoftBodySettings(_Struct):
     ]
 
 
+# void (*HearthTaskFn)(uint32_t start, uint32_t end, uint32_t worker_index, void *task_context)
+HearthTaskFn = CFUNCTYPE(None, c_uint32, c_uint32, c_uint32, c_void_p)
+# void *(*HearthEnqueueTaskFn)(HearthTaskFn task, uint32_t item_count, uint32_t min_range, void *task_context,
+#                              void *user_context)
+HearthEnqueueTaskFn = CFUNCTYPE(c_void_p, HearthTaskFn, c_uint32, c_uint32, c_void_p, c_void_p)
+# void (*HearthFinishTaskFn)(void *user_task, void *user_context)
+HearthFinishTaskFn = CFUNCTYPE(None, c_void_p, c_void_p)
+
+
 class HearthWorldDef(_Struct):
     _fields_ = [
         ("gravity", HearthVec3),
@@ -623,6 +632,10 @@ class HearthWorldDef(_Struct):
         ("internal_value", c_uint32),
         ("max_angular_speed", c_float),
         ("hit_event_threshold", c_float),
+        ("worker_count", c_uint32),
+        ("enqueue_task", HearthEnqueueTaskFn),
+        ("finish_task", HearthFinishTaskFn),
+        ("user_task_context", c_void_p),
     ]
 
 
@@ -719,7 +732,12 @@ class HearthQueryShape(_Struct):
 
 HearthRayCallback = CFUNCTYPE(c_float, c_void_p, POINTER(HearthRayHit))
 
-NOT_WRAPPED = {}
+NOT_WRAPPED = {
+    "HearthTaskFn": "a job system in Python would run the ranges under the GIL, one at a time:"
+    " World(worker_count=n) uses the library's own threads instead",
+    "HearthEnqueueTaskFn": "see HearthTaskFn",
+    "HearthFinishTaskFn": "see HearthTaskFn",
+}
 
 
 def _fn(name, restype, *argtypes):
@@ -1147,6 +1165,7 @@ _fn("hearth_world_step", HearthResult, POINTER(HearthWorld), c_float)
 _fn("hearth_world_set_gravity", HearthResult, POINTER(HearthWorld), HearthVec3)
 _fn("hearth_world_get_gravity", HearthResult, POINTER(HearthWorld), POINTER(HearthVec3))
 _fn("hearth_world_get_counters", HearthResult, POINTER(HearthWorld), POINTER(HearthWorldCounters))
+_fn("hearth_world_get_hash", HearthResult, POINTER(HearthWorld), POINTER(c_uint64))
 _fn(
     "hearth_world_get_transforms", HearthResult, POINTER(HearthWorld), POINTER(HearthBodyId), c_size_t,
     POINTER(HearthTransform),

@@ -81,7 +81,9 @@ def _def(default_fn, fields, flatten=()):
 
 class World:
     """A Hearth world. Keyword arguments are fields of `HearthWorldDef` (gravity, substeps,
-    enable_sleep, ...); the rest keep the values of `hearth_world_def_default()`.
+    enable_sleep, worker_count, ...); the rest keep the values of `hearth_world_def_default()`.
+    `worker_count=n` steps on n threads the world starts itself (results are bit for bit those
+    of one thread; see `state_hash`).
 
     Use it as a context manager or call `close()`; a world is used by one thread at a time.
     """
@@ -268,6 +270,14 @@ class World:
         out = _ffi.HearthWorldCounters()
         lib.hearth_world_get_counters(self._ptr, byref(out))
         return to_record(out, WorldCounters)
+
+    @property
+    def state_hash(self):
+        """`hearth_world_get_hash`: a 64-bit hash of every body's, particle's and soft-body
+        vertex's motion state, equal for equal runs at any worker count."""
+        out = ctypes.c_uint64()
+        lib.hearth_world_get_hash(self._ptr, byref(out))
+        return out.value
 
     def set_particle_iterations(self, velocity_iterations, position_iterations):
         lib.hearth_world_set_particle_iterations(self._ptr, velocity_iterations, position_iterations)

@@ -92,7 +92,7 @@ def parse(path=HEADER):
         h.structs[name] = [_param(line) for line in body.split(";") if line.strip()]
     h.opaque = re.findall(r"typedef struct (Hearth\w+) \1;", text)
 
-    for ret, name, params in re.findall(r"typedef (\w+) \(\*(Hearth\w+)\)\((.*?)\);", text, flags=re.S):
+    for ret, name, params in re.findall(r"typedef (\w+(?: ?\*)*) ?\(\*(Hearth\w+)\)\((.*?)\);", text, flags=re.S):
         h.callbacks[name] = Function(name, _normalise(ret), _params(params))
 
     decls = re.findall(r"^([\w][\w\s\*]*?)\b(hearth_\w+)\s*\(([^;]*?)\);", text, flags=re.M | re.S)

@@ -54,9 +54,20 @@ public:
 
 	HearthCore::FSimulation& GetSimulation() { return Simulation; }
 
+	/** Hearth's world state hash (hearth_world_get_hash): equal for equal runs at any worker
+	 *  count, for replays and lockstep checks. 0 when not simulating. */
+	uint64 GetStateHash() const;
+
 private:
 	/** FSimulation's error callback: LogHearth, already throttled. */
 	static void LogError(void* UserData, const char* Message);
+
+	/** Hearth's job-system callbacks on Unreal's task graph (HearthWorldDef::enqueue_task):
+	 *  the task is cut into at most the world's worker count of chunks that ParallelFor runs
+	 *  and waits for, the chunk index as the worker index, so EnqueueTask returns nullptr
+	 *  (already done) and FinishTask is never called. UserContext carries the worker count. */
+	static void* EnqueueTask(HearthTaskFn Task, uint32 ItemCount, uint32 MinRange, void* TaskContext, void* UserContext);
+	static void FinishTask(void* UserTask, void* UserContext);
 
 	HearthCore::FSimulation Simulation;
 	TArray<TWeakObjectPtr<UHearthBodyComponent>> Components;

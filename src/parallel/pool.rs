@@ -1,0 +1,242 @@
+//! Hearth's own workers, for hosts that bring no job system: `worker_count − 1` threads
+//! started with the world and parked on a condition variable between stages (no thread is
+//! created per step), plus the stepping thread itself as worker 0.
+
+use std::any::Any;
+use std::panic::{catch_unwind, resume_unwind, AssertUnwindSafe};
+use std::sync::{Arc, Condvar, Mutex, MutexGuard};
+use std::thread::JoinHandle;
+
+use super::{Task, TaskRunner, MAX_WORKERS};
+
+/// The stage being run: its range function, with the borrow's lifetime erased. It is only
+/// reached through `State::job` while `run` waits for every claimed range to finish.
+#[derive(Clone, Copy)]
+struct Job {
+    task: *const Task<'static>,
+    count: u32,
+    piece: u32,
+    pieces: u32,
+}
+
+// The pointer is only followed while `run` keeps the task alive (see `Job`).
+unsafe impl Send for Job {}
+
+#[derive(Default)]
+struct State {
+    job: Option<Job>,
+    /// Bumped per stage, so a late worker never claims a range of the next one.
+    generation: u64,
+    /// Next range to claim, and ranges finished, of the current job.
+    next: u32,
+    finished: u32,
+    panic: Option<Box<dyn Any + Send>>,
+    exit: bool,
+}
+
+struct Shared {
+    state: Mutex<State>,
+    /// Workers wait here for a job.
+    work: Condvar,
+    /// `run` waits here for the last range.
+    done: Condvar,
+}
+
+impl Shared {
+    fn lock(&self) -> MutexGuard<'_, State> {
+        // Ranges run outside the lock and their panics are caught, so it is never poisoned
+        // by a task; recover anyway rather than panic in a worker.
+        self.state.lock().unwrap_or_else(|e| e.into_inner())
+    }
+}
+
+/// A pool of parked worker threads (see the module doc).
+pub struct ThreadPool {
+    shared: Arc<Shared>,
+    threads: Vec<JoinHandle<()>>,
+    workers: u32,
+    /// One stage at a time per pool.
+    running: Mutex<()>,
+}
+
+impl ThreadPool {
+    /// Starts `workers − 1` threads (`workers` in 1..=64; the caller of `run` is the last).
+    pub fn new(workers: u32) -> std::io::Result<ThreadPool> {
+        let workers = workers.clamp(1, MAX_WORKERS);
+        let shared = Arc::new(Shared {
+            state: Mutex::new(State::default()),
+            work: Condvar::new(),
+            done: Condvar::new(),
+        });
+        let mut threads = Vec::with_capacity(workers as usize - 1);
+        for index in 1..workers {
+            let mine = Arc::clone(&shared);
+            let spawned = std::thread::Builder::new()
+                .name(format!("hearth-worker-{index}"))
+                .spawn(move || worker(&mine, index));
+            match spawned {
+                Ok(t) => threads.push(t),
+                Err(e) => {
+                    stop(&shared, &mut threads);
+                    return Err(e);
+                }
+            }
+        }
+        Ok(ThreadPool {
+            shared,
+            threads,
+            workers,
+            running: Mutex::new(()),
+        })
+    }
+}
+
+fn stop(shared: &Shared, threads: &mut Vec<JoinHandle<()>>) {
+    shared.lock().exit = true;
+    shared.work.notify_all();
+    for t in threads.drain(..) {
+        let _ = t.join();
+    }
+}
+
+impl Drop for ThreadPool {
+    fn drop(&mut self) {
+        stop(&self.shared, &mut self.threads);
+    }
+}
+
+/// Claims the next range of the current job (generation `generation`), if any.
+fn claim(state: &mut State, generation: u64) -> Option<(Job, u32)> {
+    let job = state.job?;
+    if state.generation != generation || state.next >= job.pieces {
+        return None;
+    }
+    let i = state.next;
+    state.next += 1;
+    Some((job, i))
+}
+
+/// Runs claimed ranges until none is left; returns with the lock held.
+fn drain<'a>(
+    shared: &'a Shared,
+    mut state: MutexGuard<'a, State>,
+    generation: u64,
+    worker: u32,
+) -> MutexGuard<'a, State> {
+    while let Some((job, i)) = claim(&mut state, generation) {
+        drop(state);
+        let start = i * job.piece;
+        let end = (start + job.piece).min(job.count);
+        // SAFETY: the range was claimed under the lock in this job's generation, and `run`
+        // does not return (so the task stays alive) before it is counted finished below.
+        let task = unsafe { &*job.task };
+        let r = catch_unwind(AssertUnwindSafe(|| task(start, end, worker)));
+        state = shared.lock();
+        if let Err(p) = r {
+            state.panic.get_or_insert(p);
+        }
+        state.finished += 1;
+        if state.finished == job.pieces {
+            shared.done.notify_all();
+        }
+    }
+    state
+}
+
+fn worker(shared: &Shared, index: u32) {
+    let mut state = shared.lock();
+    let mut seen = state.generation;
+    loop {
+        while state.generation == seen && !state.exit {
+            state = shared.work.wait(state).unwrap_or_else(|e| e.into_inner());
+        }
+        if state.exit {
+            return;
+        }
+        seen = state.generation;
+        state = drain(shared, state, seen, index);
+    }
+}
+
+impl TaskRunner for ThreadPool {
+    fn worker_count(&self) -> u32 {
+        self.workers
+    }
+
+    fn run(&self, count: u32, min_range: u32, task: &Task) {
+        if count == 0 {
+            return;
+        }
+        let _one = self.running.lock().unwrap_or_else(|e| e.into_inner());
+        // About four ranges per worker for balance, none shorter than `min_range`.
+        let piece = count.div_ceil(4 * self.workers).max(min_range).max(1);
+        let pieces = count.div_ceil(piece);
+        // SAFETY (lifetime erasure): the pointer is reachable only through `state.job`,
+        // which is cleared below after every claimed range has finished.
+        let task: *const Task<'static> = unsafe { std::mem::transmute(task as *const Task) };
+        let mut state = self.shared.lock();
+        state.generation += 1;
+        let generation = state.generation;
+        state.job = Some(Job {
+            task,
+            count,
+            piece,
+            pieces,
+        });
+        state.next = 0;
+        state.finished = 0;
+        drop(state);
+        self.shared.work.notify_all();
+        let mut state = drain(&self.shared, self.shared.lock(), generation, 0);
+        while state.finished < pieces {
+            state = self.shared.done.wait(state).unwrap_or_else(|e| e.into_inner());
+        }
+        state.job = None;
+        let panic = state.panic.take();
+        drop(state);
+        if let Some(p) = panic {
+            resume_unwind(p);
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::sync::atomic::{AtomicU32, Ordering};
+
+    #[test]
+    fn every_item_runs_exactly_once_at_every_worker_count() {
+        for workers in 1..=5 {
+            let pool = ThreadPool::new(workers).unwrap();
+            for count in [1u32, 2, 7, 64, 1000] {
+                let hits: Vec<AtomicU32> = (0..count).map(|_| AtomicU32::new(0)).collect();
+                pool.run(count, 3, &|s, e, w| {
+                    assert!(s < e && e <= count && w < workers);
+                    for h in &hits[s as usize..e as usize] {
+                        h.fetch_add(1, Ordering::Relaxed);
+                    }
+                });
+                assert!(hits.iter().all(|h| h.load(Ordering::Relaxed) == 1));
+            }
+        }
+    }
+
+    #[test]
+    fn a_panicking_range_reaches_the_caller_and_the_pool_still_works() {
+        let pool = ThreadPool::new(3).unwrap();
+        let r = catch_unwind(AssertUnwindSafe(|| {
+            pool.run(100, 1, &|s, _, _| {
+                if s == 0 {
+                    panic!("range 0");
+                }
+            })
+        }));
+        assert!(r.is_err());
+        let n = AtomicU32::new(0);
+        pool.run(100, 1, &|s, e, _| {
+            n.fetch_add(e - s, Ordering::Relaxed);
+        });
+        assert_eq!(n.load(Ordering::Relaxed), 100);
+    }
+}

@@ -1,0 +1,38 @@
+//! Disjoint mutable access to a slice from several tasks at once.
+
+use std::marker::PhantomData;
+
+/// A slice that tasks running at the same time may each write through, at indices no other
+/// running task touches. The stages index it by their own items (a contact's slot, a body's
+/// slot), which are distinct by construction; `at` checks bounds.
+pub(crate) struct Disjoint<'a, T> {
+    ptr: *mut T,
+    len: usize,
+    _borrow: PhantomData<&'a mut [T]>,
+}
+
+// Tasks on other threads each reach distinct elements: the same guarantee `&mut [T]`
+// gives through `split_at_mut`, so `T: Send` suffices.
+unsafe impl<T: Send> Sync for Disjoint<'_, T> {}
+unsafe impl<T: Send> Send for Disjoint<'_, T> {}
+
+impl<'a, T> Disjoint<'a, T> {
+    pub(crate) fn new(slice: &'a mut [T]) -> Self {
+        Disjoint {
+            ptr: slice.as_mut_ptr(),
+            len: slice.len(),
+            _borrow: PhantomData,
+        }
+    }
+
+    /// The element at `i`.
+    ///
+    /// # Safety
+    /// While the returned reference lives, no other call may ask for the same `i`.
+    #[allow(clippy::mut_from_ref)]
+    #[inline]
+    pub(crate) unsafe fn at(&self, i: usize) -> &mut T {
+        assert!(i < self.len, "index {i} out of {}", self.len);
+        &mut *self.ptr.add(i)
+    }
+}
