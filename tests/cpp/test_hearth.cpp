@@ -1162,6 +1162,8 @@ static void test_debug_draw() {
     CHECK(n.segments == 24 && n.polygons == 0);
     d.draw_aabbs = 3;
     CHECK_THROWS(w.draw(d), hearth::Code::InvalidArgument);
+}
+
 // A job system of plain function pointers: each task's ranges are dealt to two std::threads
 // (odd and even chunks, last first); finish joins them.
 struct ThreadJob {
