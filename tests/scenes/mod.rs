@@ -544,6 +544,8 @@ pub fn set_events(world: &mut World, on: bool) {
     for h in bodies {
         world.bodies.get_mut(h).unwrap().enable_move_events = on;
     }
+}
+
 // ---------------------------------------------------------------- joints and soft bodies
 
 /// A chain of `n` boxes (0.4 × 0.2 × 0.2 m) on ball joints, hung from a world anchor 6 m up
