@@ -65,7 +65,9 @@ pub fn restore(world: &mut World, bytes: &[u8]) -> Result<(), SnapshotError> {
     let mut r = Reader::new(payload(bytes)?, world.tag());
     let r = &mut r;
     use section::*;
-    let settings: WorldSettings = get_section(r, SETTINGS, Snap::get)?;
+    let mut settings: WorldSettings = get_section(r, SETTINGS, Snap::get)?;
+    // Threads are the target world's own: results do not depend on them.
+    settings.worker_count = world.settings.worker_count;
     settings
         .validate()
         .map_err(|e| SnapshotError(format!("snapshot corrupted: its world settings are invalid: {e}")))?;
@@ -127,10 +129,7 @@ pub fn restore(world: &mut World, bytes: &[u8]) -> Result<(), SnapshotError> {
     // Everything decoded: swap in. Scratch keeps its capacity (every step rewrites it before
     // reading); the contact batches follow the restored lane width.
     let lanes_changed = world.settings.lane_width != settings.lane_width;
-    // Threads are the target world's own (results do not depend on them).
-    let workers = world.settings.worker_count;
     world.settings = settings;
-    world.settings.worker_count = workers;
     world.geometry = geometry;
     world.bodies = bodies;
     world.shapes = shapes;

@@ -60,8 +60,9 @@ snap_struct!(WorldSettings {
     max_linear_speed,
     max_angular_speed,
     lane_width,
-    hit_event_threshold,
-    worker_count,
+    hit_event_threshold;
+    // Threads are the target world's own (results do not depend on them): `read.rs`.
+    skip worker_count
 });
 snap_struct!(StepCounters {
     awake_bodies,
