@@ -80,8 +80,7 @@ pub fn restore(world: &mut World, bytes: &[u8]) -> Result<(), SnapshotError> {
     let particles = get_section(r, PARTICLES, Snap::get)?;
     let joints = get_section(r, JOINTS, Snap::get)?;
     let soft_bodies = get_section(r, SOFT_BODIES, Snap::get)?;
-    let (pending_contact_end, pending_sensor_end) =
-        get_section(r, EVENTS, |r| Ok((Snap::get(r)?, Snap::get(r)?)))?;
+    let (pending_contact_end, pending_sensor_end) = get_section(r, EVENTS, |r| Ok((Snap::get(r)?, Snap::get(r)?)))?;
     if r.remaining() != 0 {
         return bad(format!(
             "snapshot corrupted: {} bytes after the last section",

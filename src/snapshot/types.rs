@@ -14,10 +14,10 @@ use crate::collision::mesh::bvh::Node as BvhNode;
 use crate::collision::narrow_phase::{Manifold, ManifoldPoint, SatCache};
 use crate::collision::shape::{Geometry, MassProperties, Shape, ShapeDef};
 use crate::dynamics::body::{Body, BodyType};
-use crate::events::{ContactEvent, SensorEvent};
 use crate::dynamics::joints::{
     BallParams, DistanceParams, HingeParams, Impulses, Joint, JointDef, JointKind, Joints, SliderParams,
 };
+use crate::events::{ContactEvent, SensorEvent};
 use crate::generators::{End, Generator, GeneratorDef, Spring};
 use crate::math::Transform;
 use crate::particles::{ContactOther, ExpiredParticle, ParticleSettings, Particles, UserParticleContact};
@@ -103,6 +103,7 @@ snap_struct!(Body {
     reported_xf,
     mass_override,
     enabled,
+    locked_axes,
 });
 snap_struct!(Aabb { min, max });
 snap_struct!(ShapeDef {
