@@ -44,7 +44,7 @@ RULES = [
     ("query", r"^(hearth_world_(cast|overlap)_\w+|hearth_query_\w+|hearth_filter_default|hearth_shape_(set|get)_filter"
               r"|HearthQuery\w*|HearthRay\w*|HearthFilter|HEARTH_QUERY_\w+)$"),
     ("shape", r"^(hearth_shape_\w+|HearthShape\w*|HearthSphere|HearthBox|HearthCapsule|HearthPlane)$"),
-    ("body", r"^(hearth_body_\w+|HearthBody\w*|HearthMassData|HEARTH_BODY_\w+)$"),
+    ("body", r"^(hearth_body_\w+|HearthBody\w*|HearthMassData|HEARTH_BODY_\w+|HEARTH_LOCK_\w+)$"),
     ("draw", r"^(hearth_world_draw|hearth_debug_draw_default|HearthDebugDraw|HearthDraw\w+)$"),
     ("world", r"^(hearth_world_\w+|HearthWorld\w*|HEARTH_INTEGRATOR_\w+|Hearth(Task|EnqueueTask|FinishTask)Fn)$"),
 ]

@@ -178,6 +178,46 @@
 #define HEARTH_QUERY_SHAPE_HULL 3
 
 /**
+ * Locks movement along the world X axis (a bit of `locked_axes`).
+ */
+#define HEARTH_LOCK_LINEAR_X 1
+
+/**
+ * Locks movement along the world Y axis.
+ */
+#define HEARTH_LOCK_LINEAR_Y 2
+
+/**
+ * Locks movement along the world Z axis (2.5D games).
+ */
+#define HEARTH_LOCK_LINEAR_Z 4
+
+/**
+ * Locks rotation about the world X axis.
+ */
+#define HEARTH_LOCK_ANGULAR_X 8
+
+/**
+ * Locks rotation about the world Y axis.
+ */
+#define HEARTH_LOCK_ANGULAR_Y 16
+
+/**
+ * Locks rotation about the world Z axis.
+ */
+#define HEARTH_LOCK_ANGULAR_Z 32
+
+/**
+ * Every linear lock bit.
+ */
+#define HEARTH_LOCK_LINEAR 7
+
+/**
+ * Every angular lock bit (an upright character).
+ */
+#define HEARTH_LOCK_ANGULAR 56
+
+/**
  * Semi-implicit (symplectic) Euler integration (default).
  */
 #define HEARTH_INTEGRATOR_SEMI_IMPLICIT_EULER 0
@@ -371,6 +411,11 @@ typedef struct HearthBodyDef {
      * keep their offsets.)
      */
     uint8_t enable_move_events;
+    /**
+     * Locked axes, `HEARTH_LOCK_*` bits ORed (world axes). Default 0 (none). Unknown bits are
+     * refused. (Appended, so earlier fields keep their offsets.)
+     */
+    uint32_t locked_axes;
 } HearthBodyDef;
 
 /**
@@ -4228,6 +4273,36 @@ HearthResult hearth_body_set_gravity_scale(struct HearthWorld *world,
 HearthResult hearth_body_get_gravity_scale(const struct HearthWorld *world,
                                            struct HearthBodyId body,
                                            float *out);
+
+/**
+ * Locks a body's axes: `locked_axes` is `HEARTH_LOCK_*` bits ORed (world axes; 0 unlocks
+ * all). The velocity along each locked axis becomes zero at once and stays exactly zero
+ * through contacts, joints, forces, impulses and gravity: the centre of mass does not move
+ * along a locked linear axis, the body does not turn about a locked angular axis. Locks act
+ * on dynamic bodies (static and kinematic bodies move as told) and are kept through type
+ * changes. Wakes the body.
+ *
+ * Errors: `HEARTH_ERROR_NULL_POINTER`, `HEARTH_ERROR_INVALID_ID`,
+ * `HEARTH_ERROR_INVALID_ARGUMENT` (a bit outside `HEARTH_LOCK_*`), `HEARTH_ERROR_WORLD_LOCKED`.
+ *
+ * # Safety
+ * `world` must be NULL or a live world.
+ */
+HearthResult hearth_body_set_locked_axes(struct HearthWorld *world,
+                                         struct HearthBodyId body,
+                                         uint32_t locked_axes);
+
+/**
+ * Reads a body's locked axes (`HEARTH_LOCK_*` bits).
+ *
+ * Errors: `HEARTH_ERROR_NULL_POINTER`, `HEARTH_ERROR_INVALID_ID`.
+ *
+ * # Safety
+ * `world` must be NULL or a live world; `out` NULL or writable.
+ */
+HearthResult hearth_body_get_locked_axes(const struct HearthWorld *world,
+                                         struct HearthBodyId body,
+                                         uint32_t *out);
 
 /**
  * Overrides a body's mass (1e-9..=1e17 kg), centre of mass (body frame, each coordinate

@@ -403,7 +403,7 @@ impl World {
         if body.is_static() {
             return Ok(());
         }
-        body.v = crate::math::clamp_length(v, max);
+        body.v = crate::dynamics::body::lock_linear(crate::math::clamp_length(v, max), body.locks());
         body.kinematic_stop = false;
         if v != Vec3::ZERO {
             self.wake_body(index);
@@ -421,7 +421,7 @@ impl World {
         if body.is_static() {
             return Ok(());
         }
-        body.w = crate::math::clamp_length(w, max);
+        body.w = crate::dynamics::body::lock_angular(crate::math::clamp_length(w, max), body.locks());
         body.kinematic_stop = false;
         if w != Vec3::ZERO {
             self.wake_body(index);

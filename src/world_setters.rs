@@ -92,6 +92,30 @@ impl World {
         Ok(self.body(h)?.gravity_scale)
     }
 
+    /// Locks a body's linear and angular axes (`body::LOCK_*` bits, world axes; 0 unlocks
+    /// all): its velocity along each locked axis becomes zero at once and stays exactly zero
+    /// through contacts, joints, forces, impulses and gravity. Locks act on dynamic bodies
+    /// (static and kinematic ones move as told) and are kept through type changes. Unknown
+    /// bits are refused. Wakes the body.
+    pub fn set_locked_axes(&mut self, h: BodyHandle, locks: u32) -> Result<()> {
+        let i = self.body_index(h)?;
+        crate::dynamics::body::check_locked_axes("locked_axes", locks)?;
+        let b = self.bodies.at_mut(i);
+        b.locked_axes = locks as u8;
+        b.v = crate::dynamics::body::lock_linear(b.v, b.locks());
+        b.w = crate::dynamics::body::lock_angular(b.w, b.locks());
+        b.update_world_inertia();
+        if b.enabled {
+            self.wake_body(i);
+        }
+        Ok(())
+    }
+
+    /// A body's locked axes (`body::LOCK_*` bits).
+    pub fn locked_axes(&self, h: BodyHandle) -> Result<u32> {
+        Ok(self.body(h)?.locked_axes as u32)
+    }
+
     /// Overrides a body's mass, centre of mass (body frame) and principal moments of inertia
     /// (along the body axes). Kept through later shape and density changes until
     /// `reset_mass_data`. Static and kinematic bodies keep infinite mass, but the override
@@ -184,6 +208,12 @@ impl World {
             b.torque = Vec3::ZERO;
         }
         self.update_mass(i);
+        {
+            // Becoming dynamic puts the body's locks in force.
+            let b = self.bodies.at_mut(i);
+            b.v = crate::dynamics::body::lock_linear(b.v, b.locks());
+            b.w = crate::dynamics::body::lock_angular(b.w, b.locks());
+        }
         if !enabled {
             return Ok(());
         }

@@ -626,6 +626,11 @@ public:
     Ret<void> set_gravity_scale(float scale) const {
         return P::check(hearth_body_set_gravity_scale(world_, id_, scale));
     }
+    // HEARTH_LOCK_* bits ORed (world axes); setting zeroes the locked velocity components.
+    Ret<uint32_t> locked_axes() const { HEARTH_CPP_READ(uint32_t, hearth_body_get_locked_axes(world_, id_, &out)); }
+    Ret<void> set_locked_axes(uint32_t locked_axes) const {
+        return P::check(hearth_body_set_locked_axes(world_, id_, locked_axes));
+    }
     Ret<MassData> mass_data() const { HEARTH_CPP_READ(MassData, hearth_body_get_mass_data(world_, id_, &out)); }
     Ret<void> set_mass_data(const MassData &data) const {
         return P::check(hearth_body_set_mass_data(world_, id_, &data));

@@ -322,6 +322,23 @@ namespace Hearth
         public uint InternalValue;
         /// <summary>1 (default) reports the body in move events when it moves or falls asleep; 0 never.</summary>
         public Flag EnableMoveEvents;
+        /// <summary>Locked axes: <c>HEARTH_LOCK_*</c> bits ORed (<see cref="LockedAxes"/>). Default none.</summary>
+        public LockedAxes LockedAxes;
+    }
+
+    /// <summary>Locked axes of a body, in world axes (<c>HEARTH_LOCK_*</c>).</summary>
+    [Flags]
+    public enum LockedAxes : uint
+    {
+        None = 0,
+        LinearX = 1,
+        LinearY = 2,
+        LinearZ = 4,
+        AngularX = 8,
+        AngularY = 16,
+        AngularZ = 32,
+        Linear = 7,
+        Angular = 56,
     }
 
     /// <summary>Id of a body inside its world. All-zero is the null id. Ids of destroyed bodies and of other worlds are rejected with <c>HEARTH_ERROR_INVALID_ID</c>.</summary>
@@ -1626,6 +1643,12 @@ namespace Hearth
 
         [DllImport(Lib, CallingConvention = CallingConvention.Cdecl)]
         public static extern Result hearth_body_get_gravity_scale(WorldHandle world, BodyId body, out float value);
+
+        [DllImport(Lib, CallingConvention = CallingConvention.Cdecl)]
+        public static extern Result hearth_body_set_locked_axes(WorldHandle world, BodyId body, LockedAxes lockedAxes);
+
+        [DllImport(Lib, CallingConvention = CallingConvention.Cdecl)]
+        public static extern Result hearth_body_get_locked_axes(WorldHandle world, BodyId body, out LockedAxes value);
 
         [DllImport(Lib, CallingConvention = CallingConvention.Cdecl)]
         public static extern Result hearth_body_set_mass_data(WorldHandle world, BodyId body, [In] ref MassData data);

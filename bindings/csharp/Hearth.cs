@@ -1751,6 +1751,18 @@ namespace Hearth
             set { HearthException.Check(Native.hearth_body_set_gravity_scale(H, Id, value), "hearth_body_set_gravity_scale"); }
         }
 
+        /// <summary>hearth_body_get_locked_axes / hearth_body_set_locked_axes: setting zeroes the locked velocity components at once and wakes the body.</summary>
+        public LockedAxes LockedAxes
+        {
+            get
+            {
+                LockedAxes value;
+                HearthException.Check(Native.hearth_body_get_locked_axes(H, Id, out value), "hearth_body_get_locked_axes");
+                return value;
+            }
+            set { HearthException.Check(Native.hearth_body_set_locked_axes(H, Id, value), "hearth_body_set_locked_axes"); }
+        }
+
         /// <summary>hearth_body_get_mass_data / hearth_body_set_mass_data (an override kept until ResetMassData).</summary>
         public MassData MassData
         {

@@ -53,6 +53,9 @@ pub struct HearthBodyDef {
     /// moves or falls asleep; 0 never. (Appended after `internal_value`, so earlier fields
     /// keep their offsets.)
     pub enable_move_events: u8,
+    /// Locked axes, `HEARTH_LOCK_*` bits ORed (world axes). Default 0 (none). Unknown bits are
+    /// refused. (Appended, so earlier fields keep their offsets.)
+    pub locked_axes: u32,
 }
 
 /// Defaults: static, at the origin, identity rotation, at rest, no damping, may sleep.
@@ -72,6 +75,7 @@ pub extern "C" fn hearth_body_def_default() -> HearthBodyDef {
         is_awake: 1,
         internal_value: DEF_COOKIE,
         enable_move_events: 1,
+        locked_axes: 0,
     }
 }
 
@@ -95,6 +99,10 @@ fn body_def(d: &HearthBodyDef) -> Result<BodyDef, Failure> {
         awake: validate::flag(d.is_awake, "is_awake")?,
         user_data: d.user_data,
         enable_move_events: validate::flag(d.enable_move_events, "enable_move_events")?,
+        locked_axes: {
+            crate::dynamics::body::check_locked_axes("locked_axes", d.locked_axes)?;
+            d.locked_axes as u8
+        },
     })
 }
 

@@ -305,6 +305,59 @@ pub unsafe extern "C" fn hearth_body_get_gravity_scale(
     get_body(world, body, out, |w, h| w.gravity_scale(h))
 }
 
+/// Locks movement along the world X axis (a bit of `locked_axes`).
+pub const HEARTH_LOCK_LINEAR_X: u32 = 1;
+/// Locks movement along the world Y axis.
+pub const HEARTH_LOCK_LINEAR_Y: u32 = 2;
+/// Locks movement along the world Z axis (2.5D games).
+pub const HEARTH_LOCK_LINEAR_Z: u32 = 4;
+/// Locks rotation about the world X axis.
+pub const HEARTH_LOCK_ANGULAR_X: u32 = 8;
+/// Locks rotation about the world Y axis.
+pub const HEARTH_LOCK_ANGULAR_Y: u32 = 16;
+/// Locks rotation about the world Z axis.
+pub const HEARTH_LOCK_ANGULAR_Z: u32 = 32;
+/// Every linear lock bit.
+pub const HEARTH_LOCK_LINEAR: u32 = 7;
+/// Every angular lock bit (an upright character).
+pub const HEARTH_LOCK_ANGULAR: u32 = 56;
+
+/// Locks a body's axes: `locked_axes` is `HEARTH_LOCK_*` bits ORed (world axes; 0 unlocks
+/// all). The velocity along each locked axis becomes zero at once and stays exactly zero
+/// through contacts, joints, forces, impulses and gravity: the centre of mass does not move
+/// along a locked linear axis, the body does not turn about a locked angular axis. Locks act
+/// on dynamic bodies (static and kinematic bodies move as told) and are kept through type
+/// changes. Wakes the body.
+///
+/// Errors: `HEARTH_ERROR_NULL_POINTER`, `HEARTH_ERROR_INVALID_ID`,
+/// `HEARTH_ERROR_INVALID_ARGUMENT` (a bit outside `HEARTH_LOCK_*`), `HEARTH_ERROR_WORLD_LOCKED`.
+///
+/// # Safety
+/// `world` must be NULL or a live world.
+#[no_mangle]
+pub unsafe extern "C" fn hearth_body_set_locked_axes(
+    world: *mut HearthWorld,
+    body: HearthBodyId,
+    locked_axes: u32,
+) -> HearthResult {
+    guard(|| Ok(world_mut(world)?.set_locked_axes(body.into(), locked_axes)?))
+}
+
+/// Reads a body's locked axes (`HEARTH_LOCK_*` bits).
+///
+/// Errors: `HEARTH_ERROR_NULL_POINTER`, `HEARTH_ERROR_INVALID_ID`.
+///
+/// # Safety
+/// `world` must be NULL or a live world; `out` NULL or writable.
+#[no_mangle]
+pub unsafe extern "C" fn hearth_body_get_locked_axes(
+    world: *const HearthWorld,
+    body: HearthBodyId,
+    out: *mut u32,
+) -> HearthResult {
+    get_body(world, body, out, |w, h| w.locked_axes(h))
+}
+
 /// Overrides a body's mass (1e-9..=1e17 kg), centre of mass (body frame, each coordinate
 /// within ±1e5 m) and principal moments of inertia along the body axes (each
 /// 1e-18..=1e26 kg·m²). The override is kept through later shape and density changes until

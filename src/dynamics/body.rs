@@ -14,6 +14,62 @@ pub type ContactHandle = Handle;
 /// Sentinel for "not in a list".
 pub const NONE: u32 = u32::MAX;
 
+/// Locked-axis bits (`Body::locked_axes`), in world axes: a locked linear axis keeps the
+/// centre of mass from moving along it, a locked angular axis keeps the body from turning
+/// about it (2.5D games lock linear Z and angular X and Y; upright characters lock every
+/// angular axis).
+pub const LOCK_LINEAR_X: u8 = 1;
+pub const LOCK_LINEAR_Y: u8 = 2;
+pub const LOCK_LINEAR_Z: u8 = 4;
+pub const LOCK_ANGULAR_X: u8 = 8;
+pub const LOCK_ANGULAR_Y: u8 = 16;
+pub const LOCK_ANGULAR_Z: u8 = 32;
+/// Every defined lock bit.
+pub const LOCK_ALL: u8 = 63;
+
+/// Whether each world axis is free (1.0) or locked (0.0), from three lock bits.
+#[inline]
+fn free_axes(bits: u8) -> Vec3 {
+    Vec3::new(
+        if bits & 1 == 0 { 1.0 } else { 0.0 },
+        if bits & 2 == 0 { 1.0 } else { 0.0 },
+        if bits & 4 == 0 { 1.0 } else { 0.0 },
+    )
+}
+
+/// `v` with the locked linear components (bits 0..3 of `locks`) set to exactly zero.
+#[inline]
+pub fn lock_linear(v: Vec3, locks: u8) -> Vec3 {
+    if locks & 7 == 0 {
+        v
+    } else {
+        Vec3::select(free_axes(locks).cmpeq(Vec3::ZERO), Vec3::ZERO, v)
+    }
+}
+
+/// `w` with the locked angular components (bits 3..6 of `locks`) set to exactly zero.
+#[inline]
+pub fn lock_angular(w: Vec3, locks: u8) -> Vec3 {
+    if locks & 56 == 0 {
+        w
+    } else {
+        Vec3::select(free_axes(locks >> 3).cmpeq(Vec3::ZERO), Vec3::ZERO, w)
+    }
+}
+
+/// A world inverse inertia with the rows and columns of the locked angular axes zeroed, so
+/// angular impulses never turn the body about them and effective masses see it as infinitely
+/// stiff there (Rapier's `effective_world_inv_inertia_sqrt`, Jolt's `ScaleToAllowedDOFs`).
+#[inline]
+pub fn lock_inertia(m: Mat3, locks: u8) -> Mat3 {
+    if locks & 56 == 0 {
+        return m;
+    }
+    let f = free_axes(locks >> 3);
+    let col = |c: Vec3, k: f32| if k == 0.0 { Vec3::ZERO } else { lock_angular(c, locks) };
+    Mat3::from_cols(col(m.x_axis, f.x), col(m.y_axis, f.y), col(m.z_axis, f.z))
+}
+
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum BodyType {
     /// Never moves; infinite mass.
@@ -39,6 +95,8 @@ pub struct BodyDef {
     pub user_data: u64,
     /// Report this body in move events (`events.rs`). Default on.
     pub enable_move_events: bool,
+    /// Locked axes, `LOCK_*` bits. Default 0 (none).
+    pub locked_axes: u8,
 }
 
 impl Default for BodyDef {
@@ -55,6 +113,7 @@ impl Default for BodyDef {
             awake: true,
             user_data: 0,
             enable_move_events: true,
+            locked_axes: 0,
         }
     }
 }
@@ -72,8 +131,20 @@ impl BodyDef {
         check_damping("linear_damping", d.linear_damping)?;
         check_damping("angular_damping", d.angular_damping)?;
         check_gravity_scale("gravity_scale", d.gravity_scale)?;
+        check_locked_axes("locked_axes", d.locked_axes as u32)?;
         Ok(d)
     }
+}
+
+/// Lock bits: only `LOCK_ALL`'s bits may be set.
+pub fn check_locked_axes(name: &str, bits: u32) -> Result<()> {
+    if bits & !(LOCK_ALL as u32) != 0 {
+        return Err(crate::error::invalid(format!(
+            "{name} has unknown bits {:#x} (only the six LOCK_* bits, 0x3f, are defined)",
+            bits & !(LOCK_ALL as u32)
+        )));
+    }
+    Ok(())
 }
 
 pub struct Body {
@@ -133,6 +204,8 @@ pub struct Body {
     /// False while disabled (`World::disable_body`): out of the broad phase, no contacts, not
     /// simulated, its joints inactive; its state is kept.
     pub enabled: bool,
+    /// Locked axes (`LOCK_*` bits, world axes): the velocity along each is kept exactly zero.
+    pub locked_axes: u8,
 }
 
 /// The inverse of an inertia tensor, or zero when it is singular. The supported masses and
@@ -200,9 +273,23 @@ impl Body {
             reported_xf: def.transform,
             mass_override: None,
             enabled: true,
+            locked_axes: def.locked_axes,
         };
+        b.v = lock_linear(b.v, b.locks());
+        b.w = lock_angular(b.w, b.locks());
         b.set_mass_properties(MassProperties::ZERO);
         b
+    }
+
+    /// The locks in force: a dynamic body's `locked_axes`; none for static and kinematic
+    /// bodies, which move as told.
+    #[inline]
+    pub fn locks(&self) -> u8 {
+        if self.body_type == BodyType::Dynamic {
+            self.locked_axes
+        } else {
+            0
+        }
     }
 
     #[inline]
@@ -255,16 +342,27 @@ impl Body {
     #[inline]
     pub fn update_world_inertia(&mut self) {
         if self.isotropic {
-            self.inv_inertia_world = self.inv_inertia_local;
+            self.inv_inertia_world = lock_inertia(self.inv_inertia_local, self.locks());
             return;
         }
         let r = Mat3::from_quat(self.xf.q);
-        self.inv_inertia_world = r * self.inv_inertia_local * r.transpose();
+        self.inv_inertia_world = lock_inertia(r * self.inv_inertia_local * r.transpose(), self.locks());
     }
 
     /// Moves the origin so the centre of mass sits at `center` with rotation `q`.
+    /// A dynamic body's locked linear coordinates of the centre of mass stay as they were, and
+    /// with every angular axis locked so does its rotation (the stages that move bodies
+    /// outside the solver, particles and soft bodies, push positions directly).
     #[inline]
     pub fn set_center_rotation(&mut self, center: Vec3, q: glam::Quat) {
+        let locks = self.locks();
+        let (center, q) = if locks == 0 {
+            (center, q)
+        } else {
+            let keep = glam::BVec3::new(locks & 1 != 0, locks & 2 != 0, locks & 4 != 0);
+            let q = if locks & 56 == 56 { self.xf.q } else { q };
+            (Vec3::select(keep, self.center, center), q)
+        };
         self.center = center;
         self.xf.q = q;
         self.xf.p = center - q * self.local_center;
@@ -299,15 +397,15 @@ impl Body {
     pub fn apply_impulses(&mut self, j: glam::DVec3, l: glam::DVec3, limits: (f32, f32)) {
         let v = self.v.as_dvec3() + j * self.inv_mass as f64;
         let w = self.w.as_dvec3() + self.inv_inertia_world.as_dmat3() * l;
-        self.v = clamp_length_f64(v, limits.0);
-        self.w = clamp_length_f64(w, limits.1);
+        self.v = lock_linear(clamp_length_f64(v, limits.0), self.locks());
+        self.w = lock_angular(clamp_length_f64(w, limits.1), self.locks());
     }
 
     /// Sets the velocities, capped at the speed limits (m/s, rad/s): the write-back of the
     /// stages that move bodies outside the solver (particles, soft bodies).
     pub fn set_velocities_capped(&mut self, v: Vec3, w: Vec3, limits: (f32, f32)) {
-        self.v = crate::math::clamp_length(v, limits.0);
-        self.w = crate::math::clamp_length(w, limits.1);
+        self.v = lock_linear(crate::math::clamp_length(v, limits.0), self.locks());
+        self.w = lock_angular(crate::math::clamp_length(w, limits.1), self.locks());
     }
 
     /// Velocity of a world point attached to the body.

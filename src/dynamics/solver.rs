@@ -11,7 +11,7 @@
 //! Plain and kinematic bodies are integrated in SIMD lanes (`integrate_wide.rs`); bodies with
 //! torque, gyroscopic motion or RK4 take the scalar path here.
 
-use crate::dynamics::body::Body;
+use crate::dynamics::body::{lock_angular, lock_linear, Body};
 use crate::dynamics::contact_solver::{self, ContactRef, Sources};
 use crate::dynamics::contact_wide;
 use crate::dynamics::integrate_wide;
@@ -62,6 +62,8 @@ impl Velocity {
 #[derive(Clone, Copy, Debug)]
 pub struct BodyState {
     pub inv_mass: f32,
+    /// The body's locked axes (`body::LOCK_*` bits; 0 for most bodies).
+    pub locks: u8,
     /// As rows of four floats, so that lanes of bodies load with transposes: translation
     /// since the start of the step, rotation since the start of the step as a quaternion
     /// (x, y, z, w), the columns of the world inverse inertia, and the rotation since the
@@ -72,12 +74,14 @@ pub struct BodyState {
 impl BodyState {
     pub const STATIC: BodyState = BodyState {
         inv_mass: 0.0,
+        locks: 0,
         rows: [[0.0; 4], [0.0, 0.0, 0.0, 1.0], [0.0; 4], [0.0; 4], [0.0; 4], [0.0; 4]],
     };
 
-    fn new(inv_mass: f32, inv_i: Mat3) -> BodyState {
+    fn new(inv_mass: f32, inv_i: Mat3, locks: u8) -> BodyState {
         let mut s = BodyState {
             inv_mass,
+            locks,
             ..BodyState::STATIC
         };
         s.set_inv_i(inv_i);
@@ -210,6 +214,8 @@ pub struct SolverScratch {
     pub refs: Vec<ContactRef>,
     /// Some contact has restitution.
     pub bounces: bool,
+    /// Solver indices of the bodies with locked axes this step.
+    pub locked: Vec<u32>,
     pub batches: contact_wide::Batches,
 }
 
@@ -374,6 +380,7 @@ pub fn prepare_bodies(world: &mut World, dt: f32, h: f32) {
     scratch.vel.clear();
     scratch.sims.clear();
     scratch.drives.clear();
+    scratch.locked.clear();
     scratch.drives.push(Drive::FIXED);
     scratch.states.push(BodyState::STATIC);
     scratch.vel.push(Velocity::default());
@@ -432,6 +439,12 @@ pub fn prepare_bodies(world: &mut World, dt: f32, h: f32) {
             (*state, *vel, *sim, *drive) = prepare_body(body, bi, k as u32 + 1, gravity, dt, h, (max_v, max_w));
         }
     });
+    // The bodies with locked axes, in solver order (empty in a world without locks).
+    for (k, state) in scratch.states.iter().enumerate().skip(1) {
+        if state.locks != 0 {
+            scratch.locked.push(k as u32);
+        }
+    }
 }
 
 /// Awake bodies per task, at least, in the per-body stages.
@@ -458,14 +471,19 @@ fn prepare_body(
     body.kinematic_stop = false;
     let arrive = !dynamic && kinematic_target_velocity(body, dt, max_v, max_w);
     body.update_world_inertia();
-    let state = BodyState::new(body.inv_mass, body.inv_inertia_world);
+    let locks = body.locks();
+    let state = BodyState::new(body.inv_mass, body.inv_inertia_world, locks);
     let vel = Velocity::new(body.v, body.w);
     let (lin_accel, torque) = if dynamic {
-        bounded_drive(body, gravity, h, max_v, max_w)
+        let (a, t) = bounded_drive(body, gravity, h, max_v, max_w);
+        (lock_linear(a, locks), t)
     } else {
         (Vec3::ZERO, Vec3::ZERO)
     };
-    let gyroscopic = dynamic && has_gyroscopic_term(&body.inertia_local);
+    // A body with a locked angular axis turns only about the free ones: no gyroscopic
+    // free rotation (it would carry spin into a locked axis); its inertia is refreshed
+    // once a step.
+    let gyroscopic = dynamic && locks & 56 == 0 && has_gyroscopic_term(&body.inertia_local);
     let (principal, moments) = if gyroscopic {
         principal_axes(&body.inertia_local)
     } else {
@@ -721,8 +739,10 @@ pub fn solve(world: &mut World, dt: f32) {
     crate::generators::springs::prepare(springs, &world.bodies, h);
     if settings.integrator == Integrator::Rk4 {
         // Bodies no constraint touches this step are integrated by RK4.
-        for sim in scratch.sims.iter_mut() {
-            sim.rk4 = sim.dynamic;
+        for (sim, st) in scratch.sims.iter_mut().zip(&scratch.states) {
+            // RK4 integrates the full rigid-body equations: locked bodies stay on the
+            // sub-stepped path, which keeps their locked axes exact.
+            sim.rk4 = sim.dynamic && st.locks == 0;
         }
         for r in &scratch.refs {
             scratch.sims[r.a as usize].rk4 = false;
@@ -751,6 +771,7 @@ pub fn solve(world: &mut World, dt: f32) {
     scratch.paths.sort(&scratch.drives);
     let eight = scratch.batches.lanes() == 8;
     let (vel, states, sims, drives) = (&mut scratch.vel, &mut scratch.states, &scratch.sims, &scratch.drives);
+    let locked = &scratch.locked;
     let paths = &scratch.paths;
     let batches = &mut scratch.batches;
     let inv_h = 1.0 / h;
@@ -772,28 +793,47 @@ pub fn solve(world: &mut World, dt: f32) {
         // Joints warm start first, then each contact batch is refreshed and warm started.
         crate::dynamics::joints::solver::warm_start(joints, vel, states, limits);
         contact_wide::refresh_warm_start(states, vel, batches, sub == 0);
+        lock_velocities(vel, states, locked);
         // Soft, biased sweeps push overlap out and damp; positions move; a rigid relax sweep
         // removes the push velocity. Sweeps alternate direction through each manifold's points.
         crate::dynamics::joints::solver::solve(joints, vel, states, h, true);
         crate::dynamics::joints::solver::guard(joints, vel, limits);
+        lock_velocities(vel, states, locked);
         for k in 0..settings.velocity_iterations {
             contact_wide::solve(vel, batches, inv_h, (sub + k) % 2 == 0, Some(&soft));
+            lock_velocities(vel, states, locked);
         }
         guard_velocities(vel, limits);
         integrate_wide::positions(eight, vel, states, &paths.moving, h, limits);
         integrate_general_positions(vel, states, sims, &paths.general, h, limits);
         crate::dynamics::joints::solver::solve(joints, vel, states, h, false);
         crate::dynamics::joints::solver::guard(joints, vel, limits);
+        lock_velocities(vel, states, locked);
         contact_wide::solve(vel, batches, inv_h, sub % 2 == 1, None);
         guard_velocities(vel, limits);
+        lock_velocities(vel, states, locked);
     }
     if scratch.bounces {
         contact_wide::refresh(states, batches, false);
         contact_wide::restitution(vel, batches, settings.restitution_threshold);
+        lock_velocities(vel, &scratch.states, &scratch.locked);
     }
     contact_wide::store(batches, &scratch.refs, &mut world.contacts);
     crate::dynamics::joints::solver::store(world, h);
     finalize_bodies(world);
+}
+
+/// Sets the locked velocity components of the bodies with locked axes to exactly zero, after
+/// each stage that changes velocities. Angular impulses already leave locked angular axes
+/// alone (the world inverse inertia has their rows and columns zeroed, `body::lock_inertia`);
+/// the linear components an impulse gave along a locked axis are taken out, which only
+/// removes kinetic energy. Worlds without locks pay an empty loop.
+fn lock_velocities(vel: &mut [Velocity], states: &[BodyState], locked: &[u32]) {
+    for &k in locked {
+        let locks = states[k as usize].locks;
+        let u = &mut vel[k as usize];
+        *u = Velocity::new(lock_linear(u.v, locks), lock_angular(u.w, locks));
+    }
 }
 
 /// After the contact sweeps: a body whose inertia is nearly singular in f32 (a 10 km capsule

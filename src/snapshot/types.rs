@@ -105,6 +105,7 @@ snap_struct!(Body {
     reported_xf,
     mass_override,
     enabled,
+    locked_axes,
 });
 snap_struct!(Aabb { min, max });
 snap_struct!(ShapeDef {

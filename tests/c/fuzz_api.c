@@ -983,12 +983,13 @@ static void op_body_create(FWorld *fw) {
     if (chance(20)) d.gravity_scale = frange(-MAX_GRAVITY_SCALE, MAX_GRAVITY_SCALE);
     if (chance(20)) d.allow_sleep = 0;
     if (chance(10)) d.is_awake = 0;
+    if (chance(10)) d.locked_axes = rnd(64);
     d.user_data = next_u64();
     const char *field = NULL;
     switch (f) {
     case F_COOKIE: d.internal_value = rnd(2) ? 0 : (uint32_t)next_u64(); if (d.internal_value == hearth_body_def_default().internal_value) d.internal_value++; break;
     case F_FLAG: if (chance(50)) { d.allow_sleep = bad_flag(); field = "allow_sleep"; } else { d.is_awake = bad_flag(); field = "is_awake"; } break;
-    case F_CODE: d.type = 3 + rnd(100000); field = "type"; break;
+    case F_CODE: if (chance(50)) { d.type = 3 + rnd(100000); field = "type"; } else { d.locked_axes = (64u << rnd(26)) | rnd(64); field = "locked_axes"; } break;
     case F_NUMBER:
         switch (rnd(7)) {
         case 0: d.transform.position = bad_position(); field = "position"; break;
@@ -3351,7 +3352,7 @@ static void op_setters(FWorld *fw) {
         HearthResult get_r = f == F_NULL_OUT && id_r != HEARTH_ERROR_NULL_POINTER ? HEARTH_ERROR_NULL_POINTER : id_r;
         HearthResult set_r = f == F_NUMBER && id_r == HEARTH_OK ? HEARTH_ERROR_INVALID_ARGUMENT : id_r;
         int nul = f == F_NULL_OUT;
-        switch (rnd(9)) {
+        switch (rnd(11)) {
         case 0: {
             float x = f == F_NUMBER ? outside(-MAX_GRAVITY_SCALE, MAX_GRAVITY_SCALE) : frange(-2, 2);
             CALL(hearth_body_set_gravity_scale(w, b, x), set_r, "gravity_scale", NULL, 0);
@@ -3399,6 +3400,15 @@ static void op_setters(FWorld *fw) {
             break;
         }
         case 7: { if (f == F_NUMBER) return; CALL(hearth_body_enable(w, b), id_r, NULL, NULL, 0); break; }
+        case 8: {
+            /* Unknown lock bits are refused; valid masks lock (mostly nothing, so bodies keep moving). */
+            uint32_t bits = f == F_NUMBER ? (64u << rnd(26)) | rnd(64) : (chance(70) ? 0 : rnd(64));
+            CALL(hearth_body_set_locked_axes(w, b, bits), set_r, "locked_axes", NULL, 0);
+            break;
+        }
+        case 9: { CALL(hearth_body_get_locked_axes(w, b, nul ? NULL : &out.u32), get_r, NULL, &out, sizeof out);
+            if (r == HEARTH_OK && out.u32 > 63) fail("body locked axes", "unknown bits read back");
+            break; }
         default: {
             CALL(hearth_body_is_enabled(w, b, nul ? NULL : &out.flag), get_r, NULL, &out, sizeof out);
             if (r == HEARTH_OK && !out.flag) fail("body_is_enabled", "a body is disabled outside op_setters");

@@ -177,6 +177,59 @@ static void test_gravity_scale_and_mass_data(void) {
     hearth_world_destroy(w);
 }
 
+static void test_locked_axes(void) {
+    HearthWorld *w = make_world();
+    HearthBodyId b = make_body(w, HEARTH_BODY_DYNAMIC, vec(0, 5, 0));
+    make_box(w, b, vec(0.5f, 0.5f, 0.5f));
+    uint32_t bits = 99;
+    ENSURE_OK(hearth_body_get_locked_axes(w, b, &bits));
+    ENSURE(bits == 0);
+    ENSURE_OK(hearth_body_set_linear_velocity(w, b, vec(1, 2, 3)));
+    ENSURE_OK(hearth_body_set_angular_velocity(w, b, vec(4, 5, 6)));
+    /* 2.5D: the XY plane, turning about Z only. The locked components are zero at once. */
+    uint32_t planar = HEARTH_LOCK_LINEAR_Z | HEARTH_LOCK_ANGULAR_X | HEARTH_LOCK_ANGULAR_Y;
+    ENSURE_OK(hearth_body_set_locked_axes(w, b, planar));
+    ENSURE_OK(hearth_body_get_locked_axes(w, b, &bits));
+    ENSURE(bits == planar);
+    HearthVec3 v, av;
+    ENSURE_OK(hearth_body_get_linear_velocity(w, b, &v));
+    ENSURE_OK(hearth_body_get_angular_velocity(w, b, &av));
+    ENSURE(v.x == 1.0f && v.y == 2.0f && v.z == 0.0f && av.x == 0.0f && av.y == 0.0f && av.z == 6.0f);
+    /* Gravity and an off-centre impulse out of the plane leave the locked axes at exactly zero. */
+    ENSURE_OK(hearth_body_apply_impulse_at_point(w, b, vec(100, 200, 3000), vec(0.3f, 5.4f, 0.2f)));
+    HearthTransform t0;
+    ENSURE_OK(hearth_body_get_transform(w, b, &t0));
+    for (int i = 0; i < 60; i++) ENSURE_OK(hearth_world_step(w, 1.0f / 60.0f));
+    HearthTransform t;
+    ENSURE_OK(hearth_body_get_transform(w, b, &t));
+    ENSURE_OK(hearth_body_get_linear_velocity(w, b, &v));
+    ENSURE_OK(hearth_body_get_angular_velocity(w, b, &av));
+    ENSURE(t.position.z == t0.position.z && v.z == 0.0f && av.x == 0.0f && av.y == 0.0f);
+    ENSURE(t.position.y < 4.0f);
+    /* Errors change nothing. */
+    ENSURE_RESULT(hearth_body_set_locked_axes(w, b, 64), HEARTH_ERROR_INVALID_ARGUMENT);
+    ENSURE_RESULT(hearth_body_set_locked_axes(w, b, 0x80000000u | HEARTH_LOCK_LINEAR_X), HEARTH_ERROR_INVALID_ARGUMENT);
+    ENSURE_RESULT(hearth_body_set_locked_axes(NULL, b, 0), HEARTH_ERROR_NULL_POINTER);
+    ENSURE_RESULT(hearth_body_get_locked_axes(NULL, b, &bits), HEARTH_ERROR_NULL_POINTER);
+    ENSURE_RESULT(hearth_body_get_locked_axes(w, b, NULL), HEARTH_ERROR_NULL_POINTER);
+    ENSURE_OK(hearth_body_get_locked_axes(w, b, &bits));
+    ENSURE(bits == planar);
+    /* In the def: unknown bits are refused there too. */
+    HearthBodyDef d = hearth_body_def_default();
+    d.type = HEARTH_BODY_DYNAMIC;
+    d.locked_axes = HEARTH_LOCK_ANGULAR;
+    HearthBodyId c;
+    ENSURE_OK(hearth_body_create(w, &d, &c));
+    ENSURE_OK(hearth_body_get_locked_axes(w, c, &bits));
+    ENSURE(bits == (HEARTH_LOCK_ANGULAR_X | HEARTH_LOCK_ANGULAR_Y | HEARTH_LOCK_ANGULAR_Z));
+    d.locked_axes = 1u << 6;
+    ENSURE_RESULT(hearth_body_create(w, &d, &c), HEARTH_ERROR_INVALID_ARGUMENT);
+    ENSURE_OK(hearth_body_destroy(w, b));
+    ENSURE_RESULT(hearth_body_set_locked_axes(w, b, 0), HEARTH_ERROR_INVALID_ID);
+    ENSURE_RESULT(hearth_body_get_locked_axes(w, b, &bits), HEARTH_ERROR_INVALID_ID);
+    hearth_world_destroy(w);
+}
+
 static void test_type_and_enable(void) {
     HearthWorld *w = make_world();
     HearthBodyId ground = make_body(w, HEARTH_BODY_STATIC, vec(0, 0, 0));
@@ -241,6 +294,7 @@ static void test_type_and_enable(void) {
 int main(void) {
     test_shape_material();
     test_gravity_scale_and_mass_data();
+    test_locked_axes();
     test_type_and_enable();
     return ensure_report("test_setters");
 }

@@ -1224,12 +1224,31 @@ static void test_threads_give_the_same_hash() {
     CHECK(threw);
 }
 
+static void test_locked_axes() {
+    hearth::World w = make_world(false);
+    hearth::Body b = w.create_body(hearth::BodyType::Dynamic, hearth::vec3(0, 5, 0));
+    b.add(hearth::box(hearth::vec3(0.5f, 0.5f, 0.5f)), hearth::shape_def());
+    CHECK(b.locked_axes() == 0u);
+    b.set_linear_velocity(hearth::vec3(1, 2, 3));
+    b.set_locked_axes(HEARTH_LOCK_LINEAR_Y | HEARTH_LOCK_ANGULAR);
+    CHECK(b.locked_axes() == (HEARTH_LOCK_LINEAR_Y | HEARTH_LOCK_ANGULAR));
+    CHECK(b.linear_velocity().y == 0.0f && b.linear_velocity().x == 1.0f);
+    b.apply_angular_impulse(hearth::vec3(5, 5, 5));
+    for (int i = 0; i < 30; i++) w.step(DT);
+    // Locked in y: it floats; locked in rotation: it never turns.
+    CHECK(b.transform().position.y == 5.0f);
+    CHECK(b.angular_velocity().x == 0.0f && b.angular_velocity().y == 0.0f && b.angular_velocity().z == 0.0f);
+    CHECK_THROWS(b.set_locked_axes(64u), hearth::Code::InvalidArgument);
+    CHECK(b.locked_axes() == (HEARTH_LOCK_LINEAR_Y | HEARTH_LOCK_ANGULAR));
+}
+
 static void run_throwing_tests() {
     test_events_and_step_callbacks();
     test_box_rests_on_plane();
     test_errors_as_exceptions();
     test_rolling_resistance_and_torsional_friction();
     test_runtime_setters();
+    test_locked_axes();
     test_debug_draw();
     test_move_semantics();
     test_lambda_force_hovers();

@@ -150,6 +150,7 @@ internal static class HearthTests
             new KeyValuePair<string, Type>("HEARTH_JOINT_", typeof(JointType)),
             new KeyValuePair<string, Type>("HEARTH_INTEGRATOR_", typeof(Integrator)),
             new KeyValuePair<string, Type>("HEARTH_QUERY_SHAPE_", typeof(QueryShapeType)),
+            new KeyValuePair<string, Type>("HEARTH_LOCK_", typeof(LockedAxes)),
         };
         if (cName == "HEARTH_OK")
         {
@@ -402,6 +403,29 @@ internal static class HearthTests
             Ensure(owner.Mass < before, "mass recomputed without the shape");
             owner.CreateCapsule(new Capsule(new Vec3(0f, -0.5f, 0f), new Vec3(0f, 0.5f, 0f), 0.2f));
             Ensure(owner.Mass > 1000f, "capsule adds mass");
+        }
+    }
+
+    private static void TestLockedAxes()
+    {
+        using (var world = new World())
+        {
+            BodyDef def = BodyDef.Default();
+            def.Type = BodyType.Dynamic;
+            def.Transform = new Transform(new Vec3(0f, 5f, 0f), Quat.Identity);
+            def.LockedAxes = LockedAxes.LinearZ;
+            Body body = world.CreateBody(def);
+            body.CreateBox(new Box(Vec3.Zero, Quat.Identity, new Vec3(0.5f, 0.5f, 0.5f)));
+            Equal(body.LockedAxes, LockedAxes.LinearZ, "locked axes from the def");
+            body.LinearVelocity = new Vec3(1f, 2f, 3f);
+            Equal(body.LinearVelocity.Z, 0f, "locked z velocity");
+            body.LockedAxes = LockedAxes.LinearY | LockedAxes.Angular;
+            Equal(body.LinearVelocity.Y, 0f, "y velocity zeroed at once");
+            for (int i = 0; i < 30; i++) world.Step(Dt);
+            Equal(body.Position.Y, 5f, "locked in y: it floats");
+            Equal(body.AngularVelocity.X, 0f, "no spin");
+            Fails(Result.InvalidArgument, () => body.LockedAxes = (LockedAxes)64, "unknown lock bit");
+            Equal(body.LockedAxes, LockedAxes.LinearY | LockedAxes.Angular, "unchanged after the error");
         }
     }
 
@@ -1774,6 +1798,7 @@ internal static class HearthTests
             new KeyValuePair<string, Action>("free fall matches gravity", TestFreeFallMatchesGravity),
             new KeyValuePair<string, Action>("body setters and forces", TestBodySettersAndForces),
             new KeyValuePair<string, Action>("runtime setters", TestRuntimeSetters),
+            new KeyValuePair<string, Action>("locked axes", TestLockedAxes),
             new KeyValuePair<string, Action>("debug draw", TestDebugDraw),
             new KeyValuePair<string, Action>("bulk transforms equal single reads", TestBulkTransformsEqualSingleReads),
             new KeyValuePair<string, Action>("error paths", TestErrorPaths),

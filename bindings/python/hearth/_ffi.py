@@ -36,6 +36,15 @@ HEARTH_BODY_STATIC = 0
 HEARTH_BODY_KINEMATIC = 1
 HEARTH_BODY_DYNAMIC = 2
 
+HEARTH_LOCK_LINEAR_X = 1
+HEARTH_LOCK_LINEAR_Y = 2
+HEARTH_LOCK_LINEAR_Z = 4
+HEARTH_LOCK_ANGULAR_X = 8
+HEARTH_LOCK_ANGULAR_Y = 16
+HEARTH_LOCK_ANGULAR_Z = 32
+HEARTH_LOCK_LINEAR = 7
+HEARTH_LOCK_ANGULAR = 56
+
 HEARTH_QUERY_SHAPE_SPHERE = 0
 HEARTH_QUERY_SHAPE_CAPSULE = 1
 HEARTH_QUERY_SHAPE_BOX = 2
@@ -142,6 +151,7 @@ class HearthBodyDef(_Struct):
         ("is_awake", c_uint8),
         ("internal_value", c_uint32),
         ("enable_move_events", c_uint8),
+        ("locked_axes", c_uint32),
     ]
 
 
@@ -794,6 +804,8 @@ _fn("hearth_shape_set_user_data", HearthResult, POINTER(HearthWorld), HearthShap
 _fn("hearth_shape_get_user_data", HearthResult, POINTER(HearthWorld), HearthShapeId, POINTER(c_uint64))
 _fn("hearth_body_set_gravity_scale", HearthResult, POINTER(HearthWorld), HearthBodyId, c_float)
 _fn("hearth_body_get_gravity_scale", HearthResult, POINTER(HearthWorld), HearthBodyId, POINTER(c_float))
+_fn("hearth_body_set_locked_axes", HearthResult, POINTER(HearthWorld), HearthBodyId, c_uint32)
+_fn("hearth_body_get_locked_axes", HearthResult, POINTER(HearthWorld), HearthBodyId, POINTER(c_uint32))
 _fn("hearth_body_set_mass_data", HearthResult, POINTER(HearthWorld), HearthBodyId, POINTER(HearthMassData))
 _fn("hearth_body_get_mass_data", HearthResult, POINTER(HearthWorld), HearthBodyId, POINTER(HearthMassData))
 _fn("hearth_body_reset_mass_data", HearthResult, POINTER(HearthWorld), HearthBodyId)

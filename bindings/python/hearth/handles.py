@@ -250,6 +250,18 @@ class Body(_Handle):
         lib.hearth_body_set_gravity_scale(self._w, self._id, value)
 
     @property
+    def locked_axes(self):
+        """`hearth_body_get_locked_axes` / `hearth_body_set_locked_axes`: HEARTH_LOCK_* bits ORed
+        (world axes). Setting zeroes the locked velocity components at once and wakes the body."""
+        out = ctypes.c_uint32()
+        lib.hearth_body_get_locked_axes(self._w, self._id, byref(out))
+        return out.value
+
+    @locked_axes.setter
+    def locked_axes(self, value):
+        lib.hearth_body_set_locked_axes(self._w, self._id, value)
+
+    @property
     def mass_data(self):
         """(mass kg, centre of mass in the body frame, diagonal of the inertia kg·m²)."""
         out = _ffi.HearthMassData()

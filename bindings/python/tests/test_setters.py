@@ -77,3 +77,23 @@ def test_type_change_and_disable(world):
     with pytest.raises(hearth.errors.InvalidArgument):
         box.type = 7
     assert box.type == hearth.BodyType.DYNAMIC
+
+
+def test_locked_axes_keep_a_body_in_its_plane(world):
+    ffi = hearth.ffi
+    body = world.create_body("dynamic", position=(0.0, 5.0, 0.0), locked_axes=ffi.HEARTH_LOCK_LINEAR_Z)
+    body.add_box(half_extents=(0.5, 0.5, 0.5))
+    assert body.locked_axes == ffi.HEARTH_LOCK_LINEAR_Z
+    body.linear_velocity = (1.0, 2.0, 3.0)
+    assert tuple(body.linear_velocity) == (1.0, 2.0, 0.0)
+    body.locked_axes = ffi.HEARTH_LOCK_LINEAR_Y | ffi.HEARTH_LOCK_ANGULAR
+    assert body.linear_velocity.y == 0.0
+    for _ in range(30):
+        world.step(DT)
+    assert body.position.y == 5.0  # locked in y: it floats
+    assert tuple(body.angular_velocity) == (0.0, 0.0, 0.0)
+    with pytest.raises(hearth.errors.InvalidArgument):
+        body.locked_axes = 64
+    assert body.locked_axes == ffi.HEARTH_LOCK_LINEAR_Y | ffi.HEARTH_LOCK_ANGULAR
+    with pytest.raises(hearth.errors.InvalidArgument):
+        world.create_body("dynamic", locked_axes=128)

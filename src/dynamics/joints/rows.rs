@@ -258,7 +258,7 @@ impl Eq {
                 k[j][i] = v;
             }
         }
-        Spd::factor(&k, self.n)
+        Spd::factor(&k, self.n, b.locked)
     }
 
     /// Solves the rows together as one block (for a joint outside the tree solve): rigid with
@@ -355,8 +355,9 @@ pub struct Spd {
 }
 
 impl Spd {
-    /// `None` when `k` is not positive definite (to a relative tolerance).
-    pub fn factor(k: &[[f32; MAX_ROWS]; MAX_ROWS], n: usize) -> Option<Spd> {
+    /// `None` when `k` is not positive definite (to a relative tolerance); with `drop_weak`
+    /// (bodies with locked axes) the rows that make it singular are left out instead.
+    pub fn factor(k: &[[f32; MAX_ROWS]; MAX_ROWS], n: usize, drop_weak: bool) -> Option<Spd> {
         let mut s = Spd {
             n,
             l: [[0.0; MAX_ROWS]; MAX_ROWS],
@@ -372,7 +373,13 @@ impl Spd {
                 d -= s.l[j][p] * s.l[j][p];
             }
             if d <= 1.0e-7 * scale {
-                return None;
+                if !drop_weak {
+                    return None;
+                }
+                // Locked axes (`body::LOCK_*`) leave rows the bodies cannot (or can hardly)
+                // move along: such a row is left out (its impulse stays zero) and the others
+                // are solved.
+                continue;
             }
             let djj = d.sqrt();
             s.l[j][j] = djj;
@@ -423,7 +430,7 @@ mod tests {
                 k[i][j] = a[i][j];
             }
         }
-        let s = Spd::factor(&k, 3).unwrap();
+        let s = Spd::factor(&k, 3, false).unwrap();
         let x = s.solve(&[1.0, 2.0, 3.0, 0.0, 0.0, 0.0]);
         for i in 0..3 {
             let r: f32 = (0..3).map(|j| a[i][j] * x[j]).sum();
@@ -433,6 +440,11 @@ mod tests {
         k[0][2] = k[0][1];
         k[1][2] = k[1][1];
         k[2][2] = k[1][1];
-        assert!(Spd::factor(&k, 3).is_none());
+        assert!(Spd::factor(&k, 3, false).is_none());
+        // Dropping the dependent row solves the other two.
+        let s = Spd::factor(&k, 3, true).unwrap();
+        let x = s.solve(&[1.0, 2.0, 2.0, 0.0, 0.0, 0.0]);
+        assert_eq!(x[2], 0.0);
+        assert!((4.0 * x[0] + x[1] - 1.0).abs() < 1e-5 && (x[0] + 3.0 * x[1] - 2.0).abs() < 1e-5);
     }
 }

@@ -23,7 +23,7 @@
 use super::rows::Eq;
 use super::tree::Forest;
 use super::{Impulses, JointKind};
-use crate::dynamics::body::NONE;
+use crate::dynamics::body::{lock_linear, NONE};
 use crate::dynamics::solver::{BodySim, BodyState, Softness, Velocity};
 use crate::math::{clamp_length, Mat3, Quat, Transform, Vec3};
 use crate::world::World;
@@ -236,10 +236,13 @@ pub struct Bodies {
     pub wa: Vec3,
     pub vb: Vec3,
     pub wb: Vec3,
-    pub ma: f32,
-    pub mb: f32,
+    /// Inverse masses per world axis: zero along locked axes (`body::LOCK_*`).
+    pub ma: Vec3,
+    pub mb: Vec3,
     pub ia: Mat3,
     pub ib: Mat3,
+    /// Either body has locked axes: singular blocks drop their dependent rows.
+    pub locked: bool,
 }
 
 /// The sweep being run, and how its rigid rows respond: in the biased sweep a stiff soft
@@ -339,12 +342,17 @@ impl Bodies {
         let cdot = self.vb + self.wb.cross(f.rb) - self.va - self.wa.cross(f.ra);
         let bias = Vec3::new(ctx.rigid_bias(f.d.x), ctx.rigid_bias(f.d.y), ctx.rigid_bias(f.d.z));
         let (sa, sb) = (skew(f.ra), skew(f.rb));
-        let k = Mat3::from_diagonal(Vec3::splat(self.ma + self.mb)) - sa * self.ia * sa - sb * self.ib * sb;
+        let k = Mat3::from_diagonal(self.ma + self.mb) - sa * self.ia * sa - sb * self.ib * sb;
         let det = k.determinant();
-        if !(det.abs() > f32::MIN_POSITIVE && det.is_finite()) {
+        let rhs = -(cdot + bias);
+        let x = if det.abs() > f32::MIN_POSITIVE && det.is_finite() {
+            k.inverse() * rhs
+        } else if let Some(x) = self.locked.then(|| locked_solve(&k, rhs)).flatten() {
+            x
+        } else {
             return;
-        }
-        let imp = ctx.respond_vec(-(k.inverse() * (cdot + bias)), *acc);
+        };
+        let imp = ctx.respond_vec(x, *acc);
         *acc += imp;
         self.va -= self.ma * imp;
         self.wa -= self.ia * f.ra.cross(imp);
@@ -534,23 +542,38 @@ pub(crate) fn load(c: &JointConstraint, vel: &[Velocity], states: &[BodyState]) 
             wa: ua.w,
             vb: ub.v,
             wb: ub.w,
-            ma: sa.inv_mass,
-            mb: sb.inv_mass,
+            ma: lock_linear(Vec3::splat(sa.inv_mass), sa.locks),
+            mb: lock_linear(Vec3::splat(sb.inv_mass), sb.locks),
             ia: sa.inv_i(),
             ib: sb.inv_i(),
+            locked: sa.locks | sb.locks != 0,
         },
         Frames::new(c, sa, sb),
     )
+}
+
+/// `K⁻¹ b` for a point block that locked axes make singular: the rows the bodies cannot move
+/// along are left out, the others solved (`rows::Spd`).
+fn locked_solve(k: &Mat3, b: Vec3) -> Option<Vec3> {
+    let mut m = [[0.0f32; super::rows::MAX_ROWS]; super::rows::MAX_ROWS];
+    for (c, col) in [k.x_axis, k.y_axis, k.z_axis].iter().enumerate() {
+        for r in 0..3 {
+            m[r][c] = col[r];
+        }
+    }
+    let f = super::rows::Spd::factor(&m, 3, true)?;
+    let x = f.solve(&[b.x, b.y, b.z, 0.0, 0.0, 0.0]);
+    Some(Vec3::new(x[0], x[1], x[2]))
 }
 
 /// Writes the velocities back to the dynamic bodies: index 0 (static, sleeping, the world)
 /// and kinematic bodies (no inverse mass) keep theirs — a joint never changes them.
 #[inline]
 pub(crate) fn write(c: &JointConstraint, b: &Bodies, vel: &mut [Velocity]) {
-    if c.ia != 0 && b.ma != 0.0 {
+    if c.ia != 0 && (b.ma != Vec3::ZERO || b.ia != Mat3::ZERO) {
         vel[c.ia as usize] = Velocity::new(b.va, b.wa);
     }
-    if c.ib != 0 && b.mb != 0.0 {
+    if c.ib != 0 && (b.mb != Vec3::ZERO || b.ib != Mat3::ZERO) {
         vel[c.ib as usize] = Velocity::new(b.vb, b.wb);
     }
 }

@@ -113,6 +113,10 @@ fn classify(s: &BodyState, index: u32) -> (bool, bool) {
     if index == 0 || s.inv_mass == 0.0 {
         return (true, false);
     }
+    if s.locks != 0 {
+        // Locked axes: the iterative rows, whose velocities the solver projects.
+        return (false, false);
+    }
     let det = s.inv_i().determinant();
     (false, det > 0.0 && det.is_finite())
 }
