@@ -2965,9 +2965,12 @@ static void op_query(FWorld *fw) {
             size_t cap = chance(30) ? 0 : rnd(16);
             memset(g_query_ids, SENTINEL, sizeof g_query_ids);
             {
-                CALL(hearth_world_overlap_shape(fw->w, &s, &x, &qf, NULL, 0, &count),
-                     expected == HEARTH_ERROR_INVALID_ID || f == F_NUMBER || f == F_CODE ? expected : HEARTH_OK, field,
-                     NULL, 0);
+                /* The count first, without the pointer faults: a bad number or code still
+                 * fails, and so does a hull id that is not live. */
+                HearthResult e1 = f == F_NUMBER || f == F_CODE ? expected
+                                : !hull_ok                    ? HEARTH_ERROR_INVALID_ID
+                                                              : HEARTH_OK;
+                CALL(hearth_world_overlap_shape(fw->w, &s, &x, &qf, NULL, 0, &count), e1, field, NULL, 0);
                 if (r != HEARTH_OK) break;
             }
             HearthResult e2 = expected != HEARTH_OK ? expected : cap > 0 && cap < count ? HEARTH_ERROR_BUFFER_TOO_SMALL : HEARTH_OK;
@@ -3193,6 +3196,11 @@ static void op_snapshot(FWorld *fw) {
             memcmp(again, g_snap_buf, size) != 0)
             fail("snapshot", "a fresh world restored from a snapshot saves other bytes");
         free(again);
+        /* The fresh world holds the particles the snapshot's world held. */
+        size_t np_fresh = 0, np_world = 0;
+        { CALL(hearth_world_get_particle_count(fresh, &np_fresh), HEARTH_OK, NULL, NULL, 0); }
+        { CALL(hearth_world_get_particle_count(fw->w, &np_world), HEARTH_OK, NULL, NULL, 0); }
+        if (np_fresh != np_world) fail("snapshot", "a fresh world restored from a snapshot has other particles");
         /* Its user generators lost their callbacks: list them and set them again. */
         size_t missing = 0;
         {
