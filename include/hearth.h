@@ -662,11 +662,29 @@ typedef void (*HearthDrawPoint)(void *user_data,
  * contact points 0xE63333FF, normals 0x33CC33FF, impulses 0xE6E633FF; joints 0x33CCCCFF.
  */
 typedef struct HearthDebugDraw {
+    /**
+     * Draws a segment (AABB edges, contact normals and impulses, joint links), or NULL.
+     */
     HearthDrawSegment draw_segment;
+    /**
+     * Draws a filled convex polygon (box and hull faces, triangles, the plane patch), or NULL.
+     */
     HearthDrawPolygon draw_polygon;
+    /**
+     * Draws a sphere shape, or NULL.
+     */
     HearthDrawSphere draw_sphere;
+    /**
+     * Draws a capsule shape, or NULL.
+     */
     HearthDrawCapsule draw_capsule;
+    /**
+     * Draws a frame (centres of mass, joint frames), or NULL.
+     */
     HearthDrawTransform draw_transform;
+    /**
+     * Draws a point (contact points, joint anchors), or NULL.
+     */
     HearthDrawPoint draw_point;
     /**
      * Passed to every callback.
@@ -1759,7 +1777,13 @@ typedef float (*HearthRayCallback)(void *user_data, const struct HearthRayHit *h
  * One ray: from `origin` along `translation` (the ray ends at `origin + translation`).
  */
 typedef struct HearthRayInput {
+    /**
+     * Start of the ray (world, m).
+     */
     struct HearthVec3 origin;
+    /**
+     * The ray's direction and length: it ends at `origin + translation` (fraction 1).
+     */
     struct HearthVec3 translation;
 } HearthRayInput;
 
@@ -1845,9 +1869,21 @@ typedef struct HearthQueryShape {
      * `HEARTH_QUERY_SHAPE_SPHERE`, `_CAPSULE`, `_BOX` or `_HULL`.
      */
     uint32_t type;
+    /**
+     * The sphere, with `HEARTH_QUERY_SHAPE_SPHERE`.
+     */
     struct HearthSphere sphere;
+    /**
+     * The capsule, with `HEARTH_QUERY_SHAPE_CAPSULE`.
+     */
     struct HearthCapsule capsule;
+    /**
+     * The box, with `HEARTH_QUERY_SHAPE_BOX`.
+     */
     struct HearthBox box;
+    /**
+     * The hull instance, with `HEARTH_QUERY_SHAPE_HULL`.
+     */
     struct HearthHullShape hull;
 } HearthQueryShape;
 
@@ -1888,8 +1924,18 @@ typedef struct HearthRecordDef {
  * principal moments of inertia about the centre of mass along the body axes (kg·m²).
  */
 typedef struct HearthMassData {
+    /**
+     * Mass (kg), finite and above 0.
+     */
     float mass;
+    /**
+     * Centre of mass in the body's local frame (m).
+     */
     struct HearthVec3 center;
+    /**
+     * Principal moments of inertia about the centre of mass, along the body's local axes
+     * (kg·m²), each finite and above 0.
+     */
     struct HearthVec3 inertia;
 } HearthMassData;
 

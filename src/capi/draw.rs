@@ -43,11 +43,17 @@ pub type HearthDrawPoint =
 #[repr(C)]
 #[derive(Clone, Copy, Debug)]
 pub struct HearthDebugDraw {
+    /// Draws a segment (AABB edges, contact normals and impulses, joint links), or NULL.
     pub draw_segment: HearthDrawSegment,
+    /// Draws a filled convex polygon (box and hull faces, triangles, the plane patch), or NULL.
     pub draw_polygon: HearthDrawPolygon,
+    /// Draws a sphere shape, or NULL.
     pub draw_sphere: HearthDrawSphere,
+    /// Draws a capsule shape, or NULL.
     pub draw_capsule: HearthDrawCapsule,
+    /// Draws a frame (centres of mass, joint frames), or NULL.
     pub draw_transform: HearthDrawTransform,
+    /// Draws a point (contact points, joint anchors), or NULL.
     pub draw_point: HearthDrawPoint,
     /// Passed to every callback.
     pub user_data: *mut c_void,

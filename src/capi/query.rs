@@ -76,7 +76,9 @@ impl From<HearthQueryFilter> for QueryFilter {
 #[repr(C)]
 #[derive(Clone, Copy, Debug)]
 pub struct HearthRayInput {
+    /// Start of the ray (world, m).
     pub origin: HearthVec3,
+    /// The ray's direction and length: it ends at `origin + translation` (fraction 1).
     pub translation: HearthVec3,
 }
 
@@ -115,9 +117,13 @@ pub const HEARTH_QUERY_SHAPE_HULL: u32 = 3;
 pub struct HearthQueryShape {
     /// `HEARTH_QUERY_SHAPE_SPHERE`, `_CAPSULE`, `_BOX` or `_HULL`.
     pub r#type: u32,
+    /// The sphere, with `HEARTH_QUERY_SHAPE_SPHERE`.
     pub sphere: HearthSphere,
+    /// The capsule, with `HEARTH_QUERY_SHAPE_CAPSULE`.
     pub capsule: HearthCapsule,
+    /// The box, with `HEARTH_QUERY_SHAPE_BOX`.
     pub r#box: HearthBox,
+    /// The hull instance, with `HEARTH_QUERY_SHAPE_HULL`.
     pub hull: HearthHullShape,
 }
 

@@ -15,8 +15,12 @@ use crate::world_setters::MassData;
 #[repr(C)]
 #[derive(Clone, Copy, Debug)]
 pub struct HearthMassData {
+    /// Mass (kg), finite and above 0.
     pub mass: f32,
+    /// Centre of mass in the body's local frame (m).
     pub center: HearthVec3,
+    /// Principal moments of inertia about the centre of mass, along the body's local axes
+    /// (kg·m²), each finite and above 0.
     pub inertia: HearthVec3,
 }
 
