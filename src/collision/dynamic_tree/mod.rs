@@ -12,6 +12,7 @@
 
 use crate::collision::aabb::Aabb;
 use crate::math::Vec3;
+use glam::Vec3A;
 
 /// The null node / proxy index.
 pub const NULL_NODE: u32 = u32::MAX;
@@ -134,6 +135,93 @@ pub fn ray_aabb_entry(origin: Vec3, dir: Vec3, inv_dir: Vec3, max_t: f32, b: &Aa
         }
     }
     Some(t0)
+}
+
+/// A segment prepared for many slab tests: origin and reciprocal direction in SIMD lanes.
+/// Rays with a zero (or subnormal) direction component, whose reciprocal is infinite, take
+/// the scalar [`ray_aabb_entry`] instead, so the answer is always that function's.
+#[derive(Clone, Copy)]
+pub struct RaySlabs {
+    origin: Vec3A,
+    inv: Vec3A,
+    dir: Vec3,
+    /// Every reciprocal is finite: the lane-wise test applies.
+    finite: bool,
+}
+
+impl RaySlabs {
+    #[inline]
+    pub fn new(origin: Vec3, dir: Vec3) -> Self {
+        let inv = reciprocal(dir);
+        RaySlabs {
+            origin: origin.into(),
+            inv: inv.into(),
+            dir,
+            finite: inv.is_finite() && dir.cmpne(Vec3::ZERO).all(),
+        }
+    }
+
+    /// The same answer as [`ray_aabb_entry`]: the entry parameter of the segment `[0,
+    /// max_t]` into `b` (0 when the origin is inside), or `None`.
+    #[inline]
+    pub fn entry(&self, max_t: f32, b: &Aabb) -> Option<f32> {
+        if !self.finite {
+            return ray_aabb_entry(self.origin.into(), self.dir, self.inv.into(), max_t, b);
+        }
+        let ta = (Vec3A::from(b.min) - self.origin) * self.inv;
+        let tb = (Vec3A::from(b.max) - self.origin) * self.inv;
+        let t0 = ta.min(tb).max_element().max(0.0);
+        let t1 = ta.max(tb).min_element().min(max_t);
+        if t0 <= t1 {
+            Some(t0)
+        } else {
+            None
+        }
+    }
+}
+
+/// Capacity of the on-stack ray traversal stack (entries of node and entry parameter).
+const RAY_STACK_CAPACITY: usize = 128;
+
+/// Ray traversal stack of (node, entry parameter): a fixed array that spills into a `Vec`
+/// only if it overflows (a tree deeper than the capacity).
+struct RayStack {
+    items: [(u32, f32); RAY_STACK_CAPACITY],
+    len: usize,
+    spill: Vec<(u32, f32)>,
+}
+
+impl RayStack {
+    #[inline]
+    fn new() -> Self {
+        RayStack {
+            items: [(NULL_NODE, 0.0); RAY_STACK_CAPACITY],
+            len: 0,
+            spill: Vec::new(),
+        }
+    }
+
+    #[inline]
+    fn push(&mut self, node: u32, entry: f32) {
+        if self.len < RAY_STACK_CAPACITY {
+            self.items[self.len] = (node, entry);
+            self.len += 1;
+        } else {
+            self.spill.push((node, entry));
+        }
+    }
+
+    #[inline]
+    fn pop(&mut self) -> Option<(u32, f32)> {
+        if let Some(v) = self.spill.pop() {
+            Some(v)
+        } else if self.len > 0 {
+            self.len -= 1;
+            Some(self.items[self.len])
+        } else {
+            None
+        }
+    }
 }
 
 #[inline]
@@ -268,25 +356,27 @@ impl DynamicTree {
     }
 
     /// Calls `f(proxy, user_data)` for every proxy whose box overlaps `aabb`, until `f`
-    /// returns false.
+    /// returns false. Depth first, the second child's subtree before the first's; children
+    /// are tested before they are pushed, so only overlapping nodes reach the stack.
     pub fn query<F: FnMut(u32, u32) -> bool>(&self, aabb: &Aabb, mut f: F) {
-        if self.root == NULL_NODE {
+        if self.root == NULL_NODE || !self.nodes[self.root as usize].aabb.overlaps(aabb) {
             return;
         }
         let mut stack = Stack::new();
         stack.push(self.root);
         while let Some(i) = stack.pop() {
             let n = &self.nodes[i as usize];
-            if !n.aabb.overlaps(aabb) {
-                continue;
-            }
             if n.is_leaf() {
                 if !f(i, n.user_data) {
                     return;
                 }
             } else {
-                stack.push(n.child1);
-                stack.push(n.child2);
+                if self.nodes[n.child1 as usize].aabb.overlaps(aabb) {
+                    stack.push(n.child1);
+                }
+                if self.nodes[n.child2 as usize].aabb.overlaps(aabb) {
+                    stack.push(n.child2);
+                }
             }
         }
     }
@@ -295,44 +385,60 @@ impl DynamicTree {
     /// user_data, max_t_so_far)` is called for every proxy whose box the (clipped) segment
     /// hits, and returns 0 to terminate, a negative value to ignore the proxy, or a value
     /// `t` in `(0, max_t_so_far]` to clip the segment to `[0, t]` (returning
-    /// `max_t_so_far` continues unclipped).
-    pub fn ray_cast<F: FnMut(u32, u32, f32) -> f32>(&self, origin: Vec3, dir: Vec3, max_t: f32, mut f: F) {
+    /// `max_t_so_far` continues unclipped). Returns the number of node boxes tested.
+    ///
+    /// Front to back: both children of a node are slab-tested when the node is reached and
+    /// pushed with their entry parameters, the nearer one on top; a node popped with an
+    /// entry past the (clipped) `max_t` is dropped unvisited. A caller clipping the ray at
+    /// each hit (a closest-hit query) so meets near proxies first and prunes the rest.
+    pub fn ray_cast<F: FnMut(u32, u32, f32) -> f32>(&self, origin: Vec3, dir: Vec3, max_t: f32, mut f: F) -> u32 {
         if self.root == NULL_NODE || max_t.is_nan() || max_t < 0.0 {
-            return;
+            return 0;
         }
-        let inv_dir = reciprocal(dir);
+        let ray = RaySlabs::new(origin, dir);
         let mut max_t = max_t;
-        let mut stack = Stack::new();
-        stack.push(self.root);
-        while let Some(i) = stack.pop() {
-            let n = &self.nodes[i as usize];
-            if ray_aabb_entry(origin, dir, inv_dir, max_t, &n.aabb).is_none() {
+        let mut tested = 1u32;
+        let Some(t_root) = ray.entry(max_t, &self.nodes[self.root as usize].aabb) else {
+            return tested;
+        };
+        let mut stack = RayStack::new();
+        stack.push(self.root, t_root);
+        while let Some((i, entry)) = stack.pop() {
+            if entry > max_t {
                 continue;
             }
+            let n = &self.nodes[i as usize];
             if n.is_leaf() {
                 let value = f(i, n.user_data, max_t);
                 if value == 0.0 {
-                    return;
+                    return tested;
                 }
                 if value > 0.0 && value <= max_t {
                     max_t = value;
                 }
             } else {
-                // The child whose centre lies nearer along the ray is popped first, so a
-                // caller clipping the ray at each hit (a closest-hit query) meets near hits
-                // early and culls the far subtrees.
                 let (a, b) = (n.child1, n.child2);
-                let da = (self.nodes[a as usize].aabb.center() - origin).dot(dir);
-                let db = (self.nodes[b as usize].aabb.center() - origin).dot(dir);
-                if da <= db {
-                    stack.push(b);
-                    stack.push(a);
-                } else {
-                    stack.push(a);
-                    stack.push(b);
+                tested += 2;
+                let ea = ray.entry(max_t, &self.nodes[a as usize].aabb);
+                let eb = ray.entry(max_t, &self.nodes[b as usize].aabb);
+                match (ea, eb) {
+                    (Some(ta), Some(tb)) => {
+                        // The nearer entry is popped first (ties: the first child).
+                        if ta <= tb {
+                            stack.push(b, tb);
+                            stack.push(a, ta);
+                        } else {
+                            stack.push(a, ta);
+                            stack.push(b, tb);
+                        }
+                    }
+                    (Some(ta), None) => stack.push(a, ta),
+                    (None, Some(tb)) => stack.push(b, tb),
+                    (None, None) => {}
                 }
             }
         }
+        tested
     }
 
     /// Sum of the perimeters (half surface areas) of the internal nodes other than the

@@ -546,3 +546,128 @@ fn traversal_stack_spills_past_capacity() {
     }
     assert_eq!(s.pop(), None);
 }
+
+#[test]
+fn ray_stack_spills_past_capacity() {
+    let mut s = RayStack::new();
+    for i in 0..1000 {
+        s.push(i, i as f32);
+    }
+    for i in (0..1000).rev() {
+        assert_eq!(s.pop(), Some((i, i as f32)));
+    }
+    assert_eq!(s.pop(), None);
+}
+
+/// The lane-wise slab test gives exactly `ray_aabb_entry`'s answer (the same operations per
+/// axis), for random rays including zero and subnormal direction components, origins on box
+/// faces and segments of zero length.
+#[test]
+fn lane_slab_test_equals_the_scalar_one() {
+    let mut rng = Rng::new(77);
+    let mut hits = 0;
+    for k in 0..200_000 {
+        let b = Aabb::from_center_extents(rng.vec3(-2.0, 2.0), rng.vec3(0.0, 1.5));
+        let mut o = rng.vec3(-4.0, 4.0);
+        let mut d = rng.vec3(-2.0, 2.0);
+        match k % 7 {
+            0 => d.x = 0.0,
+            1 => d.y = 1.0e-41,
+            2 => o.z = b.min.z,
+            3 => {
+                o.y = b.max.y;
+                d.y = 0.0
+            }
+            4 => d *= 1.0e-30,
+            _ => {}
+        }
+        let max_t = if k % 11 == 0 { 0.0 } else { rng.range(0.0, 3.0) };
+        let want = ray_aabb_entry(o, d, reciprocal(d), max_t, &b);
+        let got = RaySlabs::new(o, d).entry(max_t, &b);
+        assert_eq!(
+            got.map(f32::to_bits),
+            want.map(f32::to_bits),
+            "ray {k}: {o} {d} {max_t} {b:?}"
+        );
+        hits += want.is_some() as u32;
+    }
+    assert!(hits > 3_000, "{hits}");
+}
+
+/// `query` reports leaves in the same order as a plain depth-first walk that tests each
+/// node when popped (second child first): the broad phase's pair order, and so every
+/// trajectory, does not depend on where the children are tested.
+#[test]
+fn query_order_is_the_plain_depth_first_order() {
+    let mut rng = Rng::new(31);
+    let mut tree = DynamicTree::new();
+    let mut ids = Vec::new();
+    for i in 0..2000 {
+        ids.push(tree.create_proxy(random_box(&mut rng), i));
+        if i % 4 == 0 {
+            let k = rng.below(ids.len());
+            tree.move_proxy(ids[k], random_box(&mut rng));
+        }
+    }
+    for _ in 0..300 {
+        let q = query_box(&mut rng);
+        let mut got = Vec::new();
+        tree.query(&q, |p, _| {
+            got.push(p);
+            true
+        });
+        let mut want = Vec::new();
+        let mut stack = vec![tree.root];
+        while let Some(i) = stack.pop() {
+            let n = &tree.nodes[i as usize];
+            if !n.aabb.overlaps(&q) {
+                continue;
+            }
+            if n.is_leaf() {
+                want.push(i);
+            } else {
+                stack.push(n.child1);
+                stack.push(n.child2);
+            }
+        }
+        assert_eq!(got, want);
+    }
+}
+
+/// A ray clipped at each hit (a closest-hit query) walks front to back and stops early: it
+/// ends at the nearest entry (as brute force finds it) after testing fewer boxes than the
+/// unclipped walk.
+#[test]
+fn clipped_rays_walk_front_to_back() {
+    let mut rng = Rng::new(8);
+    let mut tree = DynamicTree::new();
+    let mut mirror = Mirror::default();
+    // A dense cloud (a pile's density), rays starting around and inside it.
+    for i in 0..3000 {
+        let b = Aabb::from_center_extents(rng.vec3(-20.0, 20.0), rng.vec3(0.1, 1.0));
+        let id = tree.create_proxy(b, i);
+        mirror.insert(id, b, i);
+    }
+    let (mut clipped_tests, mut full_tests) = (0u64, 0u64);
+    for _ in 0..500 {
+        let o = rng.vec3(-30.0, 30.0);
+        let d = rng.vec3(-1.0, 1.0).normalize_or(Vec3::X) * 100.0;
+        let max_t = 1.0;
+        let inv = reciprocal(d);
+        let mut best = f32::MAX;
+        clipped_tests += tree.ray_cast(o, d, max_t, |p, _, cur| {
+            let entry = ray_aabb_entry(o, d, inv, cur, &tree.fat_aabb(p)).expect("reported box is hit");
+            best = best.min(entry);
+            if entry > 0.0 {
+                entry
+            } else {
+                -1.0
+            }
+        }) as u64;
+        let brute = mirror.ray(o, d, max_t).iter().map(|e| e.1).fold(f32::MAX, f32::min);
+        assert_eq!(best, brute);
+        full_tests += tree.ray_cast(o, d, max_t, |_, _, cur| cur) as u64;
+    }
+    // Measured: 0.62 of the unclipped walk's tests.
+    assert!(clipped_tests * 4 < full_tests * 3, "{clipped_tests} {full_tests}");
+}

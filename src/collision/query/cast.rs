@@ -334,10 +334,60 @@ pub fn overlaps(store: &GeometryStore, a: &Rounded, a_box: &Aabb, geometry: &Geo
             found
         }
         _ => {
+            if let Some(touch) = overlaps_simple(a, geometry, xf) {
+                return touch;
+            }
             let b = rounded(store, geometry, xf).expect("a convex shape");
             let g = gjk::distance(&a.core, &b.core);
             g.overlap || g.distance <= a.radius + b.radius
         }
+    }
+}
+
+/// Squared distance from `p` to the segment `a`–`b`.
+#[inline]
+fn segment_distance_squared(p: Vec3, a: Vec3, b: Vec3) -> f32 {
+    let ab = b - a;
+    let len2 = ab.length_squared();
+    let s = if len2 > 0.0 {
+        ((p - a).dot(ab) / len2).clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
+    (p - (a + s * ab)).length_squared()
+}
+
+/// Closed-form overlap (touching counts) of a query sphere or capsule with a sphere, box or
+/// capsule, and of a query capsule with a sphere: a point's or a segment's distance
+/// against the sum of the radii, no GJK. `None` for the other pairs (GJK decides those).
+#[inline]
+pub fn overlaps_simple(a: &Rounded, geometry: &Geometry, xf: &Transform) -> Option<bool> {
+    match (a.core, *geometry) {
+        (Core::Point(p), Geometry::Sphere { center, radius }) => {
+            let r = a.radius + radius;
+            Some((p - xf.apply(center)).length_squared() <= r * r)
+        }
+        (
+            Core::Point(p),
+            Geometry::Box {
+                center,
+                rotation,
+                half_extents: h,
+            },
+        ) => {
+            let l = (xf.q * rotation).conjugate() * (p - xf.apply(center));
+            let out = l - l.clamp(-h, h);
+            Some(out.length_squared() <= a.radius * a.radius)
+        }
+        (Core::Point(p), Geometry::Capsule { a: ca, b: cb, radius }) => {
+            let r = a.radius + radius;
+            Some(segment_distance_squared(p, xf.apply(ca), xf.apply(cb)) <= r * r)
+        }
+        (Core::Segment(s0, s1), Geometry::Sphere { center, radius }) => {
+            let r = a.radius + radius;
+            Some(segment_distance_squared(xf.apply(center), s0, s1) <= r * r)
+        }
+        _ => None,
     }
 }
 

@@ -94,6 +94,24 @@ impl World {
         mut f: impl FnMut(&QueryHit) -> f32,
     ) -> Result<()> {
         check_ray(origin, translation)?;
+        self.ray_walk(origin, translation, filter, |s, h| {
+            f(&self.hit_of(s, origin + h.fraction * translation, h.normal, h.fraction))
+        });
+        Ok(())
+    }
+
+    /// The ray traversal behind every ray query (`cast_ray`, `cast_ray_closest`, and through
+    /// them the C batch call): the planes one by one, then the tree front to back (see
+    /// [`DynamicTree::ray_cast`](crate::collision::dynamic_tree::DynamicTree::ray_cast)),
+    /// each leaf's shape tested against the ray clipped so far. `f(shape slot, hit)` answers
+    /// as in `cast_ray`. Returns the number of tree boxes tested (the work a ray did).
+    pub(crate) fn ray_walk(
+        &self,
+        origin: Vec3,
+        translation: Vec3,
+        filter: &QueryFilter,
+        mut f: impl FnMut(u32, &ray::ShapeRayHit) -> f32,
+    ) -> u32 {
         let mut max_t = 1.0f32;
         for &p in &self.broad.planes {
             let shape = self.shapes.at(p);
@@ -102,9 +120,9 @@ impl World {
             }
             let xf = &self.bodies.at(shape.body).xf;
             if let Some(h) = ray::ray_cast_geometry(&self.geometry, &shape.geometry, xf, origin, translation, max_t) {
-                let v = f(&self.hit_of(p, origin + h.fraction * translation, h.normal, h.fraction));
+                let v = f(p, &h);
                 if v == 0.0 {
-                    return Ok(());
+                    return 0;
                 }
                 if v > 0.0 && v <= max_t {
                     max_t = v;
@@ -119,7 +137,7 @@ impl World {
             let xf = &self.bodies.at(shape.body).xf;
             match ray::ray_cast_geometry(&self.geometry, &shape.geometry, xf, origin, translation, cur) {
                 Some(h) => {
-                    let v = f(&self.hit_of(s, origin + h.fraction * translation, h.normal, h.fraction));
+                    let v = f(s, &h);
                     if v.is_nan() {
                         -1.0
                     } else {
@@ -128,20 +146,33 @@ impl World {
                 }
                 None => -1.0,
             }
-        });
-        Ok(())
+        })
     }
 
-    /// The nearest hit of the ray (see [`World::cast_ray`]), if any.
+    /// The nearest hit of the ray (see [`World::cast_ray`]), if any. Of hits at the same
+    /// fraction, the first one met is kept.
     pub fn cast_ray_closest(&self, origin: Vec3, translation: Vec3, filter: &QueryFilter) -> Result<Option<QueryHit>> {
-        let mut best: Option<QueryHit> = None;
-        self.cast_ray(origin, translation, filter, |h| {
-            if best.map_or(true, |b| h.fraction < b.fraction) {
-                best = Some(*h);
+        Ok(self.cast_ray_closest_counted(origin, translation, filter)?.0)
+    }
+
+    /// Like [`World::cast_ray_closest`], also returning the number of broad-phase tree boxes
+    /// the ray tested: the traversal's work, for tests and benches.
+    pub fn cast_ray_closest_counted(
+        &self,
+        origin: Vec3,
+        translation: Vec3,
+        filter: &QueryFilter,
+    ) -> Result<(Option<QueryHit>, u32)> {
+        check_ray(origin, translation)?;
+        let mut best: Option<(u32, ray::ShapeRayHit)> = None;
+        let tested = self.ray_walk(origin, translation, filter, |s, h| {
+            if best.map_or(true, |b| h.fraction < b.1.fraction) {
+                best = Some((s, *h));
             }
             h.fraction
-        })?;
-        Ok(best)
+        });
+        let hit = best.map(|(s, h)| self.hit_of(s, origin + h.fraction * translation, h.normal, h.fraction));
+        Ok((hit, tested))
     }
 
     /// Casts a sphere, capsule, box or hull (`geometry`, placed by `xf` as on a body) along
