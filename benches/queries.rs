@@ -2,18 +2,28 @@
 //! boxes in a 30 m × 30 m container, `scenes::pile`), stepped until every body sleeps (at
 //! most 1,200 steps) before timing, single thread:
 //!
-//! * `rays_100k`: 100,000 closest-hit rays (`World::cast_ray_closest`), origins uniform in
-//!   the container up to 25 m high, random directions, 40 m long;
+//! * `rays_100k`: 100,000 closest-hit rays (`World::cast_ray_closest`, which the C batch
+//!   call `hearth_world_cast_rays` runs per ray), origins uniform in the container up to
+//!   25 m high, random directions, 40 m long;
 //! * `sphere_overlaps_10k`: 10,000 sphere overlaps (`World::overlap_shape`), radius 0.5 to
-//!   1.5 m, centres uniform in the lower 10 m of the container.
+//!   1.5 m, centres uniform in the lower 10 m of the container;
+//! * `aabb_overlaps_10k`: 10,000 box overlaps (`World::overlap_aabb`), the spheres' bounds.
 //!
 //! Criterion reports the time per batch; divided by the batch size it is the time per query.
 //! `cargo bench --bench queries`.
+//!
+//! Instruction counts (repeatable on a loaded machine): `HEARTH_QUERY_PROFILE=<kind>` runs
+//! the batch of one kind (`rays`, `spheres` or `aabbs`) once, prints a checksum and
+//! exits (`stats` prints the tree boxes a closest ray tests on average), without criterion; `HEARTH_QUERY_SNAPSHOT=<file>` keeps the settled pile in a
+//! snapshot file (written when missing), so a run under
+//! `valgrind --tool=callgrind` does not settle the pile under emulation. Run once with the
+//! kind `none` to only count the setup, and subtract.
 
 #[path = "../tests/scenes/mod.rs"]
 #[allow(dead_code)]
 mod scenes;
-use criterion::{criterion_group, criterion_main, Criterion, Throughput};
+use criterion::{criterion_group, Criterion, Throughput};
+use hearth::collision::aabb::Aabb;
 use hearth::collision::filter::QueryFilter;
 use hearth::math::{Quat, Transform, Vec3};
 use hearth::{Geometry, World};
@@ -22,7 +32,7 @@ const BODIES: usize = 4000;
 const RAYS: usize = 100_000;
 const OVERLAPS: usize = 10_000;
 
-fn settled_pile() -> World {
+fn settle() -> World {
     let mut w = scenes::world(true);
     scenes::pile(&mut w, BODIES);
     for _ in 0..1200 {
@@ -34,8 +44,29 @@ fn settled_pile() -> World {
     w
 }
 
-fn benches(c: &mut Criterion) {
-    let w = settled_pile();
+fn settled_pile() -> World {
+    let Ok(path) = std::env::var("HEARTH_QUERY_SNAPSHOT") else {
+        return settle();
+    };
+    if let Ok(bytes) = std::fs::read(&path) {
+        let mut w = scenes::world(true);
+        w.restore_snapshot(&bytes).expect("snapshot of the settled pile");
+        return w;
+    }
+    let w = settle();
+    let mut bytes = Vec::new();
+    w.save_snapshot(&mut bytes);
+    std::fs::write(&path, &bytes).expect("writable snapshot path");
+    w
+}
+
+struct Inputs {
+    rays: Vec<(Vec3, Vec3)>,
+    spheres: Vec<(Geometry, Transform)>,
+    boxes: Vec<Aabb>,
+}
+
+fn inputs() -> Inputs {
     let mut rng = scenes::Rng(42);
     let rays: Vec<(Vec3, Vec3)> = (0..RAYS)
         .map(|_| {
@@ -54,35 +85,96 @@ fn benches(c: &mut Criterion) {
             (g, Transform::new(p, Quat::IDENTITY))
         })
         .collect();
+    let boxes = spheres
+        .iter()
+        .map(|(g, xf)| {
+            let Geometry::Sphere { radius, .. } = *g else {
+                unreachable!()
+            };
+            Aabb::new(xf.p - Vec3::splat(radius), xf.p + Vec3::splat(radius))
+        })
+        .collect();
+    Inputs { rays, spheres, boxes }
+}
+
+fn rays(w: &World, q: &Inputs) -> usize {
     let filter = QueryFilter::DEFAULT;
+    let mut hits = 0usize;
+    for (o, d) in &q.rays {
+        hits += w.cast_ray_closest(*o, *d, &filter).unwrap().is_some() as usize;
+    }
+    hits
+}
+
+fn sphere_overlaps(w: &World, q: &Inputs) -> usize {
+    let filter = QueryFilter::DEFAULT;
+    let mut found = 0usize;
+    for (g, xf) in &q.spheres {
+        w.overlap_shape(g, xf, &filter, |_| {
+            found += 1;
+            true
+        })
+        .unwrap();
+    }
+    found
+}
+
+fn aabb_overlaps(w: &World, q: &Inputs) -> usize {
+    let filter = QueryFilter::DEFAULT;
+    let mut found = 0usize;
+    for bb in &q.boxes {
+        w.overlap_aabb(bb, &filter, |_| {
+            found += 1;
+            true
+        })
+        .unwrap();
+    }
+    found
+}
+
+fn benches(c: &mut Criterion) {
+    let w = settled_pile();
+    let q = inputs();
     let mut group = c.benchmark_group("queries");
     group.sample_size(10);
     group.throughput(Throughput::Elements(RAYS as u64));
-    group.bench_function("rays_100k", |b| {
-        b.iter(|| {
-            let mut hits = 0usize;
-            for (o, d) in &rays {
-                hits += w.cast_ray_closest(*o, *d, &filter).unwrap().is_some() as usize;
-            }
-            hits
-        })
-    });
+    group.bench_function("rays_100k", |b| b.iter(|| rays(&w, &q)));
     group.throughput(Throughput::Elements(OVERLAPS as u64));
-    group.bench_function("sphere_overlaps_10k", |b| {
-        b.iter(|| {
-            let mut found = 0usize;
-            for (g, xf) in &spheres {
-                w.overlap_shape(g, xf, &filter, |_| {
-                    found += 1;
-                    true
-                })
-                .unwrap();
-            }
-            found
-        })
-    });
+    group.bench_function("sphere_overlaps_10k", |b| b.iter(|| sphere_overlaps(&w, &q)));
+    group.bench_function("aabb_overlaps_10k", |b| b.iter(|| aabb_overlaps(&w, &q)));
     group.finish();
 }
 
 criterion_group!(queries, benches);
-criterion_main!(queries);
+
+fn main() {
+    if let Ok(kind) = std::env::var("HEARTH_QUERY_PROFILE") {
+        let w = settled_pile();
+        let q = inputs();
+        let n = match kind.as_str() {
+            "rays" => rays(&w, &q),
+            "spheres" => sphere_overlaps(&w, &q),
+            "aabbs" => aabb_overlaps(&w, &q),
+            "none" => 0,
+            "stats" => {
+                let f = QueryFilter::DEFAULT;
+                let tested: u64 = q
+                    .rays
+                    .iter()
+                    .map(|(o, d)| w.cast_ray_closest_counted(*o, *d, &f).unwrap().1 as u64)
+                    .sum();
+                println!(
+                    "tree height {}, boxes tested per closest ray {:.2}",
+                    w.tree_height(),
+                    tested as f64 / RAYS as f64
+                );
+                0
+            }
+            other => panic!("HEARTH_QUERY_PROFILE: unknown kind {other}"),
+        };
+        println!("{kind}: {n}");
+        return;
+    }
+    queries();
+    criterion::Criterion::default().configure_from_args().final_summary();
+}
