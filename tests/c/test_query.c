@@ -356,6 +356,36 @@ static void test_casts_and_overlaps(void) {
     ENSURE_OK(hearth_world_overlap_point(w, vec3(0, 10, 0), &all, NULL, 0, &count));
     ENSURE(count == 0);
 
+    /* Too small an array: as every bulk read (docs/API.md, the header preamble), all three
+     * overlaps return BUFFER_TOO_SMALL, name the array, and write nothing: neither the ids nor
+     * *out_count (the count comes from a capacity-0 call). */
+    HearthShapeId one[1];
+    char msg[256];
+    for (int kind = 0; kind < 2; kind++) {
+        memset(one, 0xA5, sizeof one);
+        needed = 77;
+        HearthResult r = kind == 0
+            ? hearth_world_overlap_shape(w, &big, &mid, &all, one, 1, &needed)
+            : hearth_world_overlap_aabb(w, vec3(3.6f, -1, -1), vec3(5, 3, 1), &all, one, 1, &needed);
+        ENSURE(r == HEARTH_ERROR_BUFFER_TOO_SMALL);
+        ENSURE(needed == 77 && untouched(one, sizeof one));
+        ENSURE(hearth_last_error_message(msg, sizeof msg) > 0 && strstr(msg, "out_shapes") != NULL);
+    }
+    /* A point under the plane and inside a second ball: two hits need two slots. */
+    HearthBodyId low = make_body(w, HEARTH_BODY_STATIC, vec3(0, -0.2f, 0));
+    HearthShapeId under = add_sphere(w, low, 0.5f, &sd);
+    memset(one, 0xA5, sizeof one);
+    needed = 77;
+    ENSURE_RESULT(hearth_world_overlap_point(w, vec3(0, -0.1f, 0), &all, one, 1, &needed), HEARTH_ERROR_BUFFER_TOO_SMALL);
+    ENSURE(needed == 77 && untouched(one, sizeof one));
+    ENSURE(hearth_last_error_message(msg, sizeof msg) > 0 && strstr(msg, "out_shapes") != NULL);
+    ENSURE_OK(hearth_world_overlap_point(w, vec3(0, -0.1f, 0), &all, NULL, 0, &needed));
+    ENSURE(needed == 2);
+    ENSURE_OK(hearth_world_overlap_point(w, vec3(0, -0.1f, 0), &all, ids, 2, &count));
+    ENSURE(count == 2 && (same_shape(ids[0], under) || same_shape(ids[1], under)));
+    ENSURE_OK(hearth_shape_destroy(w, under));
+    ENSURE_OK(hearth_body_destroy(w, low));
+
     /* Errors: nothing written. */
     HearthRayHit out;
     memset(&out, 0xA5, sizeof out);
