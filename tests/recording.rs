@@ -5,6 +5,8 @@
 #[path = "scenes/mod.rs"]
 #[allow(dead_code)]
 mod scenes;
+#[path = "common/thread_allocs.rs"]
+mod thread_allocs;
 
 use hearth::joints::BallParams;
 use hearth::particles::ParticleDef;
@@ -13,30 +15,7 @@ use hearth::record::read::{self, DefRecord, ReadError, ShapeRecord};
 use hearth::record::{RecordOptions, Recorder};
 use hearth::soft::{mesh, SoftBodyDef};
 use hearth::{BodyDef, BodyHandle, BodyType, Geometry, JointDef, JointKind, Quat, ShapeDef, Transform, Vec3, World};
-use std::alloc::{GlobalAlloc, Layout, System};
-use std::cell::Cell;
 use std::collections::BTreeMap;
-
-// Allocations counted per thread, so tests running in parallel do not disturb each other.
-struct Counting;
-thread_local! {
-    static ALLOCATIONS: Cell<usize> = const { Cell::new(0) };
-}
-unsafe impl GlobalAlloc for Counting {
-    unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
-        let _ = ALLOCATIONS.try_with(|c| c.set(c.get() + 1));
-        System.alloc(layout)
-    }
-    unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
-        System.dealloc(ptr, layout)
-    }
-    unsafe fn realloc(&self, ptr: *mut u8, layout: Layout, new_size: usize) -> *mut u8 {
-        let _ = ALLOCATIONS.try_with(|c| c.set(c.get() + 1));
-        System.realloc(ptr, layout, new_size)
-    }
-}
-#[global_allocator]
-static GLOBAL: Counting = Counting;
 
 const DT: f32 = 1.0 / 60.0;
 
@@ -523,9 +502,9 @@ fn recording_a_steady_scene_allocates_nothing_after_warm_up() {
     let mut allocations = 0;
     for _ in 0..60 {
         w.step(DT).unwrap();
-        let before = ALLOCATIONS.with(|c| c.get());
+        let before = thread_allocs::allocations();
         rec.record_step(&w, DT, 0.0);
-        allocations += ALLOCATIONS.with(|c| c.get()) - before;
+        allocations += thread_allocs::allocations() - before;
         sink.clear();
         sink.extend_from_slice(rec.bytes());
         rec.clear();
