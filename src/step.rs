@@ -141,7 +141,11 @@ impl World {
                 }
                 true
             });
-            if body.is_dynamic() {
+            // Planes (static, outside the tree, never sensors) pair with dynamic bodies' shapes
+            // and with kinematic bodies' sensors: a sensor sees bodies of every type, as in the
+            // tree query above (a kinematic sensor used to miss every plane).
+            let kinematic_sensor = shape.def.is_sensor && !body.is_dynamic() && !body.is_static();
+            if body.is_dynamic() || kinematic_sensor {
                 for &p in &broad.planes {
                     let plane = shapes.at(p);
                     let (n, d) = world_plane(&plane.geometry, &bodies.at(plane.body).xf);

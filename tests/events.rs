@@ -99,6 +99,65 @@ fn a_kinematic_body_through_a_static_sensor_gives_one_begin_and_one_end() {
 }
 
 #[test]
+fn a_kinematic_sensor_sees_planes_and_static_shapes_once_each() {
+    // A kinematic sensor cube sweeps through a static box, then down into the ground plane's
+    // half-space and back out: one begin and one end for each (the plane pair used to be made
+    // for dynamic bodies only, so a kinematic sensor never saw a plane).
+    let mut w = World::new(WorldSettings::default()).unwrap();
+    let plane = ground(&mut w);
+    let wall = body(&mut w, BodyType::Static, Vec3::new(0.0, 2.0, 0.0));
+    let block = w.create_shape(wall, &ShapeDef::default(), &cube(0.5)).unwrap();
+    let mover = body(&mut w, BodyType::Kinematic, Vec3::new(-3.0, 2.0, 0.0));
+    let sensor = w.create_shape(mover, &sensor_def(), &cube(0.25)).unwrap();
+    let mut seen: HashMap<(bool, ShapeHandle), Vec<usize>> = HashMap::new();
+    let mut step = 0;
+    for (v, steps) in [
+        (Vec3::new(2.0, 0.0, 0.0), 180),
+        (Vec3::new(0.0, -2.0, 0.0), 120),
+        (Vec3::new(0.0, 2.0, 0.0), 120),
+    ] {
+        w.set_linear_velocity(mover, v).unwrap();
+        for _ in 0..steps {
+            w.step(DT).unwrap();
+            for (begin, list) in [(true, &w.events().sensor_begin), (false, &w.events().sensor_end)] {
+                for e in list {
+                    assert_eq!((e.sensor_shape, e.sensor_body), (sensor, mover));
+                    seen.entry((begin, e.visitor_shape)).or_default().push(step);
+                }
+            }
+            assert!(w.events().contact_begin.is_empty(), "a sensor makes no contact");
+            step += 1;
+        }
+    }
+    for shape in [block, plane] {
+        for begin in [true, false] {
+            assert_eq!(
+                seen.get(&(begin, shape)).map_or(0, Vec::len),
+                1,
+                "{shape:?} begin {begin}: {seen:?}"
+            );
+        }
+    }
+    // Each within a step of where the geometry says (step k ends at k + 1 steps of 2/60 m):
+    // the box from x = -0.75 (2.25 m, 67.5 steps) to x = 0.75 (112.5); the plane from the
+    // sensor's bottom at y = 0 going down (1.75 m, 180 + 52.5) to the same going up (from
+    // y = -2.25, 300 + 67.5).
+    let at = |b: bool, s: ShapeHandle| seen[&(b, s)][0] as f32;
+    for (got, want) in [
+        (at(true, block), 67.5),
+        (at(false, block), 112.5),
+        (at(true, plane), 232.5),
+        (at(false, plane), 367.5),
+    ] {
+        assert!(
+            (got - want).abs() <= 1.0,
+            "event at step {got}, geometry says {want}: {seen:?}"
+        );
+    }
+    assert_eq!(seen.len(), 4, "no other shape: {seen:?}");
+}
+
+#[test]
 fn a_falling_body_passes_a_static_sensor_untouched_and_a_kinematic_sensor_sees_a_sleeper() {
     let mut w = World::new(WorldSettings::default()).unwrap();
     ground(&mut w);
@@ -132,7 +191,9 @@ fn a_falling_body_passes_a_static_sensor_untouched_and_a_kinematic_sensor_sees_a
         w.step(DT).unwrap();
     }
     assert!(!w.is_awake(ball).unwrap(), "the ball sleeps");
-    let sweeper = body(&mut w, BodyType::Kinematic, Vec3::new(-4.0, 0.5, 0.0));
+    // 0.6 m up: its bottom clears the ground plane (which a kinematic sensor sees too) and
+    // reaches 0.4 m below the ball's top.
+    let sweeper = body(&mut w, BodyType::Kinematic, Vec3::new(-4.0, 0.6, 0.0));
     w.create_shape(sweeper, &sensor_def(), &cube(0.5)).unwrap();
     w.set_linear_velocity(sweeper, Vec3::new(2.0, 0.0, 0.0)).unwrap();
     let (b, e) = count_sensor(&mut w, 240);

@@ -7,8 +7,8 @@
 #[path = "scenes/mod.rs"]
 #[allow(dead_code)]
 mod scenes;
-use std::alloc::{GlobalAlloc, Layout, System};
-use std::cell::Cell;
+#[path = "common/thread_allocs.rs"]
+mod thread_allocs;
 
 use hearth::generators::{End, GeneratorDef};
 use hearth::math::{Quat, Transform, Vec3};
@@ -16,30 +16,6 @@ use hearth::particles::emitter::BurstDef;
 use hearth::particles::ParticleDef;
 use hearth::pool::Handle;
 use hearth::{BodyDef, BodyType, Error, Geometry, ShapeDef, World, WorldSettings};
-
-/// Counts allocations made by the current thread (tests run on several threads).
-struct Counting;
-
-thread_local! {
-    static ALLOCATIONS: Cell<usize> = const { Cell::new(0) };
-}
-
-unsafe impl GlobalAlloc for Counting {
-    unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
-        let _ = ALLOCATIONS.try_with(|c| c.set(c.get() + 1));
-        System.alloc(layout)
-    }
-    unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
-        System.dealloc(ptr, layout)
-    }
-    unsafe fn realloc(&self, ptr: *mut u8, layout: Layout, new_size: usize) -> *mut u8 {
-        let _ = ALLOCATIONS.try_with(|c| c.set(c.get() + 1));
-        System.realloc(ptr, layout, new_size)
-    }
-}
-
-#[global_allocator]
-static GLOBAL: Counting = Counting;
 
 const DT: f32 = 1.0 / 60.0;
 const G: f32 = 9.81;
@@ -746,9 +722,9 @@ fn steady_particle_steps_do_not_allocate() {
     }
     // Warm-up: until the burst has landed the contact list still grows (amortised).
     run(&mut w, 5.0);
-    let before = ALLOCATIONS.with(|c| c.get());
+    let before = thread_allocs::allocations();
     run(&mut w, 2.0);
-    let after = ALLOCATIONS.with(|c| c.get());
+    let after = thread_allocs::allocations();
     assert_eq!(after - before, 0, "allocations in steady particle steps");
 }
 

@@ -5,6 +5,8 @@
 #[path = "scenes/mod.rs"]
 #[allow(dead_code)]
 mod scenes;
+#[path = "common/thread_allocs.rs"]
+mod thread_allocs;
 use hearth::collision::aabb::Aabb;
 use hearth::collision::filter::{Filter, QueryFilter};
 use hearth::collision::query::cast::{self, CAST_TOLERANCE};
@@ -13,37 +15,6 @@ use hearth::collision::query::QueryHit;
 use hearth::math::{Quat, Transform, Vec3};
 use hearth::{BodyDef, BodyHandle, BodyType, Geometry, HullSettings, ShapeDef, ShapeHandle, World};
 use scenes::Rng;
-use std::alloc::{GlobalAlloc, Layout, System};
-use std::cell::Cell;
-
-// ------------------------------------------------------------------ allocation counting
-
-struct Counting;
-
-thread_local! {
-    static ALLOCATIONS: Cell<usize> = const { Cell::new(0) };
-}
-
-unsafe impl GlobalAlloc for Counting {
-    unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
-        let _ = ALLOCATIONS.try_with(|c| c.set(c.get() + 1));
-        System.alloc(layout)
-    }
-    unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
-        System.dealloc(ptr, layout)
-    }
-    unsafe fn realloc(&self, ptr: *mut u8, layout: Layout, new_size: usize) -> *mut u8 {
-        let _ = ALLOCATIONS.try_with(|c| c.set(c.get() + 1));
-        System.realloc(ptr, layout, new_size)
-    }
-}
-
-#[global_allocator]
-static GLOBAL: Counting = Counting;
-
-fn allocations() -> usize {
-    ALLOCATIONS.with(|c| c.get())
-}
 
 // ------------------------------------------------------------------ helpers
 
@@ -1244,10 +1215,10 @@ fn queries_do_not_allocate() {
         n
     };
     run(&mut rng);
-    let before = allocations();
+    let before = thread_allocs::allocations();
     let n = run(&mut rng);
     assert_eq!(
-        allocations() - before,
+        thread_allocs::allocations() - before,
         0,
         "allocations in 200 rounds of queries ({n} results)"
     );

@@ -5,6 +5,8 @@
 #[path = "scenes/mod.rs"]
 #[allow(dead_code)]
 mod scenes;
+#[path = "common/thread_allocs.rs"]
+mod thread_allocs;
 
 use hearth::joints::BallParams;
 use hearth::particles::ParticleDef;
@@ -13,30 +15,7 @@ use hearth::record::read::{self, DefRecord, ReadError, ShapeRecord};
 use hearth::record::{RecordOptions, Recorder};
 use hearth::soft::{mesh, SoftBodyDef};
 use hearth::{BodyDef, BodyHandle, BodyType, Geometry, JointDef, JointKind, Quat, ShapeDef, Transform, Vec3, World};
-use std::alloc::{GlobalAlloc, Layout, System};
-use std::cell::Cell;
 use std::collections::BTreeMap;
-
-// Allocations counted per thread, so tests running in parallel do not disturb each other.
-struct Counting;
-thread_local! {
-    static ALLOCATIONS: Cell<usize> = const { Cell::new(0) };
-}
-unsafe impl GlobalAlloc for Counting {
-    unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
-        let _ = ALLOCATIONS.try_with(|c| c.set(c.get() + 1));
-        System.alloc(layout)
-    }
-    unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
-        System.dealloc(ptr, layout)
-    }
-    unsafe fn realloc(&self, ptr: *mut u8, layout: Layout, new_size: usize) -> *mut u8 {
-        let _ = ALLOCATIONS.try_with(|c| c.set(c.get() + 1));
-        System.realloc(ptr, layout, new_size)
-    }
-}
-#[global_allocator]
-static GLOBAL: Counting = Counting;
 
 const DT: f32 = 1.0 / 60.0;
 
@@ -471,6 +450,113 @@ fn randomized_structure_changes_replay_exactly_frame_by_frame() {
     }
 }
 
+/// Every runtime setter of `world_setters.rs` between steps, at random — shape materials and
+/// user data, gravity scale, locks, mass overrides and their reset, body type changes among
+/// all three types, disable and enable — recorded: at every frame the replay holds exactly the
+/// enabled bodies, each with the world's generation, type, user data and shapes, at the
+/// world's position bit for bit (the rotation is packed to 6 bytes: within the packing's
+/// error).
+#[test]
+fn every_runtime_setter_replays_frame_by_frame() {
+    use hearth::world_setters::MassData;
+    for seed in [3u32, 77, 4242] {
+        let mut rng = Rng(seed);
+        let mut w = scenes::world(true);
+        scenes::ground_plane(&mut w);
+        let mut bodies = Vec::new();
+        let mut shapes = Vec::new();
+        for k in 0..12 {
+            let b = w
+                .create_body(&BodyDef {
+                    body_type: BodyType::Dynamic,
+                    transform: Transform::new(
+                        Vec3::new((k % 4) as f32 * 1.5 - 2.0, 1.0 + (k / 4) as f32, 0.0),
+                        Quat::IDENTITY,
+                    ),
+                    user_data: k as u64 + 100,
+                    ..Default::default()
+                })
+                .unwrap();
+            let g = Geometry::Sphere {
+                center: Vec3::ZERO,
+                radius: 0.4,
+            };
+            shapes.push(w.create_shape(b, &ShapeDef::default(), &g).unwrap());
+            bodies.push(b);
+        }
+        let state = |w: &World| {
+            let mut m = world_state(w);
+            m.retain(|&i, _| w.bodies.iter().any(|(h, b)| h.index == i && b.enabled));
+            m
+        };
+        let mut rec = Recorder::new(&w, RecordOptions::default());
+        let mut bytes = rec.bytes().to_vec();
+        rec.clear();
+        let mut expected = vec![state(&w)];
+        let mut used = [false; 11];
+        for _ in 0..150 {
+            for _ in 0..(rng.next() % 3) {
+                let k = rng.next() as usize % bodies.len();
+                let (b, s) = (bodies[k], shapes[k]);
+                let op = rng.next() as usize % 11;
+                used[op] = true;
+                match op {
+                    0 => w
+                        .edit_shape_material(s, |d| d.static_friction = rng.range(0.0, 1.0))
+                        .unwrap(),
+                    1 => w
+                        .edit_shape_material(s, |d| d.restitution = rng.range(0.0, 1.0))
+                        .unwrap(),
+                    2 => w
+                        .edit_shape_material(s, |d| d.density = rng.range(100.0, 3000.0))
+                        .unwrap(),
+                    3 => w.set_shape_user_data(s, rng.next() as u64).unwrap(),
+                    4 => w.set_gravity_scale(b, rng.range(-0.5, 2.0)).unwrap(),
+                    5 => w.set_locked_axes(b, rng.next() % 64).unwrap(),
+                    6 => {
+                        let data = MassData {
+                            mass: rng.range(1.0, 50.0),
+                            center: Vec3::ZERO,
+                            inertia: Vec3::splat(rng.range(0.5, 5.0)),
+                        };
+                        // A static or kinematic body refuses a mass override.
+                        let _ = w.set_mass_data(b, &data);
+                    }
+                    7 => {
+                        let _ = w.reset_mass_data(b);
+                    }
+                    8 => {
+                        let t = [BodyType::Static, BodyType::Kinematic, BodyType::Dynamic][rng.next() as usize % 3];
+                        w.set_body_type(b, t).unwrap();
+                    }
+                    9 => w.disable_body(b).unwrap(),
+                    _ => w.enable_body(b).unwrap(),
+                }
+            }
+            w.step(DT).unwrap();
+            rec.record_step(&w, DT, 0.0);
+            bytes.extend_from_slice(rec.bytes());
+            rec.clear();
+            expected.push(state(&w));
+        }
+        assert!(used.iter().all(|&u| u), "seed {seed}: every setter called ({used:?})");
+        let r = read::parse(&bytes).unwrap();
+        assert_eq!(r.frames.len(), expected.len());
+        for (f, e) in expected.iter().enumerate() {
+            assert_replay_matches(&r, f, e);
+            let got = r.bodies_at(f);
+            for (i, (.., xf)) in e {
+                let p = got[i].pose().p;
+                assert_eq!(
+                    p.to_array().map(f32::to_bits),
+                    xf.p.to_array().map(f32::to_bits),
+                    "body {i} at frame {f}"
+                );
+            }
+        }
+    }
+}
+
 #[test]
 fn a_truncated_recording_replays_up_to_its_last_whole_step() {
     let mut w = scenes::world(true);
@@ -523,9 +609,9 @@ fn recording_a_steady_scene_allocates_nothing_after_warm_up() {
     let mut allocations = 0;
     for _ in 0..60 {
         w.step(DT).unwrap();
-        let before = ALLOCATIONS.with(|c| c.get());
+        let before = thread_allocs::allocations();
         rec.record_step(&w, DT, 0.0);
-        allocations += ALLOCATIONS.with(|c| c.get()) - before;
+        allocations += thread_allocs::allocations() - before;
         sink.clear();
         sink.extend_from_slice(rec.bytes());
         rec.clear();

@@ -12,35 +12,12 @@
 #[path = "scenes/mod.rs"]
 #[allow(dead_code)]
 mod scenes;
-use std::alloc::{GlobalAlloc, Layout, System};
-use std::cell::Cell;
+#[path = "common/thread_allocs.rs"]
+mod thread_allocs;
 
 use hearth::math::{Quat, Transform, Vec3};
 use hearth::soft::{mesh, SoftBodyDef, SoftBodyHandle};
 use hearth::{BodyDef, BodyType, Geometry, ShapeDef, World, WorldSettings};
-
-struct Counting;
-
-thread_local! {
-    static ALLOCATIONS: Cell<usize> = const { Cell::new(0) };
-}
-
-unsafe impl GlobalAlloc for Counting {
-    unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
-        let _ = ALLOCATIONS.try_with(|c| c.set(c.get() + 1));
-        System.alloc(layout)
-    }
-    unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
-        System.dealloc(ptr, layout)
-    }
-    unsafe fn realloc(&self, ptr: *mut u8, layout: Layout, new_size: usize) -> *mut u8 {
-        let _ = ALLOCATIONS.try_with(|c| c.set(c.get() + 1));
-        System.realloc(ptr, layout, new_size)
-    }
-}
-
-#[global_allocator]
-static GLOBAL: Counting = Counting;
 
 const DT: f32 = 1.0 / 60.0;
 const G: f32 = 9.81;
@@ -725,11 +702,11 @@ fn soft_bodies_are_deterministic_and_do_not_allocate_in_a_steady_step() {
         for _ in 0..120 {
             w.step(DT).unwrap();
         }
-        let before = ALLOCATIONS.with(|c| c.get());
+        let before = thread_allocs::allocations();
         for _ in 0..30 {
             w.step(DT).unwrap();
         }
-        let allocations = ALLOCATIONS.with(|c| c.get()) - before;
+        let allocations = thread_allocs::allocations() - before;
         (w.soft_body(h).unwrap().pos.clone(), allocations)
     };
     let (a, n) = run();
@@ -765,13 +742,13 @@ fn a_box_resting_on_a_ball_does_not_allocate_in_a_steady_step() {
     for _ in 0..600 {
         w.step(DT).unwrap();
     }
-    let before = ALLOCATIONS.with(|c| c.get());
+    let before = thread_allocs::allocations();
     let mut faces = 0;
     for _ in 0..60 {
         w.step(DT).unwrap();
         faces += w.soft_body(h).unwrap().face_contacts.len();
     }
-    let allocations = ALLOCATIONS.with(|c| c.get()) - before;
+    let allocations = thread_allocs::allocations() - before;
     assert!(faces > 0, "the box should be held by the skin's faces");
     assert_eq!(allocations, 0, "allocations in a steady step");
 }

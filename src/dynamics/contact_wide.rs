@@ -113,6 +113,18 @@ pub struct WideContact<L: Lanes> {
     spin: bool,
     ma: L,
     mb: L,
+    /// Some lane's body has a locked linear axis (`body::LOCK_*`): impulses are applied
+    /// through `free_a`/`free_b`. Without locks the passes take the plain path.
+    locked: bool,
+    /// 1.0 along the world axes each lane's body may move along, 0.0 along its locked ones
+    /// (all ones without locks): the body's inverse mass per axis is `ma * free_a`.
+    free_a: V<L>,
+    free_b: V<L>,
+    /// The linear part of the effective mass along the normal and each tangent:
+    /// `d·(M_A⁻¹ + M_B⁻¹)·d` with the per-axis inverse masses, `ma + mb` bit for bit when no
+    /// axis is locked (`linear_term`).
+    m_normal: L,
+    m_tangent: [L; 2],
     normal: V<L>,
     /// Offsets from each core point to the contact point: `r_a·n` and `−r_b·n`.
     oa: V<L>,
@@ -389,10 +401,13 @@ impl<A> Stage3<A> {
 /// is loaded into lanes; empty lanes stay zero.
 struct Staging<L: Lanes> {
     /// ma, mb, radius_a, radius_b, static and dynamic friction, restitution, twist impulse,
-    /// 1/point count, rigid (all-ones), rolling and torsion levers, size.
-    f: [L::Floats; 13],
-    /// Normal, centres of mass of A and B, friction and rolling impulses on B (world).
-    v: [Stage3<L::Floats>; 5],
+    /// 1/point count, rigid (all-ones), rolling and torsion levers, size, own tangents
+    /// (all-ones in lanes with locked linear axes).
+    f: [L::Floats; 14],
+    /// Normal, centres of mass of A and B, friction and rolling impulses on B (world), and
+    /// the locked linear axes of A and B (1.0 locked, 0.0 free), and the two tangents of a
+    /// lane with locks (`lock_tangents`).
+    v: [Stage3<L::Floats>; 9],
     /// Per point: separation, normal impulse, active (all-ones).
     pf: [[L::Floats; 3]; MAXP],
     /// Per point: the point midway between the surfaces.
@@ -403,8 +418,8 @@ impl<L: Lanes> Staging<L> {
     #[inline(always)]
     fn new() -> Self {
         Staging {
-            f: [L::Floats::default(); 13],
-            v: [Stage3::default(); 5],
+            f: [L::Floats::default(); 14],
+            v: [Stage3::default(); 9],
             pf: [[L::Floats::default(); 3]; MAXP],
             pv: [Stage3::default(); MAXP],
         }
@@ -412,7 +427,7 @@ impl<L: Lanes> Staging<L> {
 
     /// Lane `i` from the persistent contact of `r` (its manifold `r.child`).
     #[inline(always)]
-    fn contact(&mut self, i: usize, r: &ContactRef, c: &Contact, s: &Sources) {
+    fn contact(&mut self, i: usize, r: &ContactRef, c: &Contact, s: &Sources) -> bool {
         let (manifold, impulses, patch) = c.child(r.child as usize);
         let (mut ca, mut cb) = (s.bodies.at(c.body_a).center, s.bodies.at(c.body_b).center);
         let (mut n, mut radius_a, mut radius_b, mut friction, mut rolling) =
@@ -426,13 +441,16 @@ impl<L: Lanes> Staging<L> {
             rolling = -rolling;
         }
         let count = manifold.count;
-        self.lane(
+        let locked = self.lane(
             i,
             r,
             s,
             [radius_a, radius_b, c.static_friction, c.dynamic_friction],
             c.restitution,
         );
+        if locked {
+            self.lock_tangents(i, r, s, n);
+        }
         self.f[7].as_mut()[i] = patch.twist;
         self.f[8].as_mut()[i] = 1.0 / count as f32;
         self.f[10].as_mut()[i] = c.rolling_resistance;
@@ -447,12 +465,13 @@ impl<L: Lanes> Staging<L> {
             }
             self.pv[p].set(i, mp.point);
         }
+        locked
     }
 
     /// Lane `i` from a contact generated this step (rods, cables, user callbacks): a single
     /// point, not persistent, solved rigidly.
     #[inline(always)]
-    fn generated(&mut self, i: usize, r: &ContactRef, g: &GeneratedContact, s: &Sources) {
+    fn generated(&mut self, i: usize, r: &ContactRef, g: &GeneratedContact, s: &Sources) -> bool {
         let center = |b: u32| {
             if b == crate::dynamics::body::NONE {
                 g.point
@@ -465,7 +484,10 @@ impl<L: Lanes> Staging<L> {
             std::mem::swap(&mut ca, &mut cb);
             n = -n;
         }
-        self.lane(i, r, s, [0.0, 0.0, g.friction, g.friction], g.restitution);
+        let locked = self.lane(i, r, s, [0.0, 0.0, g.friction, g.friction], g.restitution);
+        if locked {
+            self.lock_tangents(i, r, s, n);
+        }
         self.f[8].as_mut()[i] = 1.0;
         self.f[9].as_mut()[i] = on();
         self.f[12].as_mut()[i] = f32::MAX;
@@ -476,15 +498,41 @@ impl<L: Lanes> Staging<L> {
             slot.as_mut()[i] = x;
         }
         self.pv[0].set(i, g.point);
+        locked
     }
 
-    /// The inverse masses, radii, friction coefficients and restitution of lane `i`.
+    /// The inverse masses, locked linear axes, radii, friction coefficients and restitution
+    /// of lane `i`. Returns whether either body has a locked linear axis.
     #[inline(always)]
-    fn lane(&mut self, i: usize, r: &ContactRef, s: &Sources, [ra, rb, fs, fd]: [f32; 4], e: f32) {
-        let (ma, mb) = (s.states[r.a as usize].inv_mass, s.states[r.b as usize].inv_mass);
-        for (slot, x) in self.f.iter_mut().zip([ma, mb, ra, rb, fs, fd, e]) {
+    fn lane(&mut self, i: usize, r: &ContactRef, s: &Sources, [ra, rb, fs, fd]: [f32; 4], e: f32) -> bool {
+        let (sa, sb) = (&s.states[r.a as usize], &s.states[r.b as usize]);
+        for (slot, x) in self.f.iter_mut().zip([sa.inv_mass, sb.inv_mass, ra, rb, fs, fd, e]) {
             slot.as_mut()[i] = x;
         }
+        (sa.locks | sb.locks) & 7 != 0
+    }
+
+    /// The locked linear axes of lane `i`'s bodies, and friction tangents that diagonalise the
+    /// linear part of the friction rows' effective mass, `F = m_A·diag(free_A) +
+    /// m_B·diag(free_B)` in the contact plane (the default basis for a normal nearly
+    /// perpendicular to a locked axis has one tangent a little off that axis: its row's effective
+    /// mass was near zero while it still coupled to the free tangent, and the friction cone
+    /// clamped the free tangent's impulse by the other's huge one).
+    #[inline(always)]
+    fn lock_tangents(&mut self, i: usize, r: &ContactRef, s: &Sources, n: Vec3) {
+        let (sa, sb) = (&s.states[r.a as usize], &s.states[r.b as usize]);
+        let axes = |l: u8| Vec3::new((l & 1) as f32, ((l >> 1) & 1) as f32, ((l >> 2) & 1) as f32);
+        let (la, lb) = (axes(sa.locks), axes(sb.locks));
+        self.v[5].set(i, la);
+        self.v[6].set(i, lb);
+        let f = sa.inv_mass * (Vec3::ONE - la) + sb.inv_mass * (Vec3::ONE - lb);
+        let (t1, t2) = crate::math::orthonormal_basis(n);
+        let (a, b, c) = (t1.dot(f * t1), t1.dot(f * t2), t2.dot(f * t2));
+        let phi = 0.5 * (2.0 * b).atan2(a - c);
+        let (sin, cos) = phi.sin_cos();
+        self.v[7].set(i, t1 * cos + t2 * sin);
+        self.v[8].set(i, t2 * cos - t1 * sin);
+        self.f[13].as_mut()[i] = on();
     }
 }
 
@@ -530,7 +578,8 @@ fn pack<L: Lanes>(w: &mut WideContact<L>, lanes: &[u32], refs: &[ContactRef], so
     let mut st = Staging::<L>::new();
     let mut src = L::Indices::default();
     src.as_mut().fill(EMPTY);
-    (w.a, w.b, w.src, w.count, w.has_restitution) = (L::Indices::default(), L::Indices::default(), src, 1, false);
+    (w.a, w.b, w.src, w.count, w.has_restitution, w.locked) =
+        (L::Indices::default(), L::Indices::default(), src, 1, false, false);
     // Batches hold one kind (see `pack_all`), so the first lane speaks for all.
     w.spin = refs[lanes[0] as usize].spins();
     for (i, &k) in lanes.iter().enumerate() {
@@ -543,12 +592,12 @@ fn pack<L: Lanes>(w: &mut WideContact<L>, lanes: &[u32], refs: &[ContactRef], so
                 let c = sources.contacts.at(ci);
                 w.count = w.count.max(c.child(r.child as usize).0.count);
                 w.has_restitution |= c.restitution > 0.0;
-                st.contact(i, r, c, sources);
+                w.locked |= st.contact(i, r, c, sources);
             }
             None => {
                 let g = &sources.generated[r.generated_index()];
                 w.has_restitution |= g.restitution > 0.0;
-                st.generated(i, r, g, sources);
+                w.locked |= st.generated(i, r, g, sources);
             }
         }
     }
@@ -562,6 +611,35 @@ fn pack<L: Lanes>(w: &mut WideContact<L>, lanes: &[u32], refs: &[ContactRef], so
     }
 }
 
+/// The linear part of a row's effective mass along the unit direction `d`: `d·M⁻¹·d` for each
+/// body with the per-axis inverse mass `m·(1 − lock)` (`lock` 1.0 on locked axes), written
+/// `m·(1 − lock·d²)` so that a body without locks gives `m` bit for bit (`lock·d²` is +0).
+#[inline(always)]
+fn linear_term<L: Lanes>(ma: L, mb: L, lock_a: V<L>, lock_b: V<L>, d: V<L>) -> L {
+    let one = L::one();
+    let d2 = V {
+        x: d.x * d.x,
+        y: d.y * d.y,
+        z: d.z * d.z,
+    };
+    ma * (one - lock_a.dot(d2)) + mb * (one - lock_b.dot(d2))
+}
+
+/// `v` along the axes a body may move along: `v ⊙ free` in a batch with locked linear axes,
+/// `v` itself otherwise (bit for bit the same for a body without locks: `free` is all ones).
+#[inline(always)]
+fn on_free<L: Lanes>(locked: bool, v: V<L>, free: V<L>) -> V<L> {
+    if locked {
+        V {
+            x: v.x * free.x,
+            y: v.y * free.y,
+            z: v.z * free.z,
+        }
+    } else {
+        v
+    }
+}
+
 /// Velocity of a body's material point at arm `r`.
 #[inline(always)]
 fn point_velocity<L: Lanes>(v: V<L>, w: V<L>, r: V<L>) -> V<L> {
@@ -572,8 +650,8 @@ fn point_velocity<L: Lanes>(v: V<L>, w: V<L>, r: V<L>) -> V<L> {
 #[inline(always)]
 fn build<L: Lanes, const N: usize>(w: &mut WideContact<L>, st: &Staging<L>, vel: &[Velocity]) {
     let zero = L::zero();
-    let [ma, mb, radius_a, radius_b, fs, fd, e, twist, inv_count, rigid, rolling, torsion, size] =
-        load_all::<L, 13>(&st.f);
+    let [ma, mb, radius_a, radius_b, fs, fd, e, twist, inv_count, rigid, rolling, torsion, size, own] =
+        load_all::<L, 14>(&st.f);
     w.size = size;
     let light_tol = L::splat(LIGHT_REFRESH_MOTION).min(size * L::splat(LIGHT_REFRESH_FRACTION));
     w.light_tol2 = light_tol * light_tol;
@@ -586,8 +664,26 @@ fn build<L: Lanes, const N: usize>(w: &mut WideContact<L>, st: &Staging<L>, vel:
         w.restitution,
         w.rigid,
     ) = (ma, mb, fs, fd, e, rigid);
-    let (t1, t2) = basis(n);
+    let (mut t1, mut t2) = basis(n);
+    if w.locked {
+        t1 = V::select(own, st.v[7].load::<L>(), t1);
+        t2 = V::select(own, st.v[8].load::<L>(), t2);
+    }
     (w.normal, w.tangents) = (n, [t1, t2]);
+    if w.locked {
+        let [lock_a, lock_b] = [5, 6].map(|i| st.v[i].load::<L>());
+        let one = V {
+            x: L::one(),
+            y: L::one(),
+            z: L::one(),
+        };
+        (w.free_a, w.free_b) = (one - lock_a, one - lock_b);
+        w.m_normal = linear_term(ma, mb, lock_a, lock_b, n);
+        w.m_tangent = [t1, t2].map(|t| linear_term(ma, mb, lock_a, lock_b, t));
+    } else {
+        let m = ma + mb;
+        (w.m_normal, w.m_tangent) = (m, [m, m]);
+    }
     // Contact points sit on the shapes' rounded surfaces, `radius` out from the core points.
     let (oa, ob) = (n.scale(radius_a), n.scale(-radius_b));
     let (round_a, round_b) = (radius_a.gt(zero), radius_b.gt(zero));
@@ -897,7 +993,7 @@ fn refresh_batch<L: Lanes, const N: usize, const SB: bool>(states: &[BodyState],
         gather_states(states, &w.b)
     };
     let n = w.normal;
-    let m = w.ma + w.mb;
+    let m = w.m_normal;
     let g = Geometry {
         oa: w.oa,
         ob: w.ob,
@@ -947,7 +1043,7 @@ fn refresh_batch<L: Lanes, const N: usize, const SB: bool>(states: &[BodyState],
         let t = w.tangents[k];
         f.rta[k] = V::select(keep, f.rta[k], ra.cross(t));
         f.ita[k] = V::select(keep, f.ita[k], ia.mul_vec(f.rta[k]));
-        let mut km = m + f.rta[k].dot(f.ita[k]);
+        let mut km = w.m_tangent[k] + f.rta[k].dot(f.ita[k]);
         if !SB {
             f.rtb[k] = V::select(keep, f.rtb[k], rb.cross(t));
             f.itb[k] = V::select(keep, f.itb[k], ib.mul_vec(f.rtb[k]));
@@ -1102,12 +1198,12 @@ fn warm_start_batch<L: Lanes, const N: usize, const SB: bool>(vel: &mut [Velocit
             ang_b = ang_b.add_scaled(f.itb[k], f.tangent_impulse[k]);
         }
     }
-    va = va.add_scaled(lin, -w.ma);
+    va = va.add_scaled(on_free(w.locked, lin, w.free_a), -w.ma);
     wa = wa - ang_a;
     scatter(vel, &w.a, va, wa);
     if !SB {
         let (mut vb, mut wb) = gather(vel, &w.b);
-        vb = vb.add_scaled(lin, w.mb);
+        vb = vb.add_scaled(on_free(w.locked, lin, w.free_b), w.mb);
         wb = wb + ang_b;
         scatter(vel, &w.b, vb, wb);
     }
@@ -1279,10 +1375,10 @@ fn solve_batch<L: Lanes, const N: usize, const SB: bool>(
             ang_b = ang_b.add_scaled(p.ib, d);
         }
     }
-    va = va.add_scaled(n, -(w.ma * lin));
+    va = va.add_scaled(on_free(w.locked, n, w.free_a), -(w.ma * lin));
     wa = wa - ang_a;
     if !SB {
-        vb = vb.add_scaled(n, w.mb * lin);
+        vb = vb.add_scaled(on_free(w.locked, n, w.free_b), w.mb * lin);
         wb = wb + ang_b;
     }
     if w.spin {
@@ -1336,11 +1432,11 @@ fn solve_batch<L: Lanes, const N: usize, const SB: bool>(
     }
     f.tangent_impulse = new;
     f.twist_impulse = twist;
-    va = va.add_scaled(lin, -w.ma);
+    va = va.add_scaled(on_free(w.locked, lin, w.free_a), -w.ma);
     wa = wa - ang_a;
     scatter(vel, &w.a, va, wa);
     if !SB {
-        vb = vb.add_scaled(lin, w.mb);
+        vb = vb.add_scaled(on_free(w.locked, lin, w.free_b), w.mb);
         wb = wb + ang_b;
         scatter(vel, &w.b, vb, wb);
     }
@@ -1419,10 +1515,10 @@ fn restitution_batch<L: Lanes, const SB: bool>(vel: &mut [Velocity], w: &mut Wid
         let d = L::select(bounce, new - p.impulse, zero);
         p.impulse = p.impulse + d;
         p.max_impulse = p.max_impulse.max(d);
-        va = va.add_scaled(n, -(w.ma * d));
+        va = va.add_scaled(on_free(w.locked, n, w.free_a), -(w.ma * d));
         wa = wa.add_scaled(p.ia, -d);
         if !SB {
-            vb = vb.add_scaled(n, w.mb * d);
+            vb = vb.add_scaled(on_free(w.locked, n, w.free_b), w.mb * d);
             wb = wb.add_scaled(p.ib, d);
         }
     }

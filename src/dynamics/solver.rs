@@ -824,10 +824,13 @@ pub fn solve(world: &mut World, dt: f32) {
 }
 
 /// Sets the locked velocity components of the bodies with locked axes to exactly zero, after
-/// each stage that changes velocities. Angular impulses already leave locked angular axes
-/// alone (the world inverse inertia has their rows and columns zeroed, `body::lock_inertia`);
-/// the linear components an impulse gave along a locked axis are taken out, which only
-/// removes kinetic energy. Worlds without locks pay an empty loop.
+/// each stage that changes velocities. Contacts and joints already leave locked axes alone:
+/// angular impulses go through a world inverse inertia with the locked rows and columns zeroed
+/// (`body::lock_inertia`), linear ones through per-axis inverse masses (zero along locked
+/// axes; `contact_wide::linear_term`, `joints::solver::Bodies::ma`), which also give the rows
+/// their reduced effective masses. What is left to take out comes from the other stages
+/// (springs between bodies) and rounding, and taking it out only removes kinetic energy.
+/// Worlds without locks pay an empty loop.
 fn lock_velocities(vel: &mut [Velocity], states: &[BodyState], locked: &[u32]) {
     for &k in locked {
         let locks = states[k as usize].locks;

@@ -8,8 +8,11 @@
 //! allocates nothing.
 //!
 //! What is written:
-//! * once, and again whenever they change: every body (type, user data, pose) with its shapes
-//!   and their geometry, every soft body's triangles (`DEFS` chunks);
+//! * once, and again whenever they change: every enabled body (type, user data, pose) with its
+//!   shapes and their geometry, every soft body's triangles (`DEFS` chunks). A body type
+//!   change writes the body again; disabling a body removes it as destroying it would, and
+//!   enabling it writes it again. Materials, filters, gravity scale, locks and mass overrides
+//!   are not part of the format (the poses show what they do);
 //! * per step: the step counters, the dt and the time the step took; the pose, velocities and
 //!   sleep state of each body whose pose or sleep state changed since it was last written;
 //!   every particle; every soft-body vertex; every joint's two anchors; optionally every
@@ -46,6 +49,10 @@ struct BodySlot {
     /// Pose last written (position, rotation), bit-compared with the body's.
     pose: [u32; 7],
     awake: bool,
+    /// Type code and user data of the recorded definition: a change (`World::set_body_type`)
+    /// writes the definition again.
+    body_type: u8,
+    user_data: u64,
 }
 
 /// What the recorder last wrote for a soft-body slot.
@@ -339,6 +346,9 @@ impl Recorder {
         let mut count = 0u32;
         let mut previous: i64 = -1;
         for (h, b) in world.bodies.iter() {
+            if !b.enabled {
+                continue; // not in the replay while disabled (`write_defs`)
+            }
             let slot = &mut self.bodies[h.index as usize];
             let pose = pose_bits(&b.xf);
             if slot.pose == pose && slot.awake == b.awake {
@@ -393,12 +403,23 @@ impl Recorder {
                 changed |= self.remove_body(gone, &mut out);
             }
             next = i + 1;
+            if !b.enabled {
+                // A disabled body (`World::disable_body`) leaves the replay as a destroyed
+                // one does; enabling it writes its definition again.
+                changed |= self.remove_body(i, &mut out);
+                continue;
+            }
             let slot = &mut self.bodies[i];
-            if slot.generation == h.generation && slot.shapes == b.shapes {
+            let code = body_type_code(b.body_type);
+            if slot.generation == h.generation
+                && slot.shapes == b.shapes
+                && slot.body_type == code
+                && slot.user_data == b.user_data
+            {
                 continue;
             }
             changed = true;
-            slot.generation = h.generation;
+            (slot.generation, slot.body_type, slot.user_data) = (h.generation, code, b.user_data);
             slot.shapes.clear();
             slot.shapes.extend_from_slice(&b.shapes);
             // Force a body record in this frame's step chunk (velocity, sleep state).
@@ -406,7 +427,7 @@ impl Recorder {
             put_u8(&mut out, DEF_BODY);
             put_u32(&mut out, h.index);
             put_u32(&mut out, h.generation);
-            put_u8(&mut out, body_type_code(b.body_type));
+            put_u8(&mut out, code);
             out.extend_from_slice(&b.user_data.to_le_bytes());
             put_vec3(&mut out, b.xf.p);
             put_quat(&mut out, b.xf.q);

@@ -412,13 +412,7 @@ static Snap g_before, g_after;
 /* --------------------------------------------------------------------- the call checker */
 /* Output sentinels: every output is filled with this byte before a call; a failing call
  * must leave it so. */
-#define SENTINEL 0xA5
-static int untouched(const void *p, size_t n) {
-    const unsigned char *b = (const unsigned char *)p;
-    for (size_t i = 0; i < n; i++)
-        if (b[i] != SENTINEL) return 0;
-    return 1;
-}
+#define SENTINEL 0xA5 /* as `untouched` (ensure.h) checks */
 
 static int g_locked; /* inside a callback: no snapshots, the world is mid-step */
 static int g_trace;  /* HEARTH_FUZZ_TRACE=1: every call on stderr */

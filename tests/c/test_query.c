@@ -13,34 +13,9 @@
 
 static const float DT = 1.0f / 60.0f;
 
-static HearthVec3 vec3(float x, float y, float z) {
-    HearthVec3 v;
-    v.x = x;
-    v.y = y;
-    v.z = z;
-    return v;
-}
-
-static HearthWorld *make_world(void) {
-    HearthWorldDef def = hearth_world_def_default();
-    HearthWorld *w = NULL;
-    ENSURE_OK(hearth_world_create(&def, &w));
-    return w;
-}
-
-static HearthBodyId make_body(HearthWorld *w, uint32_t type, HearthVec3 p) {
-    HearthBodyDef bd = hearth_body_def_default();
-    bd.type = type;
-    bd.transform.position = p;
-    HearthBodyId b;
-    memset(&b, 0, sizeof b);
-    ENSURE_OK(hearth_body_create(w, &bd, &b));
-    return b;
-}
-
 static HearthShapeId add_sphere(HearthWorld *w, HearthBodyId b, float r, const HearthShapeDef *def) {
     HearthSphere s;
-    s.center = vec3(0, 0, 0);
+    s.center = v3(0, 0, 0);
     s.radius = r;
     HearthShapeId id;
     memset(&id, 0, sizeof id);
@@ -50,21 +25,12 @@ static HearthShapeId add_sphere(HearthWorld *w, HearthBodyId b, float r, const H
 
 static HearthShapeId add_plane(HearthWorld *w, HearthBodyId b, const HearthShapeDef *def) {
     HearthPlane p;
-    p.normal = vec3(0, 1, 0);
+    p.normal = v3(0, 1, 0);
     p.offset = 0;
     HearthShapeId id;
     memset(&id, 0, sizeof id);
     ENSURE_OK(hearth_shape_create_plane(w, b, def, &p, &id));
     return id;
-}
-
-static int same_shape(HearthShapeId a, HearthShapeId b) { return a.index == b.index && a.generation == b.generation; }
-
-static int untouched(const void *p, size_t n) {
-    const unsigned char *b = (const unsigned char *)p;
-    for (size_t i = 0; i < n; i++)
-        if (b[i] != 0xA5) return 0;
-    return 1;
 }
 
 /* ------------------------------------------------------------------ filters */
@@ -95,12 +61,12 @@ static void test_filter_truth_table(void) {
         {1ull << 63, 1ull << 63, 0, 1ull << 63, 1ull << 63, 0, 1},
     };
     for (size_t i = 0; i < sizeof rows / sizeof rows[0]; i++) {
-        HearthWorld *w = make_world();
+        HearthWorld *w = new_world();
         HearthShapeDef a = filtered(rows[i].ca, rows[i].ma, rows[i].ga);
         HearthShapeDef b = filtered(rows[i].cb, rows[i].mb, rows[i].gb);
-        HearthBodyId ground = make_body(w, HEARTH_BODY_STATIC, vec3(0, 0, 0));
+        HearthBodyId ground = new_body(w, HEARTH_BODY_STATIC, v3(0, 0, 0), 1);
         add_plane(w, ground, &b);
-        HearthBodyId ball = make_body(w, HEARTH_BODY_DYNAMIC, vec3(0, 0.45f, 0));
+        HearthBodyId ball = new_body(w, HEARTH_BODY_DYNAMIC, v3(0, 0.45f, 0), 1);
         HearthShapeId s = add_sphere(w, ball, 0.5f, &a);
         HearthFilter got;
         ENSURE_OK(hearth_shape_get_filter(w, s, &got));
@@ -115,11 +81,11 @@ static void test_filter_truth_table(void) {
 }
 
 static void test_set_filter(void) {
-    HearthWorld *w = make_world();
+    HearthWorld *w = new_world();
     HearthShapeDef sd = hearth_shape_def_default();
-    HearthBodyId ground = make_body(w, HEARTH_BODY_STATIC, vec3(0, 0, 0));
+    HearthBodyId ground = new_body(w, HEARTH_BODY_STATIC, v3(0, 0, 0), 1);
     add_plane(w, ground, &sd);
-    HearthBodyId ball = make_body(w, HEARTH_BODY_DYNAMIC, vec3(0, 0.5f, 0));
+    HearthBodyId ball = new_body(w, HEARTH_BODY_DYNAMIC, v3(0, 0.5f, 0), 1);
     HearthShapeId s = add_sphere(w, ball, 0.5f, &sd);
     for (int i = 0; i < 30; i++) ENSURE_OK(hearth_world_step(w, DT));
     HearthWorldCounters c;
@@ -147,7 +113,7 @@ static void test_set_filter(void) {
     ENSURE_RESULT(hearth_shape_set_filter(w, stale, none), HEARTH_ERROR_INVALID_ID);
     ENSURE_RESULT(hearth_shape_get_filter(w, stale, &out), HEARTH_ERROR_INVALID_ID);
     ENSURE_RESULT(hearth_shape_get_filter(NULL, stale, &out), HEARTH_ERROR_NULL_POINTER);
-    HearthBodyId other = make_body(w, HEARTH_BODY_DYNAMIC, vec3(5, 5, 5));
+    HearthBodyId other = new_body(w, HEARTH_BODY_DYNAMIC, v3(5, 5, 5), 1);
     HearthShapeId live = add_sphere(w, other, 0.5f, &sd);
     ENSURE_RESULT(hearth_shape_get_filter(w, live, NULL), HEARTH_ERROR_NULL_POINTER);
     ENSURE(untouched(&out, sizeof out));
@@ -169,34 +135,34 @@ static float on_hit(void *user_data, const HearthRayHit *hit) {
     log->calls++;
     log->last = *hit;
     /* Changing the world from inside a query callback is refused; reading works. */
-    log->mutation = hearth_body_set_linear_velocity(log->world, hit->body, vec3(0, 1, 0));
+    log->mutation = hearth_body_set_linear_velocity(log->world, hit->body, v3(0, 1, 0));
     HearthTransform t;
     ENSURE_OK(hearth_body_get_transform(log->world, hit->body, &t));
     return log->answer < -1.5f ? hit->fraction : log->answer;
 }
 
 static void test_rays(void) {
-    HearthWorld *w = make_world();
+    HearthWorld *w = new_world();
     HearthShapeDef sd = hearth_shape_def_default();
     HearthShapeId row[4];
     for (int i = 0; i < 4; i++) {
-        HearthBodyId b = make_body(w, i % 2 ? HEARTH_BODY_DYNAMIC : HEARTH_BODY_STATIC, vec3(3.0f * (float)i, 5, 0));
+        HearthBodyId b = new_body(w, i % 2 ? HEARTH_BODY_DYNAMIC : HEARTH_BODY_STATIC, v3(3.0f * (float)i, 5, 0), 1);
         row[i] = add_sphere(w, b, 0.5f, &sd);
     }
     HearthQueryFilter all = hearth_query_filter_default();
     ENSURE(all.category_bits == 1 && all.mask_bits == ~0ull);
     /* Closest: a sphere at distance d = 4 of radius 0.5 is hit at 3.5 of a 10 m ray. */
     HearthRayHit hit;
-    ENSURE_OK(hearth_world_cast_ray_closest(w, vec3(-4, 5, 0), vec3(10, 0, 0), &all, &hit));
+    ENSURE_OK(hearth_world_cast_ray_closest(w, v3(-4, 5, 0), v3(10, 0, 0), &all, &hit));
     ENSURE(same_shape(hit.shape, row[0]));
     ENSURE_NEAR(hit.fraction, 0.35, 1e-5);
     ENSURE_NEAR(hit.point.x, -0.5, 1e-5);
     ENSURE_NEAR(hit.normal.x, -1.0, 1e-5);
     /* A miss: null ids, fraction 1, the ray's end. */
-    ENSURE_OK(hearth_world_cast_ray_closest(w, vec3(-4, 50, 0), vec3(10, 0, 0), &all, &hit));
+    ENSURE_OK(hearth_world_cast_ray_closest(w, v3(-4, 50, 0), v3(10, 0, 0), &all, &hit));
     ENSURE(hit.shape.index == 0 && hit.shape.generation == 0 && hit.fraction == 1.0f && hit.point.x == 6.0f);
     /* From inside a sphere: not hit (the next one is). */
-    ENSURE_OK(hearth_world_cast_ray_closest(w, vec3(0, 5, 0), vec3(10, 0, 0), &all, &hit));
+    ENSURE_OK(hearth_world_cast_ray_closest(w, v3(0, 5, 0), v3(10, 0, 0), &all, &hit));
     ENSURE(same_shape(hit.shape, row[1]));
     ENSURE_NEAR(hit.fraction, 0.25, 1e-5);
 
@@ -206,32 +172,32 @@ static void test_rays(void) {
     memset(&log, 0, sizeof log);
     log.world = w;
     log.answer = 1.0f;
-    ENSURE_OK(hearth_world_cast_ray(w, vec3(-4, 5, 0), vec3(20, 0, 0), &all, on_hit, &log));
+    ENSURE_OK(hearth_world_cast_ray(w, v3(-4, 5, 0), v3(20, 0, 0), &all, on_hit, &log));
     ENSURE(log.calls == 4);
     ENSURE(log.mutation == HEARTH_ERROR_WORLD_LOCKED);
     log.calls = 0;
     log.answer = 0.0f;
-    ENSURE_OK(hearth_world_cast_ray(w, vec3(-4, 5, 0), vec3(20, 0, 0), &all, on_hit, &log));
+    ENSURE_OK(hearth_world_cast_ray(w, v3(-4, 5, 0), v3(20, 0, 0), &all, on_hit, &log));
     ENSURE(log.calls == 1);
     log.calls = 0;
     log.answer = -2.0f;
-    ENSURE_OK(hearth_world_cast_ray(w, vec3(-4, 5, 0), vec3(20, 0, 0), &all, on_hit, &log));
+    ENSURE_OK(hearth_world_cast_ray(w, v3(-4, 5, 0), v3(20, 0, 0), &all, on_hit, &log));
     ENSURE(same_shape(log.last.shape, row[0]));
     log.calls = 0;
     log.answer = -1.0f;
-    ENSURE_OK(hearth_world_cast_ray(w, vec3(-4, 5, 0), vec3(20, 0, 0), &all, on_hit, &log));
+    ENSURE_OK(hearth_world_cast_ray(w, v3(-4, 5, 0), v3(20, 0, 0), &all, on_hit, &log));
     ENSURE(log.calls == 4);
     /* After the query the world is unlocked again. */
     ENSURE_OK(hearth_world_step(w, DT));
 
     /* Batch: three rays, one a miss. */
     HearthRayInput rays[3];
-    rays[0].origin = vec3(-4, 5, 0);
-    rays[0].translation = vec3(10, 0, 0);
-    rays[1].origin = vec3(3, 10, 0);
-    rays[1].translation = vec3(0, -10, 0);
-    rays[2].origin = vec3(0, 50, 0);
-    rays[2].translation = vec3(1, 0, 0);
+    rays[0].origin = v3(-4, 5, 0);
+    rays[0].translation = v3(10, 0, 0);
+    rays[1].origin = v3(3, 10, 0);
+    rays[1].translation = v3(0, -10, 0);
+    rays[2].origin = v3(0, 50, 0);
+    rays[2].translation = v3(1, 0, 0);
     HearthRayHit hits[3];
     ENSURE_OK(hearth_world_cast_rays(w, rays, 3, &all, hits));
     ENSURE(same_shape(hits[0].shape, row[0]) && hits[2].shape.index == 0);
@@ -241,34 +207,34 @@ static void test_rays(void) {
     /* Query filter: leave out category 1 (every shape here). */
     HearthQueryFilter none = all;
     none.mask_bits = ~1ull;
-    ENSURE_OK(hearth_world_cast_ray_closest(w, vec3(-4, 5, 0), vec3(10, 0, 0), &none, &hit));
+    ENSURE_OK(hearth_world_cast_ray_closest(w, v3(-4, 5, 0), v3(10, 0, 0), &none, &hit));
     ENSURE(hit.shape.index == 0);
 
     /* Errors: nothing written. */
     HearthRayHit out;
     memset(&out, 0xA5, sizeof out);
-    HearthVec3 nan3 = vec3(NAN, 0, 0);
-    ENSURE_RESULT(hearth_world_cast_ray_closest(NULL, vec3(0, 0, 0), vec3(1, 0, 0), &all, &out),
+    HearthVec3 nan3 = v3(NAN, 0, 0);
+    ENSURE_RESULT(hearth_world_cast_ray_closest(NULL, v3(0, 0, 0), v3(1, 0, 0), &all, &out),
                   HEARTH_ERROR_NULL_POINTER);
-    ENSURE_RESULT(hearth_world_cast_ray_closest(w, vec3(0, 0, 0), vec3(1, 0, 0), NULL, &out), HEARTH_ERROR_NULL_POINTER);
-    ENSURE_RESULT(hearth_world_cast_ray_closest(w, vec3(0, 0, 0), vec3(1, 0, 0), &all, NULL), HEARTH_ERROR_NULL_POINTER);
-    ENSURE_RESULT(hearth_world_cast_ray_closest(w, nan3, vec3(1, 0, 0), &all, &out), HEARTH_ERROR_INVALID_ARGUMENT);
-    ENSURE_RESULT(hearth_world_cast_ray_closest(w, vec3(0, 0, 0), nan3, &all, &out), HEARTH_ERROR_INVALID_ARGUMENT);
-    ENSURE_RESULT(hearth_world_cast_ray_closest(w, vec3(0, 0, 0), vec3(0, 0, 0), &all, &out),
+    ENSURE_RESULT(hearth_world_cast_ray_closest(w, v3(0, 0, 0), v3(1, 0, 0), NULL, &out), HEARTH_ERROR_NULL_POINTER);
+    ENSURE_RESULT(hearth_world_cast_ray_closest(w, v3(0, 0, 0), v3(1, 0, 0), &all, NULL), HEARTH_ERROR_NULL_POINTER);
+    ENSURE_RESULT(hearth_world_cast_ray_closest(w, nan3, v3(1, 0, 0), &all, &out), HEARTH_ERROR_INVALID_ARGUMENT);
+    ENSURE_RESULT(hearth_world_cast_ray_closest(w, v3(0, 0, 0), nan3, &all, &out), HEARTH_ERROR_INVALID_ARGUMENT);
+    ENSURE_RESULT(hearth_world_cast_ray_closest(w, v3(0, 0, 0), v3(0, 0, 0), &all, &out),
                   HEARTH_ERROR_INVALID_ARGUMENT);
-    ENSURE_RESULT(hearth_world_cast_ray_closest(w, vec3(0, 0, 0), vec3(INFINITY, 0, 0), &all, &out),
+    ENSURE_RESULT(hearth_world_cast_ray_closest(w, v3(0, 0, 0), v3(INFINITY, 0, 0), &all, &out),
                   HEARTH_ERROR_INVALID_ARGUMENT);
     ENSURE(untouched(&out, sizeof out));
     log.calls = 0;
-    ENSURE_RESULT(hearth_world_cast_ray(NULL, vec3(0, 0, 0), vec3(1, 0, 0), &all, on_hit, &log),
+    ENSURE_RESULT(hearth_world_cast_ray(NULL, v3(0, 0, 0), v3(1, 0, 0), &all, on_hit, &log),
                   HEARTH_ERROR_NULL_POINTER);
-    ENSURE_RESULT(hearth_world_cast_ray(w, vec3(0, 0, 0), vec3(1, 0, 0), NULL, on_hit, &log), HEARTH_ERROR_NULL_POINTER);
-    ENSURE_RESULT(hearth_world_cast_ray(w, vec3(0, 0, 0), vec3(1, 0, 0), &all, NULL, &log), HEARTH_ERROR_NULL_POINTER);
-    ENSURE_RESULT(hearth_world_cast_ray(w, vec3(-4, 5, 0), vec3(0, 0, 0), &all, on_hit, &log),
+    ENSURE_RESULT(hearth_world_cast_ray(w, v3(0, 0, 0), v3(1, 0, 0), NULL, on_hit, &log), HEARTH_ERROR_NULL_POINTER);
+    ENSURE_RESULT(hearth_world_cast_ray(w, v3(0, 0, 0), v3(1, 0, 0), &all, NULL, &log), HEARTH_ERROR_NULL_POINTER);
+    ENSURE_RESULT(hearth_world_cast_ray(w, v3(-4, 5, 0), v3(0, 0, 0), &all, on_hit, &log),
                   HEARTH_ERROR_INVALID_ARGUMENT);
     ENSURE(log.calls == 0);
     memset(hits, 0xA5, sizeof hits);
-    rays[1].translation = vec3(0, 0, 0);
+    rays[1].translation = v3(0, 0, 0);
     ENSURE_RESULT(hearth_world_cast_rays(w, rays, 3, &all, hits), HEARTH_ERROR_INVALID_ARGUMENT);
     char msg[256];
     hearth_last_error_message(msg, sizeof msg);
@@ -294,19 +260,19 @@ static HearthQueryShape sphere_query(float r) {
 static HearthTransform at(float x, float y, float z) {
     HearthTransform t;
     memset(&t, 0, sizeof t);
-    t.position = vec3(x, y, z);
+    t.position = v3(x, y, z);
     t.rotation.w = 1.0f;
     return t;
 }
 
 static void test_casts_and_overlaps(void) {
-    HearthWorld *w = make_world();
+    HearthWorld *w = new_world();
     HearthShapeDef sd = hearth_shape_def_default();
-    HearthBodyId ground = make_body(w, HEARTH_BODY_STATIC, vec3(0, 0, 0));
+    HearthBodyId ground = new_body(w, HEARTH_BODY_STATIC, v3(0, 0, 0), 1);
     HearthShapeId plane = add_plane(w, ground, &sd);
     HearthShapeId balls[3];
     for (int i = 0; i < 3; i++) {
-        HearthBodyId b = make_body(w, HEARTH_BODY_STATIC, vec3(2.0f * (float)i, 3, 0));
+        HearthBodyId b = new_body(w, HEARTH_BODY_STATIC, v3(2.0f * (float)i, 3, 0), 1);
         balls[i] = add_sphere(w, b, 0.5f, &sd);
     }
     HearthQueryFilter all = hearth_query_filter_default();
@@ -314,7 +280,7 @@ static void test_casts_and_overlaps(void) {
     HearthQueryShape q = sphere_query(0.5f);
     HearthTransform from = at(-3, 5, 0);
     HearthRayHit hit;
-    ENSURE_OK(hearth_world_cast_shape(w, &q, &from, vec3(0, -10, 0), &all, &hit));
+    ENSURE_OK(hearth_world_cast_shape(w, &q, &from, v3(0, -10, 0), &all, &hit));
     ENSURE(same_shape(hit.shape, plane));
     ENSURE_NEAR(hit.fraction, 0.45, 1e-6);
     ENSURE_NEAR(hit.normal.y, 1.0, 1e-6);
@@ -323,9 +289,9 @@ static void test_casts_and_overlaps(void) {
     memset(&box, 0, sizeof box);
     box.type = HEARTH_QUERY_SHAPE_BOX;
     box.box.rotation.w = 1.0f;
-    box.box.half_extents = vec3(0.3f, 0.3f, 0.3f);
+    box.box.half_extents = v3(0.3f, 0.3f, 0.3f);
     HearthTransform in_ball = at(2.2f, 3, 0);
-    ENSURE_OK(hearth_world_cast_shape(w, &box, &in_ball, vec3(0, 1, 0), &all, &hit));
+    ENSURE_OK(hearth_world_cast_shape(w, &box, &in_ball, v3(0, 1, 0), &all, &hit));
     ENSURE(same_shape(hit.shape, balls[1]) && hit.fraction == 0.0f);
 
     /* Overlaps: a sphere of radius 1.2 at (1, 3, 0) touches balls 0 and 1 (1.7 apart). */
@@ -344,42 +310,72 @@ static void test_casts_and_overlaps(void) {
     ENSURE((same_shape(ids[0], balls[0]) && same_shape(ids[1], balls[1])) ||
            (same_shape(ids[0], balls[1]) && same_shape(ids[1], balls[0])));
     /* A box query reaching into the plane and over ball 2's bounds. */
-    ENSURE_OK(hearth_world_overlap_aabb(w, vec3(3.6f, -1, -1), vec3(5, 3, 1), &all, ids, 4, &count));
+    ENSURE_OK(hearth_world_overlap_aabb(w, v3(3.6f, -1, -1), v3(5, 3, 1), &all, ids, 4, &count));
     ENSURE(count == 2 && same_shape(ids[0], plane) && same_shape(ids[1], balls[2]));
-    ENSURE_OK(hearth_world_overlap_aabb(w, vec3(3.6f, 1, -1), vec3(5, 3, 1), &all, NULL, 0, &count));
+    ENSURE_OK(hearth_world_overlap_aabb(w, v3(3.6f, 1, -1), v3(5, 3, 1), &all, NULL, 0, &count));
     ENSURE(count == 1);
     /* Points: inside ball 0; under the plane; nowhere. */
-    ENSURE_OK(hearth_world_overlap_point(w, vec3(0.1f, 3.2f, 0), &all, ids, 4, &count));
+    ENSURE_OK(hearth_world_overlap_point(w, v3(0.1f, 3.2f, 0), &all, ids, 4, &count));
     ENSURE(count == 1 && same_shape(ids[0], balls[0]));
-    ENSURE_OK(hearth_world_overlap_point(w, vec3(0, -1, 0), &all, ids, 4, &count));
+    ENSURE_OK(hearth_world_overlap_point(w, v3(0, -1, 0), &all, ids, 4, &count));
     ENSURE(count == 1 && same_shape(ids[0], plane));
-    ENSURE_OK(hearth_world_overlap_point(w, vec3(0, 10, 0), &all, NULL, 0, &count));
+    ENSURE_OK(hearth_world_overlap_point(w, v3(0, 10, 0), &all, NULL, 0, &count));
     ENSURE(count == 0);
+
+    /* Too small an array: as every bulk read (docs/API.md, the header preamble), all three
+     * overlaps return BUFFER_TOO_SMALL, name the array, and write nothing: neither the ids nor
+     * *out_count (the count comes from a capacity-0 call). */
+    HearthShapeId one[1];
+    char msg[256];
+    for (int kind = 0; kind < 2; kind++) {
+        memset(one, 0xA5, sizeof one);
+        needed = 77;
+        HearthResult r = kind == 0
+            ? hearth_world_overlap_shape(w, &big, &mid, &all, one, 1, &needed)
+            : hearth_world_overlap_aabb(w, v3(3.6f, -1, -1), v3(5, 3, 1), &all, one, 1, &needed);
+        ENSURE(r == HEARTH_ERROR_BUFFER_TOO_SMALL);
+        ENSURE(needed == 77 && untouched(one, sizeof one));
+        ENSURE(hearth_last_error_message(msg, sizeof msg) > 0 && strstr(msg, "out_shapes") != NULL);
+    }
+    /* A point under the plane and inside a second ball: two hits need two slots. */
+    HearthBodyId low = new_body(w, HEARTH_BODY_STATIC, v3(0, -0.2f, 0), 1);
+    HearthShapeId under = add_sphere(w, low, 0.5f, &sd);
+    memset(one, 0xA5, sizeof one);
+    needed = 77;
+    ENSURE_RESULT(hearth_world_overlap_point(w, v3(0, -0.1f, 0), &all, one, 1, &needed), HEARTH_ERROR_BUFFER_TOO_SMALL);
+    ENSURE(needed == 77 && untouched(one, sizeof one));
+    ENSURE(hearth_last_error_message(msg, sizeof msg) > 0 && strstr(msg, "out_shapes") != NULL);
+    ENSURE_OK(hearth_world_overlap_point(w, v3(0, -0.1f, 0), &all, NULL, 0, &needed));
+    ENSURE(needed == 2);
+    ENSURE_OK(hearth_world_overlap_point(w, v3(0, -0.1f, 0), &all, ids, 2, &count));
+    ENSURE(count == 2 && (same_shape(ids[0], under) || same_shape(ids[1], under)));
+    ENSURE_OK(hearth_shape_destroy(w, under));
+    ENSURE_OK(hearth_body_destroy(w, low));
 
     /* Errors: nothing written. */
     HearthRayHit out;
     memset(&out, 0xA5, sizeof out);
     HearthQueryShape bad = sphere_query(-1.0f);
-    ENSURE_RESULT(hearth_world_cast_shape(w, &bad, &from, vec3(0, -1, 0), &all, &out), HEARTH_ERROR_INVALID_ARGUMENT);
+    ENSURE_RESULT(hearth_world_cast_shape(w, &bad, &from, v3(0, -1, 0), &all, &out), HEARTH_ERROR_INVALID_ARGUMENT);
     bad = sphere_query(0.5f);
     bad.type = 9;
-    ENSURE_RESULT(hearth_world_cast_shape(w, &bad, &from, vec3(0, -1, 0), &all, &out), HEARTH_ERROR_INVALID_ARGUMENT);
+    ENSURE_RESULT(hearth_world_cast_shape(w, &bad, &from, v3(0, -1, 0), &all, &out), HEARTH_ERROR_INVALID_ARGUMENT);
     HearthQueryShape hull;
     memset(&hull, 0, sizeof hull);
     hull.type = HEARTH_QUERY_SHAPE_HULL;
     hull.hull.local.rotation.w = 1.0f;
     hull.hull.scale = 1.0f; /* a null hull id */
-    ENSURE_RESULT(hearth_world_cast_shape(w, &hull, &from, vec3(0, -1, 0), &all, &out), HEARTH_ERROR_INVALID_ID);
-    ENSURE_RESULT(hearth_world_cast_shape(w, &q, &from, vec3(0, 0, 0), &all, &out), HEARTH_ERROR_INVALID_ARGUMENT);
-    ENSURE_RESULT(hearth_world_cast_shape(w, &q, &from, vec3(NAN, 0, 0), &all, &out), HEARTH_ERROR_INVALID_ARGUMENT);
+    ENSURE_RESULT(hearth_world_cast_shape(w, &hull, &from, v3(0, -1, 0), &all, &out), HEARTH_ERROR_INVALID_ID);
+    ENSURE_RESULT(hearth_world_cast_shape(w, &q, &from, v3(0, 0, 0), &all, &out), HEARTH_ERROR_INVALID_ARGUMENT);
+    ENSURE_RESULT(hearth_world_cast_shape(w, &q, &from, v3(NAN, 0, 0), &all, &out), HEARTH_ERROR_INVALID_ARGUMENT);
     HearthTransform broken = from;
     broken.rotation.w = 0.0f;
-    ENSURE_RESULT(hearth_world_cast_shape(w, &q, &broken, vec3(0, -1, 0), &all, &out), HEARTH_ERROR_INVALID_ARGUMENT);
-    ENSURE_RESULT(hearth_world_cast_shape(NULL, &q, &from, vec3(0, -1, 0), &all, &out), HEARTH_ERROR_NULL_POINTER);
-    ENSURE_RESULT(hearth_world_cast_shape(w, NULL, &from, vec3(0, -1, 0), &all, &out), HEARTH_ERROR_NULL_POINTER);
-    ENSURE_RESULT(hearth_world_cast_shape(w, &q, NULL, vec3(0, -1, 0), &all, &out), HEARTH_ERROR_NULL_POINTER);
-    ENSURE_RESULT(hearth_world_cast_shape(w, &q, &from, vec3(0, -1, 0), NULL, &out), HEARTH_ERROR_NULL_POINTER);
-    ENSURE_RESULT(hearth_world_cast_shape(w, &q, &from, vec3(0, -1, 0), &all, NULL), HEARTH_ERROR_NULL_POINTER);
+    ENSURE_RESULT(hearth_world_cast_shape(w, &q, &broken, v3(0, -1, 0), &all, &out), HEARTH_ERROR_INVALID_ARGUMENT);
+    ENSURE_RESULT(hearth_world_cast_shape(NULL, &q, &from, v3(0, -1, 0), &all, &out), HEARTH_ERROR_NULL_POINTER);
+    ENSURE_RESULT(hearth_world_cast_shape(w, NULL, &from, v3(0, -1, 0), &all, &out), HEARTH_ERROR_NULL_POINTER);
+    ENSURE_RESULT(hearth_world_cast_shape(w, &q, NULL, v3(0, -1, 0), &all, &out), HEARTH_ERROR_NULL_POINTER);
+    ENSURE_RESULT(hearth_world_cast_shape(w, &q, &from, v3(0, -1, 0), NULL, &out), HEARTH_ERROR_NULL_POINTER);
+    ENSURE_RESULT(hearth_world_cast_shape(w, &q, &from, v3(0, -1, 0), &all, NULL), HEARTH_ERROR_NULL_POINTER);
     ENSURE(untouched(&out, sizeof out));
     memset(ids, 0xA5, sizeof ids);
     size_t n = 0xA5A5;
@@ -390,18 +386,18 @@ static void test_casts_and_overlaps(void) {
     ENSURE_RESULT(hearth_world_overlap_shape(w, &hull, &mid, &all, ids, 4, &n), HEARTH_ERROR_INVALID_ID);
     ENSURE_RESULT(hearth_world_overlap_shape(NULL, &big, &mid, &all, ids, 4, &n), HEARTH_ERROR_NULL_POINTER);
     ENSURE_RESULT(hearth_world_overlap_shape(w, &big, &mid, NULL, ids, 4, &n), HEARTH_ERROR_NULL_POINTER);
-    ENSURE_RESULT(hearth_world_overlap_aabb(w, vec3(1, 1, 1), vec3(0, 0, 0), &all, ids, 4, &n),
+    ENSURE_RESULT(hearth_world_overlap_aabb(w, v3(1, 1, 1), v3(0, 0, 0), &all, ids, 4, &n),
                   HEARTH_ERROR_INVALID_ARGUMENT);
-    ENSURE_RESULT(hearth_world_overlap_aabb(w, vec3(NAN, 1, 1), vec3(2, 2, 2), &all, ids, 4, &n),
+    ENSURE_RESULT(hearth_world_overlap_aabb(w, v3(NAN, 1, 1), v3(2, 2, 2), &all, ids, 4, &n),
                   HEARTH_ERROR_INVALID_ARGUMENT);
-    ENSURE_RESULT(hearth_world_overlap_aabb(w, vec3(0, 0, 0), vec3(1, 1, 1), NULL, ids, 4, &n),
+    ENSURE_RESULT(hearth_world_overlap_aabb(w, v3(0, 0, 0), v3(1, 1, 1), NULL, ids, 4, &n),
                   HEARTH_ERROR_NULL_POINTER);
-    ENSURE_RESULT(hearth_world_overlap_aabb(NULL, vec3(0, 0, 0), vec3(1, 1, 1), &all, ids, 4, &n),
+    ENSURE_RESULT(hearth_world_overlap_aabb(NULL, v3(0, 0, 0), v3(1, 1, 1), &all, ids, 4, &n),
                   HEARTH_ERROR_NULL_POINTER);
-    ENSURE_RESULT(hearth_world_overlap_point(w, vec3(INFINITY, 0, 0), &all, ids, 4, &n), HEARTH_ERROR_INVALID_ARGUMENT);
-    ENSURE_RESULT(hearth_world_overlap_point(w, vec3(0, 0, 0), NULL, ids, 4, &n), HEARTH_ERROR_NULL_POINTER);
-    ENSURE_RESULT(hearth_world_overlap_point(NULL, vec3(0, 0, 0), &all, ids, 4, &n), HEARTH_ERROR_NULL_POINTER);
-    ENSURE_RESULT(hearth_world_overlap_point(w, vec3(0, -1, 0), &all, ids, 4, NULL), HEARTH_ERROR_NULL_POINTER);
+    ENSURE_RESULT(hearth_world_overlap_point(w, v3(INFINITY, 0, 0), &all, ids, 4, &n), HEARTH_ERROR_INVALID_ARGUMENT);
+    ENSURE_RESULT(hearth_world_overlap_point(w, v3(0, 0, 0), NULL, ids, 4, &n), HEARTH_ERROR_NULL_POINTER);
+    ENSURE_RESULT(hearth_world_overlap_point(NULL, v3(0, 0, 0), &all, ids, 4, &n), HEARTH_ERROR_NULL_POINTER);
+    ENSURE_RESULT(hearth_world_overlap_point(w, v3(0, -1, 0), &all, ids, 4, NULL), HEARTH_ERROR_NULL_POINTER);
     ENSURE(untouched(ids, sizeof ids) && n == 0xA5A5);
     hearth_world_destroy(w);
 }

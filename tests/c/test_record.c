@@ -8,34 +8,6 @@
 #include <stdint.h>
 #include <stdlib.h>
 
-static HearthBodyId add_ball(HearthWorld *w, float y) {
-    HearthBodyDef bd = hearth_body_def_default();
-    bd.type = HEARTH_BODY_DYNAMIC;
-    bd.transform.position.y = y;
-    bd.user_data = 42;
-    HearthBodyId b = {0, 0};
-    ENSURE_OK(hearth_body_create(w, &bd, &b));
-    HearthShapeDef sd = hearth_shape_def_default();
-    HearthSphere s = {{0, 0, 0}, 0.5f};
-    HearthShapeId sh = {0, 0};
-    ENSURE_OK(hearth_shape_create_sphere(w, b, &sd, &s, &sh));
-    return b;
-}
-
-static HearthWorld *make_world(void) {
-    HearthWorldDef wd = hearth_world_def_default();
-    HearthWorld *w = NULL;
-    ENSURE_OK(hearth_world_create(&wd, &w));
-    HearthBodyDef gd = hearth_body_def_default();
-    HearthBodyId g = {0, 0};
-    ENSURE_OK(hearth_body_create(w, &gd, &g));
-    HearthShapeDef sd = hearth_shape_def_default();
-    HearthPlane p = {{0, 1, 0}, 0};
-    HearthShapeId sh = {0, 0};
-    ENSURE_OK(hearth_shape_create_plane(w, g, &sd, &p, &sh));
-    return w;
-}
-
 /* A growable byte buffer the write callback appends to. */
 typedef struct {
     uint8_t *data;
@@ -95,8 +67,8 @@ static long file_size(const char *path) {
 }
 
 static void test_file(const char *path) {
-    HearthWorld *w = make_world();
-    add_ball(w, 3.0f);
+    HearthWorld *w = new_world_on_ground();
+    add_ball(w, 0, 3.0f, 42);
     HearthRecordDef def = hearth_record_def_default();
     ENSURE(def.record_contacts == 0 && def.write == NULL && def.user_data == NULL);
     def.record_contacts = 1;
@@ -134,7 +106,7 @@ static void test_file(const char *path) {
 }
 
 static void test_errors(const char *path) {
-    HearthWorld *w = make_world();
+    HearthWorld *w = new_world_on_ground();
     HearthRecordDef def = hearth_record_def_default();
     ENSURE_RESULT(hearth_world_record_start_file(NULL, path, &def), HEARTH_ERROR_NULL_POINTER);
     ENSURE(message_contains("world"));
@@ -171,8 +143,8 @@ static void test_errors(const char *path) {
 }
 
 static void test_callback(void) {
-    HearthWorld *w = make_world();
-    HearthBodyId ball = add_ball(w, 3.0f);
+    HearthWorld *w = new_world_on_ground();
+    HearthBodyId ball = add_ball(w, 0, 3.0f, 42);
     Sink sink;
     memset(&sink, 0, sizeof sink);
     HearthRecordDef def = hearth_record_def_default();

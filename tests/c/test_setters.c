@@ -10,35 +10,10 @@
 
 #include <math.h>
 
-static HearthVec3 vec(float x, float y, float z) {
-    HearthVec3 v;
-    v.x = x;
-    v.y = y;
-    v.z = z;
-    return v;
-}
-
-static HearthWorld *make_world(void) {
-    HearthWorldDef def = hearth_world_def_default();
-    HearthWorld *w = NULL;
-    ENSURE_OK(hearth_world_create(&def, &w));
-    return w;
-}
-
-static HearthBodyId make_body(HearthWorld *w, uint32_t type, HearthVec3 p) {
-    HearthBodyDef def = hearth_body_def_default();
-    def.type = type;
-    def.transform.position = p;
-    def.allow_sleep = 0;
-    HearthBodyId b;
-    ENSURE_OK(hearth_body_create(w, &def, &b));
-    return b;
-}
-
 static HearthShapeId make_box(HearthWorld *w, HearthBodyId b, HearthVec3 half) {
     HearthShapeDef def = hearth_shape_def_default();
     HearthBox box;
-    box.center = vec(0, 0, 0);
+    box.center = v3(0, 0, 0);
     box.rotation.x = box.rotation.y = box.rotation.z = 0;
     box.rotation.w = 1;
     box.half_extents = half;
@@ -54,9 +29,9 @@ static float body_y(HearthWorld *w, HearthBodyId b) {
 }
 
 static void test_shape_material(void) {
-    HearthWorld *w = make_world();
-    HearthBodyId b = make_body(w, HEARTH_BODY_DYNAMIC, vec(0, 5, 0));
-    HearthShapeId s = make_box(w, b, vec(0.5f, 0.25f, 1.0f));
+    HearthWorld *w = new_world();
+    HearthBodyId b = new_body(w, HEARTH_BODY_DYNAMIC, v3(0, 5, 0), 0);
+    HearthShapeId s = make_box(w, b, v3(0.5f, 0.25f, 1.0f));
     float m0, m1, x = -1, y = -1;
     ENSURE_OK(hearth_body_get_mass(w, b, &m0));
     ENSURE_OK(hearth_shape_set_density(w, s, 2000.0f));
@@ -117,9 +92,9 @@ static void test_shape_material(void) {
 }
 
 static void test_gravity_scale_and_mass_data(void) {
-    HearthWorld *w = make_world();
-    HearthBodyId b = make_body(w, HEARTH_BODY_DYNAMIC, vec(0, 5, 0));
-    make_box(w, b, vec(0.5f, 0.5f, 0.5f));
+    HearthWorld *w = new_world();
+    HearthBodyId b = new_body(w, HEARTH_BODY_DYNAMIC, v3(0, 5, 0), 0);
+    make_box(w, b, v3(0.5f, 0.5f, 0.5f));
     float g = -1;
     ENSURE_OK(hearth_body_get_gravity_scale(w, b, &g));
     ENSURE(g == 1.0f);
@@ -137,13 +112,13 @@ static void test_gravity_scale_and_mass_data(void) {
 
     HearthMassData d;
     d.mass = 4.0f;
-    d.center = vec(0, 0, 0);
-    d.inertia = vec(2, 4, 8);
+    d.center = v3(0, 0, 0);
+    d.inertia = v3(2, 4, 8);
     ENSURE_OK(hearth_body_set_mass_data(w, b, &d));
     HearthMassData r;
     ENSURE_OK(hearth_body_get_mass_data(w, b, &r));
     ENSURE(r.mass == 4.0f && r.inertia.x == 2.0f && r.inertia.y == 4.0f && r.inertia.z == 8.0f);
-    ENSURE_OK(hearth_body_apply_linear_impulse(w, b, vec(2, 0, 0)));
+    ENSURE_OK(hearth_body_apply_linear_impulse(w, b, v3(2, 0, 0)));
     HearthVec3 v;
     ENSURE_OK(hearth_body_get_linear_velocity(w, b, &v));
     ENSURE(v.x == 0.5f);
@@ -178,14 +153,14 @@ static void test_gravity_scale_and_mass_data(void) {
 }
 
 static void test_locked_axes(void) {
-    HearthWorld *w = make_world();
-    HearthBodyId b = make_body(w, HEARTH_BODY_DYNAMIC, vec(0, 5, 0));
-    make_box(w, b, vec(0.5f, 0.5f, 0.5f));
+    HearthWorld *w = new_world();
+    HearthBodyId b = new_body(w, HEARTH_BODY_DYNAMIC, v3(0, 5, 0), 0);
+    make_box(w, b, v3(0.5f, 0.5f, 0.5f));
     uint32_t bits = 99;
     ENSURE_OK(hearth_body_get_locked_axes(w, b, &bits));
     ENSURE(bits == 0);
-    ENSURE_OK(hearth_body_set_linear_velocity(w, b, vec(1, 2, 3)));
-    ENSURE_OK(hearth_body_set_angular_velocity(w, b, vec(4, 5, 6)));
+    ENSURE_OK(hearth_body_set_linear_velocity(w, b, v3(1, 2, 3)));
+    ENSURE_OK(hearth_body_set_angular_velocity(w, b, v3(4, 5, 6)));
     /* 2.5D: the XY plane, turning about Z only. The locked components are zero at once. */
     uint32_t planar = HEARTH_LOCK_LINEAR_Z | HEARTH_LOCK_ANGULAR_X | HEARTH_LOCK_ANGULAR_Y;
     ENSURE_OK(hearth_body_set_locked_axes(w, b, planar));
@@ -196,7 +171,7 @@ static void test_locked_axes(void) {
     ENSURE_OK(hearth_body_get_angular_velocity(w, b, &av));
     ENSURE(v.x == 1.0f && v.y == 2.0f && v.z == 0.0f && av.x == 0.0f && av.y == 0.0f && av.z == 6.0f);
     /* Gravity and an off-centre impulse out of the plane leave the locked axes at exactly zero. */
-    ENSURE_OK(hearth_body_apply_impulse_at_point(w, b, vec(100, 200, 3000), vec(0.3f, 5.4f, 0.2f)));
+    ENSURE_OK(hearth_body_apply_impulse_at_point(w, b, v3(100, 200, 3000), v3(0.3f, 5.4f, 0.2f)));
     HearthTransform t0;
     ENSURE_OK(hearth_body_get_transform(w, b, &t0));
     for (int i = 0; i < 60; i++) ENSURE_OK(hearth_world_step(w, 1.0f / 60.0f));
@@ -231,18 +206,18 @@ static void test_locked_axes(void) {
 }
 
 static void test_type_and_enable(void) {
-    HearthWorld *w = make_world();
-    HearthBodyId ground = make_body(w, HEARTH_BODY_STATIC, vec(0, 0, 0));
+    HearthWorld *w = new_world();
+    HearthBodyId ground = new_body(w, HEARTH_BODY_STATIC, v3(0, 0, 0), 0);
     HearthShapeDef sd = hearth_shape_def_default();
     HearthPlane plane;
-    plane.normal = vec(0, 1, 0);
+    plane.normal = v3(0, 1, 0);
     plane.offset = 0;
     HearthShapeId ps;
     ENSURE_OK(hearth_shape_create_plane(w, ground, &sd, &plane, &ps));
-    HearthBodyId shelf = make_body(w, HEARTH_BODY_STATIC, vec(0, 3, 0));
-    make_box(w, shelf, vec(2, 0.25f, 2));
-    HearthBodyId b = make_body(w, HEARTH_BODY_DYNAMIC, vec(0, 3.75f, 0));
-    make_box(w, b, vec(0.5f, 0.5f, 0.5f));
+    HearthBodyId shelf = new_body(w, HEARTH_BODY_STATIC, v3(0, 3, 0), 0);
+    make_box(w, shelf, v3(2, 0.25f, 2));
+    HearthBodyId b = new_body(w, HEARTH_BODY_DYNAMIC, v3(0, 3.75f, 0), 0);
+    make_box(w, b, v3(0.5f, 0.5f, 0.5f));
     for (int i = 0; i < 60; i++) ENSURE_OK(hearth_world_step(w, 1.0f / 60.0f));
     ENSURE_NEAR(body_y(w, b), 3.75f, 0.01f);
 

@@ -8,34 +8,6 @@
 #include <stdint.h>
 #include <stdlib.h>
 
-static HearthBodyId add_ball(HearthWorld *w, float x, float y) {
-    HearthBodyDef bd = hearth_body_def_default();
-    bd.type = HEARTH_BODY_DYNAMIC;
-    bd.transform.position.x = x;
-    bd.transform.position.y = y;
-    HearthBodyId b = {0, 0};
-    ENSURE_OK(hearth_body_create(w, &bd, &b));
-    HearthShapeDef sd = hearth_shape_def_default();
-    HearthSphere s = {{0, 0, 0}, 0.5f};
-    HearthShapeId sh = {0, 0};
-    ENSURE_OK(hearth_shape_create_sphere(w, b, &sd, &s, &sh));
-    return b;
-}
-
-static HearthWorld *make_world(void) {
-    HearthWorldDef wd = hearth_world_def_default();
-    HearthWorld *w = NULL;
-    ENSURE_OK(hearth_world_create(&wd, &w));
-    HearthBodyDef gd = hearth_body_def_default();
-    HearthBodyId g = {0, 0};
-    ENSURE_OK(hearth_body_create(w, &gd, &g));
-    HearthShapeDef sd = hearth_shape_def_default();
-    HearthPlane p = {{0, 1, 0}, 0};
-    HearthShapeId sh = {0, 0};
-    ENSURE_OK(hearth_shape_create_plane(w, g, &sd, &p, &sh));
-    return w;
-}
-
 /* The world's snapshot in a malloc'd buffer (the caller frees it). */
 static uint8_t *save(const HearthWorld *w, size_t *out_size) {
     size_t size = 0, written = 0;
@@ -79,8 +51,8 @@ static void no_contacts(void *user_data, HearthWorld *world, const HearthGenerat
 /* User generators: kept in the same world; in a fresh one listed as missing, skipped by the
  * step, and set again by the host. */
 static void user_generators(void) {
-    HearthWorld *w = make_world();
-    add_ball(w, 0, 2);
+    HearthWorld *w = new_world_on_ground();
+    add_ball(w, 0, 2, 0);
     HearthUserForceGeneratorDef fd = hearth_user_force_generator_def_default();
     fd.callback = count_force;
     fd.user_data = &g_force_calls;
@@ -164,9 +136,9 @@ static void user_generators(void) {
 static int same_transform(HearthTransform a, HearthTransform b) { return memcmp(&a, &b, sizeof a) == 0; }
 
 int main(void) {
-    HearthWorld *w = make_world();
+    HearthWorld *w = new_world_on_ground();
     HearthBodyId balls[6];
-    for (int i = 0; i < 6; i++) balls[i] = add_ball(w, (float)i * 0.3f, 1.0f + 1.1f * (float)i);
+    for (int i = 0; i < 6; i++) balls[i] = add_ball(w, (float)i * 0.3f, 1.0f + 1.1f * (float)i, 0);
     for (int i = 0; i < 30; i++) ENSURE_OK(hearth_world_step(w, 1.0f / 60.0f));
 
     size_t size = 0;
@@ -180,12 +152,12 @@ int main(void) {
     for (int i = 0; i < 6; i++) ENSURE_OK(hearth_body_get_transform(w, balls[i], &first[i]));
     size_t after_size = 0;
     uint8_t *after = save(w, &after_size);
-    HearthBodyId extra = add_ball(w, 5, 5);
+    HearthBodyId extra = add_ball(w, 5, 5, 0);
     ENSURE_OK(hearth_world_snapshot_restore(w, snap, size));
     ENSURE(same_snapshot(w, snap, size)); /* save, restore, save: the same bytes */
     HearthTransform tmp;
     ENSURE_RESULT(hearth_body_get_transform(w, extra, &tmp), HEARTH_ERROR_INVALID_ID);
-    HearthBodyId extra_again = add_ball(w, 5, 5);
+    HearthBodyId extra_again = add_ball(w, 5, 5, 0);
     ENSURE(extra_again.index == extra.index && extra_again.generation == extra.generation);
     ENSURE_OK(hearth_body_destroy(w, extra_again));
     ENSURE_OK(hearth_world_snapshot_restore(w, snap, size));

@@ -98,13 +98,9 @@ static void never_finish(void *user_task, void *user) {
 /* ------------------------------------------------------------ the scene */
 /* 400 bodies, spheres and boxes alternating, dropped in a 20 x 20 grid onto a plane. */
 static void build(HearthWorld *w) {
-    HearthBodyDef gd = hearth_body_def_default();
-    HearthBodyId g = {0, 0};
-    ENSURE_OK(hearth_body_create(w, &gd, &g));
+    new_ground(w);
     HearthShapeDef sd = hearth_shape_def_default();
-    HearthPlane p = {{0, 1, 0}, 0};
     HearthShapeId sh = {0, 0};
-    ENSURE_OK(hearth_shape_create_plane(w, g, &sd, &p, &sh));
     for (int i = 0; i < 400; i++) {
         HearthBodyDef bd = hearth_body_def_default();
         bd.type = HEARTH_BODY_DYNAMIC;
