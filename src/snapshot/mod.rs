@@ -19,6 +19,7 @@
 //!   there with the same id and kind); anywhere else the generator comes back without one and
 //!   the host re-registers it (`World::user_generators_missing_callbacks`).
 
+mod check;
 mod read;
 mod types;
 mod write;

@@ -74,9 +74,9 @@ pub fn restore(world: &mut World, bytes: &[u8]) -> Result<(), SnapshotError> {
     let geometry = get_section(r, GEOMETRY, Snap::get)?;
     let bodies = get_section(r, BODIES, Snap::get)?;
     let shapes = get_section(r, SHAPES, Snap::get)?;
-    let (contacts, awake_contacts) = get_section(r, CONTACTS, |r| Ok((Snap::get(r)?, Snap::get(r)?)))?;
+    let (contacts, awake_contacts): (_, Vec<u32>) = get_section(r, CONTACTS, |r| Ok((Snap::get(r)?, Snap::get(r)?)))?;
     let broad = get_section(r, BROAD_PHASE, Snap::get)?;
-    let (awake_bodies, islands, counters) =
+    let (awake_bodies, islands, counters): (Vec<u32>, _, _) =
         get_section(r, SLEEP, |r| Ok((Snap::get(r)?, Snap::get(r)?, Snap::get(r)?)))?;
     let mut generators: crate::pool::Pool<crate::generators::Generator> = get_section(r, GENERATORS, Snap::get)?;
     let particles = get_section(r, PARTICLES, Snap::get)?;
@@ -89,6 +89,21 @@ pub fn restore(world: &mut World, bytes: &[u8]) -> Result<(), SnapshotError> {
             r.remaining()
         ));
     }
+
+    super::check::check(&super::check::Decoded {
+        geometry: &geometry,
+        bodies: &bodies,
+        shapes: &shapes,
+        contacts: &contacts,
+        awake_contacts: &awake_contacts,
+        broad: &broad,
+        awake_bodies: &awake_bodies,
+        islands: &islands,
+        generators: &generators,
+        particles: &particles,
+        joints: &joints,
+        soft_bodies: &soft_bodies,
+    })?;
 
     // User generators: keep the callback the target world's generator of the same id and
     // kind has now; others stay without one until the host sets it.

@@ -600,6 +600,73 @@ impl DynamicTree {
     // ---------------------------------------------------------------------------------
     // Validation
 
+    /// The leaf `proxy`'s user data when `proxy` is a leaf of this tree.
+    pub(crate) fn leaf_user_data(&self, proxy: u32) -> Option<u32> {
+        let n = self.nodes.get(proxy as usize)?;
+        n.is_leaf().then_some(n.user_data)
+    }
+
+    /// Checks the structure a restored snapshot brings (no panic, O(n)): every index in
+    /// range, parent and child links agreeing, heights, counts and the free list, so that
+    /// no later traversal can index out of range or loop. Boxes are not compared (their
+    /// values do not make an index go wrong).
+    pub(crate) fn check(&self) -> Result<(), String> {
+        let n = self.nodes.len();
+        let node = |i: u32, what: &str| {
+            self.nodes
+                .get(i as usize)
+                .ok_or_else(|| format!("tree {what} {i} out of range ({n} nodes)"))
+        };
+        let mut seen = vec![false; n];
+        let (mut reached, mut leaves) = (0u32, 0u32);
+        if self.root != NULL_NODE {
+            if node(self.root, "root")?.parent != NULL_NODE {
+                return Err("tree root has a parent".into());
+            }
+            let mut stack = vec![self.root];
+            while let Some(i) = stack.pop() {
+                let nd = node(i, "node")?;
+                if std::mem::replace(&mut seen[i as usize], true) {
+                    return Err(format!("tree node {i} reached twice"));
+                }
+                reached += 1;
+                if nd.height < 0 {
+                    return Err(format!("tree node {i} is free but linked"));
+                }
+                if nd.is_leaf() {
+                    leaves += 1;
+                    if nd.child1 != NULL_NODE || nd.child2 != NULL_NODE {
+                        return Err(format!("tree leaf {i} has children"));
+                    }
+                    continue;
+                }
+                let (a, b) = (node(nd.child1, "child")?, node(nd.child2, "child")?);
+                if a.parent != i || b.parent != i || nd.height != 1 + a.height.max(b.height) {
+                    return Err(format!("tree node {i}: children's links or height disagree"));
+                }
+                stack.push(nd.child1);
+                stack.push(nd.child2);
+            }
+        }
+        if leaves != self.proxy_count || reached != self.node_count {
+            return Err("tree counts disagree with its nodes".into());
+        }
+        let mut free = 0usize;
+        let mut i = self.free_list;
+        while i != NULL_NODE {
+            let nd = node(i, "free node")?;
+            if nd.height != -1 || std::mem::replace(&mut seen[i as usize], true) {
+                return Err(format!("tree free list: node {i} in use or listed twice"));
+            }
+            free += 1;
+            i = nd.parent;
+        }
+        if free + self.node_count as usize != n {
+            return Err("tree nodes neither linked nor free".into());
+        }
+        Ok(())
+    }
+
     /// Checks the structure (panics on failure): parent links, heights, boxes containing
     /// their children, leaf count, free list. O(n); meant for tests and debugging.
     pub fn validate(&self) {
