@@ -279,6 +279,11 @@ impl<T> Pool<T> {
             .filter_map(move |(i, s)| s.value.as_ref().map(|v| (self.handle(i as u32, s.counter), v)))
     }
 
+    /// Live objects in slot order, mutably.
+    pub(crate) fn values_mut(&mut self) -> impl Iterator<Item = &mut T> {
+        self.slots.iter_mut().filter_map(|s| s.value.as_mut())
+    }
+
     /// Two distinct live objects mutably at once.
     pub fn pair_mut(&mut self, a: u32, b: u32) -> (&mut T, &mut T) {
         assert!(a != b);
@@ -332,13 +337,13 @@ impl<T: crate::snapshot::Snap> crate::snapshot::Snap for Pool<T> {
             len,
         } = self;
         first_counter.put(w);
-        slots.len().put(w);
+        w.put_len(slots.len());
         for Slot { counter, value } in slots {
-            counter.put(w);
+            w.within("#counter", |w| counter.put(w));
             value.put(w);
         }
-        free.put(w);
-        len.put(w);
+        w.within("#free", |w| free.put(w));
+        w.put_len(*len);
     }
     fn get(r: &mut crate::snapshot::Reader) -> crate::snapshot::ReadResult<Self> {
         use crate::snapshot::bad;
@@ -347,7 +352,7 @@ impl<T: crate::snapshot::Snap> crate::snapshot::Snap for Pool<T> {
         let mut slots = Vec::with_capacity(n);
         let mut live = 0;
         for _ in 0..n {
-            let counter = u32::get(r)?;
+            let counter = r.within("#counter", u32::get)?;
             if counter == 0 || counter > COUNTER_MASK {
                 return bad(format!("snapshot corrupted: slot counter {counter} out of range"));
             }
@@ -355,8 +360,8 @@ impl<T: crate::snapshot::Snap> crate::snapshot::Snap for Pool<T> {
             live += value.is_some() as usize;
             slots.push(Slot { counter, value });
         }
-        let free = Vec::<u32>::get(r)?;
-        let len = usize::get(r)?;
+        let free = r.within("#free", Vec::<u32>::get)?;
+        let len = r.within("#len", usize::get)?;
         if len != live
             || first_counter == 0
             || first_counter > COUNTER_MASK

@@ -88,3 +88,10 @@ impl Aabb {
         0.5 * (self.max - self.min)
     }
 }
+
+/// The empty box (a snapshot's placeholder for boxes rebuilt after decoding).
+impl Default for Aabb {
+    fn default() -> Self {
+        Aabb::EMPTY
+    }
+}

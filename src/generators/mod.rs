@@ -272,6 +272,15 @@ impl Attachments {
         &self.list
     }
 
+    /// Every slot maps to its place in the list and back (a restored snapshot's check).
+    pub(crate) fn consistent(&self) -> bool {
+        self.by_slot.len() == self.list.len()
+            && self
+                .by_slot
+                .iter()
+                .all(|(&slot, &pos)| matches!(self.list.get(pos as usize), Some(h) if h.index == slot))
+    }
+
     /// Adds `h`; false if it is already attached.
     fn insert(&mut self, h: Handle) -> bool {
         if let Some(&pos) = self.by_slot.get(&h.index) {

@@ -6,11 +6,13 @@
 //!   `get` reads it back. Structs use [`snap_struct!`], which destructures the struct
 //!   *exhaustively* in `put` (`let Body { a, b, .. }` is never written), so a field added to a
 //!   stored struct later fails to compile until it is listed here, either stored or named as
-//!   `skip` (rebuilt on restore: scratch that every step rewrites before reading it).
-//! * `write.rs` frames the payload (magic, version, length, FNV-1a 64 checksum) and writes
-//!   the world section by section; `read.rs` checks the frame, decodes every section into a
-//!   new world state and only then swaps it into the target world, so a failing restore
-//!   changes nothing.
+//!   `skip` (scratch that every step rewrites before reading it, or a value `predicted.rs`
+//!   stores after the pool only where it differs from what the reader rebuilds).
+//! * `write.rs` writes the world section by section into columns (`columns.rs`: one column
+//!   per field path, byte planes), compresses them with DEFLATE and frames them (magic,
+//!   version, length, checksum); `read.rs` checks the frame, inflates, decodes every section
+//!   into a new world state, checks its cross-references (`check.rs`) and only then swaps it
+//!   into the target world, so a failing restore changes nothing.
 //! * Ids keep their slot index and reuse counter; the world tag in their top bits is the
 //!   target world's. Restored into the same world, every id the host holds stays valid and
 //!   ids created afterwards equal those the original created after the same calls.
@@ -19,17 +21,20 @@
 //!   there with the same id and kind); anywhere else the generator comes back without one and
 //!   the host re-registers it (`World::user_generators_missing_callbacks`).
 
+mod check;
+mod columns;
+mod predicted;
 mod read;
 mod types;
 mod write;
 
 pub use read::restore;
-pub use write::{save, saved_size};
+pub use write::{column_sizes, save, saved_size};
 
 /// First eight bytes of every snapshot.
 pub const MAGIC: [u8; 8] = *b"HEARTHSS";
 /// Format version; a snapshot of another version is refused.
-pub const VERSION: u32 = 1;
+pub const VERSION: u32 = 2;
 /// Bytes before the payload: magic, version, payload length (u64), checksum (u64).
 pub const HEADER_LEN: usize = 8 + 4 + 8 + 8;
 
@@ -43,102 +48,53 @@ pub(crate) fn bad<T>(msg: impl Into<String>) -> ReadResult<T> {
     Err(SnapshotError(msg.into()))
 }
 
-/// The checksum: FNV-1a 64 taken over the payload's 8-byte little-endian words (then its
-/// last bytes one at a time): eight times fewer multiplications than byte-wise FNV-1a. Each
-/// step `h = (h ^ word) · prime` is a bijection of `h`, so any change of one word (one byte,
-/// one bit) changes the result.
-pub fn fnv1a64(bytes: &[u8]) -> u64 {
+/// The checksum: over the payload's 8-byte little-endian words (the last one padded with
+/// zeros), then its length, each step `h = m((h ^ word) · P)` with `P` the FNV-1a 64 prime
+/// and `m(y) = y ^ (y >> 29)`. Both `x ↦ x · P` (P odd) and `m` are bijections, so each step
+/// is a bijection of `h` and any change of one word (one byte, one bit) changes the result;
+/// the shift carries a word's high bits down into the low ones, which the product alone
+/// never does (plain FNV-1a over words misses two flips of the same high bit in two words).
+pub fn checksum64(bytes: &[u8]) -> u64 {
     const PRIME: u64 = 0x0000_0100_0000_01b3;
+    let step = |h: u64, w: u64| {
+        let y = (h ^ w).wrapping_mul(PRIME);
+        y ^ (y >> 29)
+    };
     let mut h: u64 = 0xcbf2_9ce4_8422_2325;
     let mut words = bytes.chunks_exact(8);
     for w in &mut words {
-        h ^= u64::from_le_bytes(w.try_into().expect("8 bytes"));
-        h = h.wrapping_mul(PRIME);
+        h = step(h, u64::from_le_bytes(w.try_into().expect("8 bytes")));
     }
-    for &b in words.remainder() {
-        h ^= b as u64;
-        h = h.wrapping_mul(PRIME);
+    let rest = words.remainder();
+    if !rest.is_empty() {
+        let mut last = [0u8; 8];
+        last[..rest.len()].copy_from_slice(rest);
+        h = step(h, u64::from_le_bytes(last));
     }
-    h
+    step(h, bytes.len() as u64)
 }
 
-/// Appends little-endian values to a byte buffer (or only counts them).
-pub struct Writer<'a> {
-    out: Option<&'a mut Vec<u8>>,
-    len: usize,
-}
+pub use columns::{Reader, Writer};
 
-impl<'a> Writer<'a> {
-    pub fn new(out: &'a mut Vec<u8>) -> Writer<'a> {
-        Writer { out: Some(out), len: 0 }
-    }
-
-    /// A writer that only counts bytes.
-    pub fn counter() -> Writer<'static> {
-        Writer { out: None, len: 0 }
-    }
-
-    pub fn len(&self) -> usize {
-        self.len
-    }
-
-    pub fn is_empty(&self) -> bool {
-        self.len == 0
-    }
-
-    /// Overwrites bytes written earlier, `at` counted from this writer's start.
-    pub(crate) fn patch(&mut self, at: usize, b: &[u8]) {
-        if let Some(o) = self.out.as_mut() {
-            let start = o.len() - self.len + at;
-            o[start..start + b.len()].copy_from_slice(b);
-        }
-    }
-
-    #[inline(always)]
-    pub fn bytes(&mut self, b: &[u8]) {
-        self.len += b.len();
-        if let Some(o) = self.out.as_mut() {
-            o.extend_from_slice(b);
-        }
-    }
-}
-
-/// Reads little-endian values from a byte slice; every read past the end is an error.
-pub struct Reader<'a> {
-    data: &'a [u8],
-    at: usize,
-    /// The target world's tag, put into the top bits of every id read.
-    pub(crate) tag: u32,
-}
-
-impl<'a> Reader<'a> {
-    pub fn new(data: &'a [u8], tag: u32) -> Reader<'a> {
-        Reader { data, at: 0, tag }
-    }
-
+impl Writer {
+    /// Writes a count (of the elements that follow) into the current column's `#len`.
     #[inline]
-    pub fn take(&mut self, n: usize) -> ReadResult<&'a [u8]> {
-        if self.data.len() - self.at < n {
-            return bad(format!(
-                "snapshot truncated: {} bytes wanted at offset {}, {} left",
-                n,
-                self.at,
-                self.data.len() - self.at
-            ));
-        }
-        let s = &self.data[self.at..self.at + n];
-        self.at += n;
-        Ok(s)
+    pub fn put_len(&mut self, n: usize) {
+        self.within("#len", |w| (n as u64).put(w));
     }
 
-    pub fn remaining(&self) -> usize {
-        self.data.len() - self.at
+    /// Writes an enum's variant tag into the current column's `#tag`.
+    #[inline]
+    pub fn put_tag(&mut self, t: u8) {
+        self.within("#tag", |w| t.put(w));
     }
+}
 
+impl Reader<'_> {
     /// A count of elements that follow, each at least one byte: larger than what is left
     /// is an error (so a corrupted count cannot ask for a huge allocation).
     pub fn count(&mut self) -> ReadResult<usize> {
-        let n = u64::get(self)?;
+        let n = self.within("#len", u64::get)?;
         if n > self.remaining() as u64 {
             return bad(format!(
                 "snapshot corrupted: count {n} exceeds the {} bytes left",
@@ -146,6 +102,15 @@ impl<'a> Reader<'a> {
             ));
         }
         Ok(n as usize)
+    }
+
+    /// An enum's variant tag, below `n`.
+    pub fn tag(&mut self, what: &str, n: u8) -> ReadResult<u8> {
+        let t = self.within("#tag", u8::get)?;
+        if t >= n {
+            return bad(format!("snapshot corrupted: {what} variant {t} unknown"));
+        }
+        Ok(t)
     }
 }
 
@@ -166,11 +131,11 @@ macro_rules! snap_struct {
         impl $crate::snapshot::Snap for $t {
             fn put(&self, w: &mut $crate::snapshot::Writer) {
                 let $t { $($f,)* $($($s: _,)*)? } = self;
-                $( $crate::snapshot::Snap::put($f, w); )*
+                $( w.within(stringify!($f), |w| $crate::snapshot::Snap::put($f, w)); )*
             }
             fn get(r: &mut $crate::snapshot::Reader) -> $crate::snapshot::ReadResult<Self> {
                 Ok($t {
-                    $($f: $crate::snapshot::Snap::get(r)?,)*
+                    $($f: r.within(stringify!($f), $crate::snapshot::Snap::get)?,)*
                     $($($s: Default::default(),)*)?
                 })
             }
@@ -221,7 +186,7 @@ impl Snap for bool {
 
 impl<T: Snap> Snap for Vec<T> {
     fn put(&self, w: &mut Writer) {
-        self.len().put(w);
+        w.put_len(self.len());
         for x in self {
             x.put(w);
         }
@@ -238,16 +203,17 @@ impl<T: Snap> Snap for Vec<T> {
 
 impl<T: Snap> Snap for Option<T> {
     fn put(&self, w: &mut Writer) {
-        match self {
-            None => 0u8.put(w),
-            Some(x) => {
-                1u8.put(w);
-                x.put(w)
-            }
+        w.within("#some", |w| self.is_some().put(w));
+        if let Some(x) = self {
+            x.put(w)
         }
     }
     fn get(r: &mut Reader) -> ReadResult<Self> {
-        Ok(if bool::get(r)? { Some(T::get(r)?) } else { None })
+        Ok(if r.within("#some", bool::get)? {
+            Some(T::get(r)?)
+        } else {
+            None
+        })
     }
 }
 
@@ -290,18 +256,18 @@ impl<K: Snap + Ord + Copy + std::hash::Hash + Eq, V: Snap + Clone, S: std::hash:
     fn put(&self, w: &mut Writer) {
         let mut keys: Vec<K> = self.keys().copied().collect();
         keys.sort_unstable();
-        keys.len().put(w);
+        w.put_len(keys.len());
         for k in keys {
-            k.put(w);
-            self[&k].put(w);
+            w.within("#key", |w| k.put(w));
+            w.within("#value", |w| self[&k].put(w));
         }
     }
     fn get(r: &mut Reader) -> ReadResult<Self> {
         let n = r.count()?;
         let mut m = Self::with_capacity_and_hasher(n, S::default());
         for _ in 0..n {
-            let k = K::get(r)?;
-            let v = V::get(r)?;
+            let k = r.within("#key", K::get)?;
+            let v = r.within("#value", V::get)?;
             if m.insert(k, v).is_some() {
                 return bad("snapshot corrupted: a map key appears twice");
             }

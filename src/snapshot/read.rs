@@ -1,30 +1,24 @@
 //! Restoring: check the frame, decode every section into a new world state, and only then
 //! swap it into the target world, so a failing restore leaves the world as it was.
 
-use super::write::section;
-use super::{bad, fnv1a64, ReadResult, Reader, Snap, SnapshotError, HEADER_LEN, MAGIC, VERSION};
+use super::write::{section, NAMES};
+use super::{bad, checksum64, ReadResult, Reader, Snap, SnapshotError, HEADER_LEN, MAGIC, VERSION};
 use crate::generators::GeneratorDef;
 use crate::world::{World, WorldSettings};
 
-/// Reads the section `id`, which must come next, with `body`, which must read it exactly.
-fn get_section<T>(r: &mut Reader, id: u32, body: impl FnOnce(&mut Reader) -> ReadResult<T>) -> ReadResult<T> {
-    let got = u32::get(r)?;
-    if got != id {
-        return bad(format!("snapshot corrupted: section {got} where section {id} belongs"));
-    }
-    let len = u64::get(r)?;
-    if len > r.remaining() as u64 {
-        return bad(format!(
-            "snapshot truncated: section {id} is {len} bytes, {} left",
-            r.remaining()
-        ));
-    }
-    let before = r.remaining();
-    let v = body(r)?;
-    if (before - r.remaining()) as u64 != len {
-        return bad(format!("snapshot corrupted: section {id} is not {len} bytes long"));
-    }
-    Ok(v)
+/// Reads the section `id`, which must come next, with `body`.
+fn get_section<'a, T>(
+    r: &mut Reader<'a>,
+    id: u32,
+    body: impl FnOnce(&mut Reader<'a>) -> ReadResult<T>,
+) -> ReadResult<T> {
+    r.within(NAMES[id as usize - 1], |r| {
+        let got = u32::get(r)?;
+        if got != id {
+            return bad(format!("snapshot corrupted: section {got} where section {id} belongs"));
+        }
+        body(r)
+    })
 }
 
 /// Checks magic, version, length and checksum; returns the payload.
@@ -53,16 +47,41 @@ fn payload(bytes: &[u8]) -> ReadResult<&[u8]> {
             payload.len()
         ));
     }
-    if fnv1a64(payload) != sum {
+    if checksum64(payload) != sum {
         return bad("snapshot corrupted: checksum mismatch");
     }
     Ok(payload)
 }
 
+/// The payload's columns: its length before compression (`u64`, at most 1,032 times the
+/// compressed length, DEFLATE's largest ratio) and the DEFLATE stream, which must inflate
+/// to exactly that length.
+fn decompress(payload: &[u8]) -> ReadResult<Vec<u8>> {
+    if payload.len() < 8 {
+        return bad("snapshot corrupted: payload shorter than its length field");
+    }
+    let raw_len = u64::from_le_bytes(payload[..8].try_into().expect("8 bytes"));
+    let stream = &payload[8..];
+    if raw_len > 1032 * stream.len() as u64 + 16 {
+        return bad(format!(
+            "snapshot corrupted: {raw_len} bytes cannot come from a {}-byte stream",
+            stream.len()
+        ));
+    }
+    match miniz_oxide::inflate::decompress_to_vec_with_limit(stream, raw_len as usize) {
+        Ok(raw) if raw.len() as u64 == raw_len => Ok(raw),
+        _ => bad("snapshot corrupted: its compressed columns do not inflate to their length"),
+    }
+}
+
 /// Restores `world` from `bytes` (see the module docs of `snapshot`). On error the world is
 /// unchanged.
 pub fn restore(world: &mut World, bytes: &[u8]) -> Result<(), SnapshotError> {
-    let mut r = Reader::new(payload(bytes)?, world.tag());
+    let payload = payload(bytes)?;
+    let raw = decompress(payload)?;
+    let mut plain = Vec::new();
+    let spans = super::columns::unpack(&raw, &mut plain)?;
+    let mut r = Reader::new(&plain, &spans, world.tag());
     let r = &mut r;
     use section::*;
     let mut settings: WorldSettings = get_section(r, SETTINGS, Snap::get)?;
@@ -72,23 +91,61 @@ pub fn restore(world: &mut World, bytes: &[u8]) -> Result<(), SnapshotError> {
         .validate()
         .map_err(|e| SnapshotError(format!("snapshot corrupted: its world settings are invalid: {e}")))?;
     let geometry = get_section(r, GEOMETRY, Snap::get)?;
-    let bodies = get_section(r, BODIES, Snap::get)?;
-    let shapes = get_section(r, SHAPES, Snap::get)?;
-    let (contacts, awake_contacts) = get_section(r, CONTACTS, |r| Ok((Snap::get(r)?, Snap::get(r)?)))?;
-    let broad = get_section(r, BROAD_PHASE, Snap::get)?;
-    let (awake_bodies, islands, counters) =
-        get_section(r, SLEEP, |r| Ok((Snap::get(r)?, Snap::get(r)?, Snap::get(r)?)))?;
+    let bodies = get_section(r, BODIES, |r| {
+        let mut bodies = Snap::get(r)?;
+        r.within("rebuilt", |r| super::predicted::get_bodies(r, &mut bodies))?;
+        Ok(bodies)
+    })?;
+    let shapes = get_section(r, SHAPES, |r| {
+        let mut shapes = Snap::get(r)?;
+        r.within("rebuilt", |r| {
+            super::predicted::get_shapes(r, &mut shapes, &bodies, &geometry)
+        })?;
+        Ok(shapes)
+    })?;
+    let (contacts, awake_contacts): (_, Vec<u32>) =
+        get_section(r, CONTACTS, |r| Ok((Snap::get(r)?, r.within("awake", Snap::get)?)))?;
+    let broad = get_section(r, BROAD_PHASE, |r| {
+        Ok(crate::collision::broad_phase::BroadPhase {
+            tree: r.within("tree", |r| {
+                crate::collision::dynamic_tree::DynamicTree::get_snapshot(r, |s| super::write::leaf_box(&shapes, s))
+            })?,
+            move_buffer: r.within("move_buffer", Snap::get)?,
+            planes: r.within("planes", Snap::get)?,
+            pairs: r.within("pairs", Snap::get)?,
+            candidates: Vec::new(),
+        })
+    })?;
+    let (awake_bodies, islands, counters): (Vec<u32>, _, _) = get_section(r, SLEEP, |r| {
+        Ok((
+            r.within("awake", Snap::get)?,
+            r.within("islands", Snap::get)?,
+            r.within("counters", Snap::get)?,
+        ))
+    })?;
     let mut generators: crate::pool::Pool<crate::generators::Generator> = get_section(r, GENERATORS, Snap::get)?;
     let particles = get_section(r, PARTICLES, Snap::get)?;
     let joints = get_section(r, JOINTS, Snap::get)?;
     let soft_bodies = get_section(r, SOFT_BODIES, Snap::get)?;
-    let (pending_contact_end, pending_sensor_end) = get_section(r, EVENTS, |r| Ok((Snap::get(r)?, Snap::get(r)?)))?;
-    if r.remaining() != 0 {
-        return bad(format!(
-            "snapshot corrupted: {} bytes after the last section",
-            r.remaining()
-        ));
-    }
+    let (pending_contact_end, pending_sensor_end) = get_section(r, EVENTS, |r| {
+        Ok((r.within("contact_end", Snap::get)?, r.within("sensor_end", Snap::get)?))
+    })?;
+    r.finish()?;
+
+    super::check::check(&super::check::Decoded {
+        geometry: &geometry,
+        bodies: &bodies,
+        shapes: &shapes,
+        contacts: &contacts,
+        awake_contacts: &awake_contacts,
+        broad: &broad,
+        awake_bodies: &awake_bodies,
+        islands: &islands,
+        generators: &generators,
+        particles: &particles,
+        joints: &joints,
+        soft_bodies: &soft_bodies,
+    })?;
 
     // User generators: keep the callback the target world's generator of the same id and
     // kind has now; others stay without one until the host sets it.

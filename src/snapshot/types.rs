@@ -6,7 +6,6 @@
 
 use super::{bad, ReadResult, Reader, Snap, Writer};
 use crate::collision::aabb::Aabb;
-use crate::collision::broad_phase::BroadPhase;
 use crate::collision::contact::{Contact, FrictionImpulse, PointImpulse};
 use crate::collision::filter::Filter;
 use crate::collision::hull::{ConvexHull, EdgeGauss, Face, HalfEdge, Plane, VertexLanes};
@@ -74,7 +73,6 @@ snap_struct!(StepCounters {
 snap_struct!(Body {
     body_type,
     xf,
-    center,
     local_center,
     v,
     w,
@@ -102,10 +100,13 @@ snap_struct!(Body {
     kinematic_target,
     kinematic_stop,
     enable_move_events,
-    reported_xf,
     mass_override,
     enabled,
-    locked_axes,
+    locked_axes;
+    // Stored after the pool, only where they differ from what they are rebuilt as
+    // (`predicted.rs`).
+    skip center,
+    reported_xf,
 });
 snap_struct!(Aabb { min, max });
 snap_struct!(ShapeDef {
@@ -144,10 +145,12 @@ snap_struct!(Shape {
     geometry,
     def,
     proxy,
-    aabb,
-    fat_aabb,
     in_move_buffer,
-    extent,
+    extent;
+    // Stored after the pool, only where they differ from what they are rebuilt as
+    // (`predicted.rs`).
+    skip aabb,
+    fat_aabb,
 });
 snap_struct!(MassProperties { mass, center, inertia });
 snap_struct!(PointImpulse { normal });
@@ -185,13 +188,6 @@ snap_struct!(Contact {
     event_flags,
     reported,
     disabled,
-});
-snap_struct!(BroadPhase {
-    tree,
-    move_buffer,
-    planes,
-    pairs;
-    skip candidates
 });
 snap_struct!(Plane { normal, offset });
 snap_struct!(Face { first, count });
@@ -436,25 +432,16 @@ snap_struct!(SoftBodies { pool, live, scratch });
 
 // ------------------------------------------------------------------ enums
 
-/// An enum's variant tag.
-fn tag(r: &mut Reader, what: &str, n: u8) -> ReadResult<u8> {
-    let t = u8::get(r)?;
-    if t >= n {
-        return bad(format!("snapshot corrupted: {what} variant {t} unknown"));
-    }
-    Ok(t)
-}
-
 macro_rules! snap_unit_enum {
     ($t:ty, $what:literal: $($v:path),*) => {
         impl Snap for $t {
             fn put(&self, w: &mut Writer) {
                 let all = [$($v),*];
-                (all.iter().position(|x| x == self).expect("listed variant") as u8).put(w)
+                w.put_tag(all.iter().position(|x| x == self).expect("listed variant") as u8)
             }
             fn get(r: &mut Reader) -> ReadResult<Self> {
                 let all = [$($v),*];
-                Ok(all[tag(r, $what, all.len() as u8)? as usize])
+                Ok(all[r.tag($what, all.len() as u8)? as usize])
             }
         }
     };
@@ -467,7 +454,7 @@ impl Snap for Geometry {
     fn put(&self, w: &mut Writer) {
         match self {
             Geometry::Sphere { center, radius } => {
-                0u8.put(w);
+                w.put_tag(0);
                 center.put(w);
                 radius.put(w);
             }
@@ -476,30 +463,30 @@ impl Snap for Geometry {
                 rotation,
                 half_extents,
             } => {
-                1u8.put(w);
+                w.put_tag(1);
                 center.put(w);
                 rotation.put(w);
                 half_extents.put(w);
             }
             Geometry::Capsule { a, b, radius } => {
-                2u8.put(w);
+                w.put_tag(2);
                 a.put(w);
                 b.put(w);
                 radius.put(w);
             }
             Geometry::Plane { normal, offset } => {
-                3u8.put(w);
+                w.put_tag(3);
                 normal.put(w);
                 offset.put(w);
             }
             Geometry::Hull { hull, local, scale } => {
-                4u8.put(w);
+                w.put_tag(4);
                 hull.put(w);
                 local.put(w);
                 scale.put(w);
             }
             Geometry::Mesh { mesh, local, scale } => {
-                5u8.put(w);
+                w.put_tag(5);
                 mesh.put(w);
                 local.put(w);
                 scale.put(w);
@@ -509,7 +496,7 @@ impl Snap for Geometry {
                 local,
                 scale,
             } => {
-                6u8.put(w);
+                w.put_tag(6);
                 heightfield.put(w);
                 local.put(w);
                 scale.put(w);
@@ -517,7 +504,7 @@ impl Snap for Geometry {
         }
     }
     fn get(r: &mut Reader) -> ReadResult<Self> {
-        Ok(match tag(r, "geometry", 7)? {
+        Ok(match r.tag("geometry", 7)? {
             0 => Geometry::Sphere {
                 center: Snap::get(r)?,
                 radius: Snap::get(r)?,
@@ -558,24 +545,24 @@ impl Snap for Geometry {
 impl Snap for SatCache {
     fn put(&self, w: &mut Writer) {
         match *self {
-            SatCache::None => 0u8.put(w),
+            SatCache::None => w.put_tag(0),
             SatCache::FaceA(f) => {
-                1u8.put(w);
+                w.put_tag(1);
                 f.put(w)
             }
             SatCache::FaceB(f) => {
-                2u8.put(w);
+                w.put_tag(2);
                 f.put(w)
             }
             SatCache::Edges(a, b) => {
-                3u8.put(w);
+                w.put_tag(3);
                 a.put(w);
                 b.put(w)
             }
         }
     }
     fn get(r: &mut Reader) -> ReadResult<Self> {
-        Ok(match tag(r, "SAT cache", 4)? {
+        Ok(match r.tag("SAT cache", 4)? {
             0 => SatCache::None,
             1 => SatCache::FaceA(Snap::get(r)?),
             2 => SatCache::FaceB(Snap::get(r)?),
@@ -588,26 +575,26 @@ impl Snap for JointKind {
     fn put(&self, w: &mut Writer) {
         match self {
             JointKind::Ball(p) => {
-                0u8.put(w);
+                w.put_tag(0);
                 p.put(w)
             }
             JointKind::Hinge(p) => {
-                1u8.put(w);
+                w.put_tag(1);
                 p.put(w)
             }
-            JointKind::Fixed => 2u8.put(w),
+            JointKind::Fixed => w.put_tag(2),
             JointKind::Distance(p) => {
-                3u8.put(w);
+                w.put_tag(3);
                 p.put(w)
             }
             JointKind::Slider(p) => {
-                4u8.put(w);
+                w.put_tag(4);
                 p.put(w)
             }
         }
     }
     fn get(r: &mut Reader) -> ReadResult<Self> {
-        Ok(match tag(r, "joint kind", 5)? {
+        Ok(match r.tag("joint kind", 5)? {
             0 => JointKind::Ball(Snap::get(r)?),
             1 => JointKind::Hinge(Snap::get(r)?),
             2 => JointKind::Fixed,
@@ -621,22 +608,22 @@ impl Snap for End {
     fn put(&self, w: &mut Writer) {
         match self {
             End::World(p) => {
-                0u8.put(w);
+                w.put_tag(0);
                 p.put(w)
             }
             End::Body { body, local } => {
-                1u8.put(w);
+                w.put_tag(1);
                 body.put(w);
                 local.put(w)
             }
             End::Particle(h) => {
-                2u8.put(w);
+                w.put_tag(2);
                 h.put(w)
             }
         }
     }
     fn get(r: &mut Reader) -> ReadResult<Self> {
-        Ok(match tag(r, "spring end", 3)? {
+        Ok(match r.tag("spring end", 3)? {
             0 => End::World(Snap::get(r)?),
             1 => End::Body {
                 body: Snap::get(r)?,
@@ -650,19 +637,19 @@ impl Snap for End {
 impl Snap for ContactOther {
     fn put(&self, w: &mut Writer) {
         match self {
-            ContactOther::World => 0u8.put(w),
+            ContactOther::World => w.put_tag(0),
             ContactOther::Body(b) => {
-                1u8.put(w);
+                w.put_tag(1);
                 b.put(w)
             }
             ContactOther::Particle(h) => {
-                2u8.put(w);
+                w.put_tag(2);
                 h.put(w)
             }
         }
     }
     fn get(r: &mut Reader) -> ReadResult<Self> {
-        Ok(match tag(r, "particle contact", 3)? {
+        Ok(match r.tag("particle contact", 3)? {
             0 => ContactOther::World,
             1 => ContactOther::Body(Snap::get(r)?),
             _ => ContactOther::Particle(Snap::get(r)?),
@@ -674,18 +661,18 @@ impl Snap for PinAt {
     fn put(&self, w: &mut Writer) {
         match self {
             PinAt::Fixed(p) => {
-                0u8.put(w);
+                w.put_tag(0);
                 p.put(w)
             }
             PinAt::Body { k, arm } => {
-                1u8.put(w);
+                w.put_tag(1);
                 k.put(w);
                 arm.put(w)
             }
         }
     }
     fn get(r: &mut Reader) -> ReadResult<Self> {
-        Ok(match tag(r, "pin", 2)? {
+        Ok(match r.tag("pin", 2)? {
             0 => PinAt::Fixed(Snap::get(r)?),
             _ => PinAt::Body {
                 k: Snap::get(r)?,
@@ -702,20 +689,20 @@ impl Snap for GeneratorDef {
     fn put(&self, w: &mut Writer) {
         match self {
             GeneratorDef::Gravity { acceleration } => {
-                0u8.put(w);
+                w.put_tag(0);
                 acceleration.put(w)
             }
             GeneratorDef::Drag { k1, k2 } => {
-                1u8.put(w);
+                w.put_tag(1);
                 k1.put(w);
                 k2.put(w)
             }
             GeneratorDef::Spring(s) => {
-                2u8.put(w);
+                w.put_tag(2);
                 s.put(w)
             }
             GeneratorDef::Bungee(s) => {
-                3u8.put(w);
+                w.put_tag(3);
                 s.put(w)
             }
             GeneratorDef::StiffSpring {
@@ -724,7 +711,7 @@ impl Snap for GeneratorDef {
                 stiffness,
                 damping,
             } => {
-                4u8.put(w);
+                w.put_tag(4);
                 anchor.put(w);
                 local_point.put(w);
                 stiffness.put(w);
@@ -738,7 +725,7 @@ impl Snap for GeneratorDef {
                 liquid_density,
                 local_point,
             } => {
-                5u8.put(w);
+                w.put_tag(5);
                 normal.put(w);
                 surface.put(w);
                 max_depth.put(w);
@@ -756,7 +743,7 @@ impl Snap for GeneratorDef {
                 max_radius,
                 affect_all,
             } => {
-                6u8.put(w);
+                w.put_tag(6);
                 center.put(w);
                 blast_radius.put(w);
                 blast_impulse.put(w);
@@ -767,7 +754,7 @@ impl Snap for GeneratorDef {
                 affect_all.put(w)
             }
             GeneratorDef::Rod { a, b, length } => {
-                7u8.put(w);
+                w.put_tag(7);
                 a.put(w);
                 b.put(w);
                 length.put(w)
@@ -778,7 +765,7 @@ impl Snap for GeneratorDef {
                 max_length,
                 restitution,
             } => {
-                8u8.put(w);
+                w.put_tag(8);
                 a.put(w);
                 b.put(w);
                 max_length.put(w);
@@ -787,19 +774,19 @@ impl Snap for GeneratorDef {
             GeneratorDef::ExternalForce {
                 callback: _,
                 user_data: _,
-            } => 9u8.put(w),
+            } => w.put_tag(9),
             GeneratorDef::ExternalContact {
                 callback: _,
                 user_data: _,
                 capacity,
             } => {
-                10u8.put(w);
+                w.put_tag(10);
                 capacity.put(w)
             }
         }
     }
     fn get(r: &mut Reader) -> ReadResult<Self> {
-        Ok(match tag(r, "generator", 11)? {
+        Ok(match r.tag("generator", 11)? {
             0 => GeneratorDef::Gravity {
                 acceleration: Snap::get(r)?,
             },

@@ -1,6 +1,9 @@
 //! Saving: the frame (magic, version, payload length, checksum) and the world's sections.
 
-use super::{fnv1a64, Snap, Writer, HEADER_LEN, MAGIC, VERSION};
+use super::{checksum64, Snap, Writer, HEADER_LEN, MAGIC, VERSION};
+use crate::collision::broad_phase::BroadPhase;
+use crate::collision::shape::Shape;
+use crate::pool::Pool;
 use crate::world::World;
 
 /// Section ids, in the order they are written and read.
@@ -19,14 +22,28 @@ pub(crate) mod section {
     pub const EVENTS: u32 = 12;
 }
 
-/// Writes one section: its id, its length, then its bytes (the length patched in after).
+/// Section names: the columns of section `id` are under `NAMES[id - 1]`.
+pub(crate) const NAMES: [&str; 12] = [
+    "settings",
+    "geometry",
+    "bodies",
+    "shapes",
+    "contacts",
+    "broad_phase",
+    "sleep",
+    "generators",
+    "particles",
+    "joints",
+    "soft_bodies",
+    "events",
+];
+
+/// Writes one section into its column: its id, then its content.
 fn put_section(w: &mut Writer, id: u32, body: impl Fn(&mut Writer)) {
-    id.put(w);
-    let at = w.len();
-    0u64.put(w);
-    body(w);
-    let len = (w.len() - at - 8) as u64;
-    w.patch(at, &len.to_le_bytes());
+    w.within(NAMES[id as usize - 1], |w| {
+        id.put(w);
+        body(w);
+    });
 }
 
 /// Writes the payload: every field of the world that affects its future. The destructuring
@@ -66,17 +83,23 @@ fn put_world(world: &World, w: &mut Writer) {
     use section::*;
     put_section(w, SETTINGS, |w| settings.put(w));
     put_section(w, GEOMETRY, |w| geometry.put(w));
-    put_section(w, BODIES, |w| bodies.put(w));
-    put_section(w, SHAPES, |w| shapes.put(w));
+    put_section(w, BODIES, |w| {
+        bodies.put(w);
+        w.within("rebuilt", |w| super::predicted::put_bodies(w, bodies));
+    });
+    put_section(w, SHAPES, |w| {
+        shapes.put(w);
+        w.within("rebuilt", |w| super::predicted::put_shapes(w, shapes, bodies, geometry));
+    });
     put_section(w, CONTACTS, |w| {
         contacts.put(w);
-        awake_contacts.put(w);
+        w.within("awake", |w| awake_contacts.put(w));
     });
-    put_section(w, BROAD_PHASE, |w| broad.put(w));
+    put_section(w, BROAD_PHASE, |w| put_broad_phase(w, broad, shapes));
     put_section(w, SLEEP, |w| {
-        awake_bodies.put(w);
-        islands.put(w);
-        counters.put(w);
+        w.within("awake", |w| awake_bodies.put(w));
+        w.within("islands", |w| islands.put(w));
+        w.within("counters", |w| counters.put(w));
     });
     put_section(w, GENERATORS, |w| generators.put(w));
     put_section(w, PARTICLES, |w| particles.put(w));
@@ -84,29 +107,68 @@ fn put_world(world: &World, w: &mut Writer) {
     put_section(w, SOFT_BODIES, |w| soft_bodies.put(w));
     // End events of contacts destroyed since the last step, reported with the next step's.
     put_section(w, EVENTS, |w| {
-        events.pending_contact_end.put(w);
-        events.pending_sensor_end.put(w);
+        w.within("contact_end", |w| events.pending_contact_end.put(w));
+        w.within("sensor_end", |w| events.pending_sensor_end.put(w));
     });
 }
 
-/// Size in bytes of the snapshot `save` would write now.
-pub fn saved_size(world: &World) -> usize {
-    let mut w = Writer::counter();
-    put_world(world, &mut w);
-    HEADER_LEN + w.len()
+/// The broad phase: the tree (leaf boxes predicted from the shapes' fat boxes), the move
+/// buffer, the planes list and the pair map; not the candidate pairs (scratch every step
+/// rewrites before reading).
+fn put_broad_phase(w: &mut Writer, broad: &BroadPhase, shapes: &Pool<Shape>) {
+    let BroadPhase {
+        tree,
+        move_buffer,
+        planes,
+        pairs,
+        candidates: _,
+    } = broad;
+    w.within("tree", |w| tree.put_snapshot(w, |s| leaf_box(shapes, s)));
+    w.within("move_buffer", |w| move_buffer.put(w));
+    w.within("planes", |w| planes.put(w));
+    w.within("pairs", |w| pairs.put(w));
 }
 
-/// Writes the world's snapshot into `out` (cleared first; a buffer reused from the last save
-/// has its capacity already, so no counting pass is made to reserve it).
+/// The box a tree leaf of shape slot `s` has: the shape's fat box.
+pub(crate) fn leaf_box(shapes: &Pool<Shape>, s: u32) -> Option<crate::collision::aabb::Aabb> {
+    shapes.handle_at(s).map(|_| shapes.at(s).fat_aabb)
+}
+
+/// miniz_oxide's fastest level: the columns' runs are long, a slower level gains little.
+pub(crate) const DEFLATE_LEVEL: u8 = 1;
+
+/// Size in bytes of the snapshot `save` would write now (it is saved to know: the
+/// compressed size depends on every byte).
+pub fn saved_size(world: &World) -> usize {
+    let mut out = Vec::new();
+    save(world, &mut out);
+    out.len()
+}
+
+/// The payload's columns (path, bytes, bytes compressed alone) of the world's snapshot now,
+/// for size reports.
+pub fn column_sizes(world: &World) -> Vec<(String, usize, usize)> {
+    let mut w = Writer::new();
+    put_world(world, &mut w);
+    w.column_sizes()
+}
+
+/// Writes the world's snapshot into `out` (cleared first): the frame, then the payload:
+/// its length before compression (`u64`) and its columns compressed with DEFLATE (RFC
+/// 1951, raw, no zlib header).
 pub fn save(world: &World, out: &mut Vec<u8>) {
+    let mut w = Writer::new();
+    put_world(world, &mut w);
+    let mut raw = Vec::new();
+    w.finish(&mut raw);
     out.clear();
     out.extend_from_slice(&MAGIC);
     out.extend_from_slice(&VERSION.to_le_bytes());
     out.extend_from_slice(&[0; 16]);
-    let mut w = Writer::new(out);
-    put_world(world, &mut w);
+    out.extend_from_slice(&(raw.len() as u64).to_le_bytes());
+    out.extend_from_slice(&miniz_oxide::deflate::compress_to_vec(&raw, DEFLATE_LEVEL));
     let len = out.len() - HEADER_LEN;
-    let sum = fnv1a64(&out[HEADER_LEN..]);
+    let sum = checksum64(&out[HEADER_LEN..]);
     out[12..20].copy_from_slice(&(len as u64).to_le_bytes());
     out[20..28].copy_from_slice(&sum.to_le_bytes());
 }

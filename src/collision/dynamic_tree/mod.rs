@@ -706,6 +706,73 @@ impl DynamicTree {
     // ---------------------------------------------------------------------------------
     // Validation
 
+    /// The leaf `proxy`'s user data when `proxy` is a leaf of this tree.
+    pub(crate) fn leaf_user_data(&self, proxy: u32) -> Option<u32> {
+        let n = self.nodes.get(proxy as usize)?;
+        n.is_leaf().then_some(n.user_data)
+    }
+
+    /// Checks the structure a restored snapshot brings (no panic, O(n)): every index in
+    /// range, parent and child links agreeing, heights, counts and the free list, so that
+    /// no later traversal can index out of range or loop. Boxes are not compared (their
+    /// values do not make an index go wrong).
+    pub(crate) fn check(&self) -> Result<(), String> {
+        let n = self.nodes.len();
+        let node = |i: u32, what: &str| {
+            self.nodes
+                .get(i as usize)
+                .ok_or_else(|| format!("tree {what} {i} out of range ({n} nodes)"))
+        };
+        let mut seen = vec![false; n];
+        let (mut reached, mut leaves) = (0u32, 0u32);
+        if self.root != NULL_NODE {
+            if node(self.root, "root")?.parent != NULL_NODE {
+                return Err("tree root has a parent".into());
+            }
+            let mut stack = vec![self.root];
+            while let Some(i) = stack.pop() {
+                let nd = node(i, "node")?;
+                if std::mem::replace(&mut seen[i as usize], true) {
+                    return Err(format!("tree node {i} reached twice"));
+                }
+                reached += 1;
+                if nd.height < 0 {
+                    return Err(format!("tree node {i} is free but linked"));
+                }
+                if nd.is_leaf() {
+                    leaves += 1;
+                    if nd.child1 != NULL_NODE || nd.child2 != NULL_NODE {
+                        return Err(format!("tree leaf {i} has children"));
+                    }
+                    continue;
+                }
+                let (a, b) = (node(nd.child1, "child")?, node(nd.child2, "child")?);
+                if a.parent != i || b.parent != i || nd.height != 1 + a.height.max(b.height) {
+                    return Err(format!("tree node {i}: children's links or height disagree"));
+                }
+                stack.push(nd.child1);
+                stack.push(nd.child2);
+            }
+        }
+        if leaves != self.proxy_count || reached != self.node_count {
+            return Err("tree counts disagree with its nodes".into());
+        }
+        let mut free = 0usize;
+        let mut i = self.free_list;
+        while i != NULL_NODE {
+            let nd = node(i, "free node")?;
+            if nd.height != -1 || std::mem::replace(&mut seen[i as usize], true) {
+                return Err(format!("tree free list: node {i} in use or listed twice"));
+            }
+            free += 1;
+            i = nd.parent;
+        }
+        if free + self.node_count as usize != n {
+            return Err("tree nodes neither linked nor free".into());
+        }
+        Ok(())
+    }
+
     /// Checks the structure (panics on failure): parent links, heights, boxes containing
     /// their children, leaf count, free list. O(n); meant for tests and debugging.
     pub fn validate(&self) {
@@ -755,19 +822,162 @@ mod rebuild;
 #[cfg(test)]
 mod tests;
 
-// Snapshots store the tree node for node: its shape decides the order of pairs.
-crate::snap_struct!(Node {
-    aabb,
-    parent,
-    child1,
-    child2,
-    user_data,
-    height,
-});
-crate::snap_struct!(DynamicTree {
-    nodes,
-    root,
-    free_list,
-    node_count,
-    proxy_count,
-});
+// ------------------------------------------------------------------------------------
+// Snapshots
+
+/// The same box bit for bit.
+fn same_box(a: &Aabb, b: &Aabb) -> bool {
+    let bits = |v: Vec3| v.to_array().map(f32::to_bits);
+    bits(a.min) == bits(b.min) && bits(a.max) == bits(b.max)
+}
+
+/// A node's box is stored (not the predicted one).
+const SNAP_BOX: u8 = 1;
+/// A node's parent is stored (not the predicted one).
+const SNAP_PARENT: u8 = 2;
+
+impl DynamicTree {
+    /// The parent each node would have from the child links alone: the internal node that
+    /// lists it, `NULL_NODE` for the root, free nodes and nodes no one lists.
+    fn predicted_parents(nodes: &[Node]) -> Vec<u32> {
+        let mut p = vec![NULL_NODE; nodes.len()];
+        for (i, n) in nodes.iter().enumerate() {
+            if n.height > 0 {
+                for c in [n.child1, n.child2] {
+                    if let Some(slot) = p.get_mut(c as usize) {
+                        *slot = i as u32;
+                    }
+                }
+            }
+        }
+        p
+    }
+
+    /// Writes the tree node for node (its shape decides the order pairs are found in). A
+    /// box or parent equal bit for bit to its prediction is not stored, only a flag: a
+    /// leaf's box is predicted by `leaf_box(user_data)` (the shape's fat box), an internal
+    /// node's as the union of its children's, a free node's as empty; a parent from the
+    /// child links (`predicted_parents`).
+    pub(crate) fn put_snapshot(&self, w: &mut crate::snapshot::Writer, leaf_box: impl Fn(u32) -> Option<Aabb>) {
+        use crate::snapshot::Snap;
+        let DynamicTree {
+            nodes,
+            root,
+            free_list,
+            node_count,
+            proxy_count,
+        } = self;
+        let parents = Self::predicted_parents(nodes);
+        w.put_len(nodes.len());
+        for (i, n) in nodes.iter().enumerate() {
+            let Node {
+                aabb,
+                parent,
+                child1,
+                child2,
+                user_data,
+                height,
+            } = n;
+            let predicted = match *height {
+                h if h < 0 => Some(Aabb::EMPTY),
+                0 => leaf_box(*user_data),
+                _ => nodes
+                    .get(*child1 as usize)
+                    .zip(nodes.get(*child2 as usize))
+                    .map(|(a, b)| a.aabb.union(&b.aabb)),
+            };
+            let store_box = !predicted.is_some_and(|p| same_box(&p, aabb));
+            let store_parent = parents[i] != *parent;
+            let flags = (store_box as u8 * SNAP_BOX) | (store_parent as u8 * SNAP_PARENT);
+            w.within("flags", |w| flags.put(w));
+            w.within("height", |w| height.put(w));
+            if *height > 0 {
+                w.within("child1", |w| child1.put(w));
+                w.within("child2", |w| child2.put(w));
+            } else if *height == 0 {
+                w.within("user_data", |w| user_data.put(w));
+            }
+            if store_parent {
+                w.within("parent", |w| parent.put(w));
+            }
+            if store_box {
+                w.within("aabb", |w| aabb.put(w));
+            }
+        }
+        w.within("root", |w| root.put(w));
+        w.within("free_list", |w| free_list.put(w));
+        w.within("node_count", |w| node_count.put(w));
+        w.within("proxy_count", |w| proxy_count.put(w));
+    }
+
+    /// Reads what `put_snapshot` wrote, rebuilding the boxes and parents it predicted (in
+    /// order of height, so children's boxes come first). A box that cannot be predicted (a
+    /// child out of range or not below its parent, a leaf `leaf_box` knows nothing of) is an
+    /// error; the structure is checked afterwards (`check`).
+    pub(crate) fn get_snapshot(
+        r: &mut crate::snapshot::Reader,
+        leaf_box: impl Fn(u32) -> Option<Aabb>,
+    ) -> crate::snapshot::ReadResult<DynamicTree> {
+        use crate::snapshot::{bad, Snap};
+        let n = r.count()?;
+        let mut nodes = Vec::with_capacity(n);
+        let mut given = Vec::with_capacity(n);
+        for _ in 0..n {
+            let flags = r.within("flags", u8::get)?;
+            if flags & !(SNAP_BOX | SNAP_PARENT) != 0 {
+                return bad(format!("snapshot corrupted: tree node flags {flags}"));
+            }
+            let mut node = Node::FREE;
+            node.height = r.within("height", i32::get)?;
+            if node.height > 0 {
+                node.child1 = r.within("child1", u32::get)?;
+                node.child2 = r.within("child2", u32::get)?;
+            } else if node.height == 0 {
+                node.user_data = r.within("user_data", u32::get)?;
+            }
+            if flags & SNAP_PARENT != 0 {
+                node.parent = r.within("parent", u32::get)?;
+            }
+            if flags & SNAP_BOX != 0 {
+                node.aabb = r.within("aabb", Aabb::get)?;
+            }
+            given.push(flags);
+            nodes.push(node);
+        }
+        let parents = Self::predicted_parents(&nodes);
+        let mut order: Vec<u32> = (0..n as u32).collect();
+        order.sort_by_key(|&i| nodes[i as usize].height);
+        for i in order {
+            let (flags, node) = (given[i as usize], nodes[i as usize]);
+            if flags & SNAP_PARENT == 0 {
+                nodes[i as usize].parent = parents[i as usize];
+            }
+            if flags & SNAP_BOX != 0 {
+                continue;
+            }
+            let child = |c: u32| {
+                nodes
+                    .get(c as usize)
+                    .filter(|k| k.height >= 0 && k.height < node.height)
+            };
+            let predicted = match node.height {
+                h if h < 0 => Some(Aabb::EMPTY),
+                0 => leaf_box(node.user_data),
+                _ => child(node.child1)
+                    .zip(child(node.child2))
+                    .map(|(a, b)| a.aabb.union(&b.aabb)),
+            };
+            match predicted {
+                Some(b) => nodes[i as usize].aabb = b,
+                None => return bad(format!("snapshot corrupted: tree node {i}'s box cannot be rebuilt")),
+            }
+        }
+        Ok(DynamicTree {
+            nodes,
+            root: r.within("root", u32::get)?,
+            free_list: r.within("free_list", u32::get)?,
+            node_count: r.within("node_count", u32::get)?,
+            proxy_count: r.within("proxy_count", u32::get)?,
+        })
+    }
+}

@@ -1,0 +1,349 @@
+//! The payload's column layout: every value is written into the column (stream) named by
+//! the path of struct fields that leads to it (`bodies` › `xf` › `p`), so the values of one
+//! field of every body sit together. Counts, option flags, enum tags, pool slot counters
+//! and map keys and values each get a column of their own under their parent. A column
+//! whose values all have one width (2, 4 or 8 bytes) is stored as byte planes (every
+//! value's first byte, then every second byte, …): equal fields (masses, inertias, zero
+//! velocities of sleeping bodies, sign and exponent bytes of nearby positions) become long
+//! runs that the DEFLATE stage after this one shrinks.
+//!
+//! A column is known by its path only while writing; the payload lists the columns in the
+//! order the writer first entered them, and the reader, which walks the same structure in
+//! the same order, gives each path it enters the next column of the list. Both sides
+//! compare field names, never addresses, so the pairing does not depend on how the
+//! compiler laid out the code.
+
+use super::{bad, ReadResult};
+
+/// Width marker of a column whose values differ in width (stored as is).
+const MIXED: u8 = 0xFF;
+
+#[derive(Default)]
+struct WColumn {
+    bytes: Vec<u8>,
+    /// 0: nothing written yet; the width of every value written; or `MIXED`.
+    width: u8,
+    children: Vec<(&'static str, u32)>,
+    /// Where the next lookup among `children` starts (fields are entered in order).
+    hint: usize,
+}
+
+/// Appends little-endian values to the columns of a payload.
+pub struct Writer {
+    columns: Vec<WColumn>,
+    cur: u32,
+}
+
+impl Default for Writer {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+impl Writer {
+    pub fn new() -> Writer {
+        Writer {
+            columns: vec![WColumn::default()],
+            cur: 0,
+        }
+    }
+
+    /// Makes the current column's child `name` current; returns the column to go back to
+    /// (`leave`).
+    #[inline]
+    pub fn enter(&mut self, name: &'static str) -> u32 {
+        let prev = self.cur;
+        let next_id = self.columns.len() as u32;
+        let c = &mut self.columns[prev as usize];
+        let n = c.children.len();
+        let found = if c.hint < n && c.children[c.hint].0 == name {
+            Some(c.hint)
+        } else {
+            c.children.iter().position(|k| k.0 == name)
+        };
+        self.cur = match found {
+            Some(k) => {
+                c.hint = k + 1;
+                c.children[k].1
+            }
+            None => {
+                c.children.push((name, next_id));
+                c.hint = n + 1;
+                self.columns.push(WColumn::default());
+                next_id
+            }
+        };
+        prev
+    }
+
+    #[inline]
+    pub fn leave(&mut self, prev: u32) {
+        self.cur = prev;
+    }
+
+    /// Writes `f`'s values into the child column `name`.
+    #[inline]
+    pub fn within(&mut self, name: &'static str, f: impl FnOnce(&mut Writer)) {
+        let p = self.enter(name);
+        f(self);
+        self.leave(p);
+    }
+
+    /// Appends one value's bytes to the current column.
+    #[inline(always)]
+    pub fn bytes(&mut self, b: &[u8]) {
+        let c = &mut self.columns[self.cur as usize];
+        let w = b.len() as u8;
+        if c.width != w {
+            c.width = if c.width == 0 { w } else { MIXED };
+        }
+        c.bytes.extend_from_slice(b);
+    }
+
+    /// Bytes the payload takes before compression.
+    pub fn raw_len(&self) -> usize {
+        4 + 9 * self.columns.len() + self.columns.iter().map(|c| c.bytes.len()).sum::<usize>()
+    }
+
+    /// Appends the payload to `out`: the column count (`u32`), each column's length (`u64`)
+    /// and width (`u8`: 2, 4 or 8 for byte planes, otherwise stored as is), then the
+    /// columns in order.
+    pub fn finish(&self, out: &mut Vec<u8>) {
+        out.reserve(self.raw_len());
+        out.extend_from_slice(&(self.columns.len() as u32).to_le_bytes());
+        for c in &self.columns {
+            out.extend_from_slice(&(c.bytes.len() as u64).to_le_bytes());
+            out.push(c.width);
+        }
+        for c in &self.columns {
+            let w = planes(c.width, c.bytes.len());
+            if w == 1 {
+                out.extend_from_slice(&c.bytes);
+                continue;
+            }
+            let n = c.bytes.len() / w;
+            let at = out.len();
+            out.resize(at + c.bytes.len(), 0);
+            let dst = &mut out[at..];
+            for (i, v) in c.bytes.chunks_exact(w).enumerate() {
+                for (p, &b) in v.iter().enumerate() {
+                    dst[p * n + i] = b;
+                }
+            }
+        }
+    }
+
+    /// Each column's path, length, and length compressed alone (byte planes, DEFLATE), for
+    /// size reports.
+    pub fn column_sizes(&self) -> Vec<(String, usize, usize)> {
+        let mut names = vec![String::new(); self.columns.len()];
+        for (i, c) in self.columns.iter().enumerate() {
+            for &(name, k) in &c.children {
+                names[k as usize] = if i == 0 {
+                    name.to_string()
+                } else {
+                    format!("{}.{name}", names[i])
+                };
+            }
+        }
+        let packed = |c: &WColumn| {
+            let one = Writer {
+                columns: vec![WColumn {
+                    bytes: c.bytes.clone(),
+                    width: c.width,
+                    children: Vec::new(),
+                    hint: 0,
+                }],
+                cur: 0,
+            };
+            let mut raw = Vec::new();
+            one.finish(&mut raw);
+            miniz_oxide::deflate::compress_to_vec(&raw[13..], super::write::DEFLATE_LEVEL).len()
+        };
+        names
+            .into_iter()
+            .zip(self.columns.iter().map(|c| (c.bytes.len(), packed(c))))
+            .map(|(n, (l, z))| (n, l, z))
+            .collect()
+    }
+}
+
+/// Byte planes a column of `len` bytes with value width `width` is stored as (1: as is).
+fn planes(width: u8, len: usize) -> usize {
+    match width {
+        2 | 4 | 8 if len % width as usize == 0 => width as usize,
+        _ => 1,
+    }
+}
+
+struct RColumn {
+    at: usize,
+    end: usize,
+    children: Vec<(&'static str, u32)>,
+    hint: usize,
+}
+
+/// Reads little-endian values from the columns of a payload; every read past a column's
+/// end is an error.
+pub struct Reader<'a> {
+    data: &'a [u8],
+    columns: Vec<RColumn>,
+    /// Columns paired with a path so far.
+    assigned: u32,
+    cur: u32,
+    /// Bytes not read yet, over all columns.
+    left: usize,
+    /// The target world's tag, put into the top bits of every id read.
+    pub(crate) tag: u32,
+}
+
+/// Splits a payload into its column table and its columns, undoing the byte planes into
+/// `plain`. Returns each column's span in `plain`.
+pub(crate) fn unpack(payload: &[u8], plain: &mut Vec<u8>) -> ReadResult<Vec<(usize, usize)>> {
+    let corrupt = || bad("snapshot corrupted: its column table does not match its length");
+    let Some(head) = payload.get(..4) else {
+        return corrupt();
+    };
+    let count = u32::from_le_bytes(head.try_into().expect("4"));
+    let table_len = (count as usize)
+        .checked_mul(9)
+        .and_then(|t| t.checked_add(4))
+        .filter(|&t| t <= payload.len() && count > 0);
+    let Some(table_len) = table_len else {
+        return corrupt();
+    };
+    let mut spans = Vec::with_capacity(count as usize);
+    let mut at = 0usize;
+    plain.clear();
+    plain.reserve(payload.len() - table_len);
+    let body = &payload[table_len..];
+    for k in 0..count as usize {
+        let e = &payload[4 + 9 * k..4 + 9 * k + 9];
+        let len = u64::from_le_bytes(e[..8].try_into().expect("8"));
+        let len = match usize::try_from(len) {
+            Ok(l) if l <= body.len() - at => l,
+            _ => return corrupt(),
+        };
+        let src = &body[at..at + len];
+        let w = planes(e[8], len);
+        if w == 1 {
+            plain.extend_from_slice(src);
+        } else {
+            let n = len / w;
+            let start = plain.len();
+            plain.resize(start + len, 0);
+            let dst = &mut plain[start..];
+            for (i, v) in dst.chunks_exact_mut(w).enumerate() {
+                for (p, b) in v.iter_mut().enumerate() {
+                    *b = src[p * n + i];
+                }
+            }
+        }
+        spans.push((at, at + len));
+        at += len;
+    }
+    if at != body.len() {
+        return corrupt();
+    }
+    Ok(spans)
+}
+
+impl<'a> Reader<'a> {
+    /// A reader of `data` (from `unpack`) with its column spans.
+    pub(crate) fn new(data: &'a [u8], spans: &[(usize, usize)], tag: u32) -> Reader<'a> {
+        Reader {
+            data,
+            columns: spans
+                .iter()
+                .map(|&(at, end)| RColumn {
+                    at,
+                    end,
+                    children: Vec::new(),
+                    hint: 0,
+                })
+                .collect(),
+            assigned: 1,
+            cur: 0,
+            left: data.len(),
+            tag,
+        }
+    }
+
+    /// Makes the current column's child `name` current (the next column of the payload
+    /// the first time the path is entered); returns the column to go back to (`leave`).
+    #[inline]
+    pub fn enter(&mut self, name: &'static str) -> ReadResult<u32> {
+        let prev = self.cur;
+        let c = &mut self.columns[prev as usize];
+        let n = c.children.len();
+        let found = if c.hint < n && c.children[c.hint].0 == name {
+            Some(c.hint)
+        } else {
+            c.children.iter().position(|k| k.0 == name)
+        };
+        self.cur = match found {
+            Some(k) => {
+                c.hint = k + 1;
+                c.children[k].1
+            }
+            None => {
+                let id = self.assigned;
+                c.children.push((name, id));
+                c.hint = n + 1;
+                if id as usize >= self.columns.len() {
+                    return bad("snapshot corrupted: fewer columns than its content needs");
+                }
+                self.assigned += 1;
+                id
+            }
+        };
+        Ok(prev)
+    }
+
+    #[inline]
+    pub fn leave(&mut self, prev: u32) {
+        self.cur = prev;
+    }
+
+    /// Reads `f` from the child column `name`.
+    #[inline]
+    pub fn within<T>(&mut self, name: &'static str, f: impl FnOnce(&mut Reader<'a>) -> ReadResult<T>) -> ReadResult<T> {
+        let p = self.enter(name)?;
+        let v = f(self)?;
+        self.leave(p);
+        Ok(v)
+    }
+
+    #[inline]
+    pub fn take(&mut self, n: usize) -> ReadResult<&'a [u8]> {
+        let c = &mut self.columns[self.cur as usize];
+        if c.end - c.at < n {
+            return bad(format!(
+                "snapshot corrupted: a column ends early ({n} bytes wanted, {} left)",
+                c.end - c.at
+            ));
+        }
+        let s = &self.data[c.at..c.at + n];
+        c.at += n;
+        self.left -= n;
+        Ok(s)
+    }
+
+    /// Bytes not read yet, over all columns.
+    pub fn remaining(&self) -> usize {
+        self.left
+    }
+
+    /// Every column paired and read to its end (nothing left over).
+    pub(crate) fn finish(&self) -> ReadResult<()> {
+        if self.assigned as usize != self.columns.len() || self.left != 0 {
+            return bad(format!(
+                "snapshot corrupted: {} of {} columns read, {} bytes left over",
+                self.assigned,
+                self.columns.len(),
+                self.left
+            ));
+        }
+        Ok(())
+    }
+}
