@@ -245,6 +245,22 @@ const FIGURES: &[(&str, &str, Backing)] = &[
     (C, "32.5 M", Bench),
     (C, "34.2 M", Bench),
     (C, "0.1 %", Bench),
+    (C, "15.5 %", Bench),
+    (C, "26.3 M", Bench),
+    (C, "21.8 M", Bench),
+    (C, "10.5 %", Bench),
+    (C, "10.0 %", Bench),
+    (
+        C,
+        "2 mm",
+        Setting("hull_hull's EDGE_ABS_TOL, the slack an edge axis needs over a face"),
+    ),
+    (C, "1 mm", Setting("the body-pair manifold cache's reuse distance")),
+    (
+        C,
+        "1 °",
+        Setting("the body-pair manifold cache's reuse angle, about a degree"),
+    ),
     // README: rolling resistance and torsional friction (tests/rolling.rs).
     (
         R,

@@ -8,7 +8,7 @@ use super::{bad, ReadResult, Reader, Snap, Writer};
 use crate::collision::aabb::Aabb;
 use crate::collision::contact::{Contact, FrictionImpulse, PointImpulse};
 use crate::collision::filter::Filter;
-use crate::collision::hull::{ConvexHull, EdgeGauss, Face, HalfEdge, Plane, VertexLanes};
+use crate::collision::hull::{ConvexHull, EdgeGauss, EdgeLanes, Face, HalfEdge, Plane, VertexLanes};
 use crate::collision::mesh::bvh::Node as BvhNode;
 use crate::collision::narrow_phase::{Manifold, ManifoldPoint, SatCache};
 use crate::collision::shape::{Geometry, MassProperties, Shape, ShapeDef};
@@ -214,8 +214,10 @@ snap_struct!(ConvexHull {
     max,
     bound_radius,
     lanes,
+    edge_lanes,
 });
 snap_struct!(VertexLanes { x, y, z });
+snap_struct!(EdgeLanes { n1, n2, n2_x_n1 });
 snap_struct!(BvhNode { min, data, max, count });
 
 // ------------------------------------------------------------------ generators

@@ -94,6 +94,18 @@ pub struct ConvexHull {
     /// The vertices again, four at a time by coordinate (the last block padded with copies
     /// of the last vertex), for `min_dot`.
     pub(crate) lanes: Vec<VertexLanes>,
+    /// `edge_gauss`'s arcs again, four edges at a time by coordinate (the last block padded
+    /// with zero normals, which no arc crosses), for the hull–hull edge loop.
+    pub(crate) edge_lanes: Vec<EdgeLanes>,
+}
+
+/// Four edges' Gauss-map arcs by coordinate: the two face normals (`n1`, `n2`) and
+/// `n2 × n1` of `EdgeGauss`, as `[x, y, z]` of four lanes each.
+#[derive(Clone, Copy, Debug, Default)]
+pub(crate) struct EdgeLanes {
+    pub n1: [[f32; 4]; 3],
+    pub n2: [[f32; 4]; 3],
+    pub n2_x_n1: [[f32; 4]; 3],
 }
 
 /// Four vertices by coordinate.
@@ -173,6 +185,7 @@ impl ConvexHull {
             max: Vec3::ZERO,
             bound_radius: 0.0,
             lanes: Vec::new(),
+            edge_lanes: Vec::new(),
         };
         hull.lanes = hull
             .vertices
@@ -203,6 +216,25 @@ impl ConvexHull {
                     v0: he.origin,
                     v1: twin.origin,
                 }
+            })
+            .collect();
+        hull.edge_lanes = hull
+            .edge_gauss
+            .chunks(4)
+            .map(|c| {
+                let mut l = EdgeLanes::default();
+                for (k, g) in c.iter().enumerate() {
+                    for (axis, (n1, (n2, n))) in
+                        l.n1.iter_mut()
+                            .zip(l.n2.iter_mut().zip(l.n2_x_n1.iter_mut()))
+                            .enumerate()
+                    {
+                        n1[k] = g.n1[axis];
+                        n2[k] = g.n2[axis];
+                        n[k] = g.n2_x_n1[axis];
+                    }
+                }
+                l
             })
             .collect();
         let (mp, area) = mass::polyhedron_mass(&hull.vertices, &hull.face_loops_iter());

@@ -198,37 +198,49 @@ pub(crate) fn hull_hull(a: &Poly, b: &Poly, speculative: f32, cache: &mut SatCac
         let d_x_c = rel.r * gb.n2_x_n1;
         let pb0 = rel.r * b.vertex(gb.v0 as usize) + rel.t;
         let pb1 = rel.r * b.vertex(gb.v1 as usize) + rel.t;
-        for (ka, ga) in a.hull.edge_gauss.iter().enumerate() {
-            let cba = c.dot(ga.n2_x_n1);
-            let dba = d.dot(ga.n2_x_n1);
-            if cba * dba >= 0.0 {
-                continue;
-            }
-            let adc = ga.n1.dot(d_x_c);
-            let bdc = ga.n2.dot(d_x_c);
-            if adc * bdc >= 0.0 || cba * bdc <= 0.0 {
-                continue;
-            }
-            let (pa0, pa1) = (a.vertex(ga.v0 as usize), a.vertex(ga.v1 as usize));
-            let Some((axis, s)) = edge_axis(pa0, pa1, ga.n1 + ga.n2, pb0, pb1) else {
-                continue;
+        // Four of A's edges at a time (`EdgeLanes`): the arc test's dot products lane by
+        // lane, in the scalar form's order of operations, so the same pairs pass.
+        for (block, l) in a.hull.edge_lanes.iter().enumerate() {
+            let dot = |v: Vec3, n: &[[f32; 4]; 3]| -> [f32; 4] {
+                let mut out = [0.0f32; 4];
+                for (k, o) in out.iter_mut().enumerate() {
+                    *o = v.x * n[0][k] + v.y * n[1][k] + v.z * n[2][k];
+                }
+                out
             };
-            if s <= sep_e {
+            let (cba, dba) = (dot(c, &l.n2_x_n1), dot(d, &l.n2_x_n1));
+            let (adc, bdc) = (dot(d_x_c, &l.n1), dot(d_x_c, &l.n2));
+            let mut pass = [false; 4];
+            for (k, p) in pass.iter_mut().enumerate() {
+                *p = (cba[k] * dba[k] < 0.0) & (adc[k] * bdc[k] < 0.0) & (cba[k] * bdc[k] > 0.0);
+            }
+            if pass == [false; 4] {
                 continue;
             }
-            // The edge-to-edge gap is the gap along the axis only when the pair really
-            // builds a face of the Minkowski difference; welded hulls with very short edges
-            // can pass the arc test with normals that do not quite fit, so a gap that would
-            // decide is measured again by the support functions (rarely: only new maxima).
-            let s = s.min(support_separation(a, b, &rel, axis));
-            if s > limit {
-                *cache = SatCache::Edges(ka as u16, kb as u16);
-                return Manifold::EMPTY;
-            }
-            if s > sep_e {
-                sep_e = s;
-                edges = (ka, kb);
-                edge_dir = axis;
+            for (k, _) in pass.iter().enumerate().filter(|(_, &p)| p) {
+                let ka = 4 * block + k;
+                let ga = a.hull.edge_gauss[ka];
+                let (pa0, pa1) = (a.vertex(ga.v0 as usize), a.vertex(ga.v1 as usize));
+                let Some((axis, s)) = edge_axis(pa0, pa1, ga.n1 + ga.n2, pb0, pb1) else {
+                    continue;
+                };
+                if s <= sep_e {
+                    continue;
+                }
+                // The edge-to-edge gap is the gap along the axis only when the pair really
+                // builds a face of the Minkowski difference; welded hulls with very short edges
+                // can pass the arc test with normals that do not quite fit, so a gap that would
+                // decide is measured again by the support functions (rarely: only new maxima).
+                let s = s.min(support_separation(a, b, &rel, axis));
+                if s > limit {
+                    *cache = SatCache::Edges(ka as u16, kb as u16);
+                    return Manifold::EMPTY;
+                }
+                if s > sep_e {
+                    sep_e = s;
+                    edges = (ka, kb);
+                    edge_dir = axis;
+                }
             }
         }
     }
@@ -424,6 +436,39 @@ mod tests {
     use super::*;
     use crate::collision::hull::builder::{build, HullSettings};
     use crate::math::{Quat, Transform};
+
+    /// `edge_lanes` holds `edge_gauss`'s arcs lane for lane, and its padding lanes (zero
+    /// normals) fail the arc test against any arc, so the four-at-a-time loop visits the
+    /// same pairs as one edge at a time.
+    #[test]
+    fn edge_lanes_hold_the_arcs() {
+        let mut s = 0x9e37_79b9u64;
+        let mut rnd = move || {
+            s ^= s << 13;
+            s ^= s >> 7;
+            s ^= s << 17;
+            (s >> 40) as f32 / (1u64 << 24) as f32 - 0.5
+        };
+        for n in 4..40 {
+            let pts: Vec<Vec3> = (0..n).map(|_| Vec3::new(rnd(), rnd(), rnd())).collect();
+            let h = build(&pts, &HullSettings::default()).unwrap();
+            assert_eq!(h.edge_lanes.len(), h.edge_gauss.len().div_ceil(4));
+            for (ka, g) in h.edge_gauss.iter().enumerate() {
+                let l = &h.edge_lanes[ka / 4];
+                for axis in 0..3 {
+                    assert_eq!(l.n1[axis][ka % 4].to_bits(), g.n1[axis].to_bits());
+                    assert_eq!(l.n2[axis][ka % 4].to_bits(), g.n2[axis].to_bits());
+                    assert_eq!(l.n2_x_n1[axis][ka % 4].to_bits(), g.n2_x_n1[axis].to_bits());
+                }
+            }
+            for k in h.edge_gauss.len()..4 * h.edge_lanes.len() {
+                let l = &h.edge_lanes[k / 4];
+                let c = Vec3::new(rnd(), rnd(), rnd());
+                let cba = c.x * l.n2_x_n1[0][k % 4] + c.y * l.n2_x_n1[1][k % 4] + c.z * l.n2_x_n1[2][k % 4];
+                assert_eq!(cba * cba, 0.0, "padding lane {k} crosses an arc");
+            }
+        }
+    }
 
     /// The bound that lets `hull_hull` skip its edge loop: for random hull pairs, from
     /// 5 cm overlap to 10 cm apart, no axis — every edge pair's cross product and random
