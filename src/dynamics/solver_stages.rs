@@ -16,12 +16,14 @@
 //! worker count) changes nothing either.
 //!
 //! Two drivers. With Hearth's own pool the workers run the whole list inside one task each,
-//! claim blocks with an atomic counter per stage and meet at a barrier after each stage
-//! (`parallel::Barrier`: spins briefly, then yields, then parks), as Box2D v3 does: no
-//! thread is woken per stage. That needs every worker running at once, which only the pool
-//! promises (`TaskRunner::concurrent`), and never more workers than cores. A host's job
-//! system may run tasks one after another, so with it each stage is one task (one enqueue
-//! and finish per stage, blocks as the items).
+//! claim blocks with an atomic counter per stage, count completed blocks with another, and
+//! whoever completes a stage's last block opens the gate to the next (`parallel::Barrier`
+//! used as a gate; a waiting worker spins briefly, then yields, then parks), as Box2D v3
+//! does: no thread is woken per stage, and a worker that is not running (a loaded machine)
+//! holds the others up only while inside a block. Only the pool promises that its workers
+//! may wait for one another (`TaskRunner::concurrent`), never more than the cores. A host's
+//! job system may run tasks one after another, so with it each stage is one task (one
+//! enqueue and finish per stage, blocks as the items).
 //!
 //! Lanes of static and kinematic bodies are written back by a batch or an integration chunk
 //! with the very bits they read (their inverse mass and inertia are zero; short chunks fill
@@ -116,11 +118,13 @@ struct Stage {
     blocks: u32,
 }
 
-/// The stage list of a step and the claim counters of its blocks, reused step to step.
+/// The stage list of a step and the claim and completion counters of its blocks, reused
+/// step to step.
 #[derive(Default)]
 pub struct Stages {
     list: Vec<Stage>,
     next: Vec<AtomicU32>,
+    done: Vec<AtomicU32>,
 }
 
 /// Items per block: about four blocks per worker, no fewer than `min` items, a multiple of
@@ -264,8 +268,9 @@ impl Stages {
         }
         if self.next.len() < self.list.len() {
             self.next.resize_with(self.list.len(), || AtomicU32::new(0));
+            self.done.resize_with(self.list.len(), || AtomicU32::new(0));
         }
-        for n in &self.next[..self.list.len()] {
+        for n in self.next[..self.list.len()].iter().chain(&self.done[..self.list.len()]) {
             n.store(0, Ordering::Relaxed);
         }
     }
@@ -283,12 +288,12 @@ pub(crate) fn substeps(runner: &dyn TaskRunner, stages: &mut Stages, sweep: &Swe
     stages.build(sweep, w, workers);
     let stages = &*stages;
     if concurrent > 1 {
-        let barrier = Barrier::new(concurrent);
+        let gate = Barrier::new();
         runner.run(concurrent, 1, &|start, end, _| {
             for _ in start..end {
-                let r = catch_unwind(AssertUnwindSafe(|| worker(stages, sweep, w, &barrier)));
+                let r = catch_unwind(AssertUnwindSafe(|| worker(stages, sweep, w, &gate)));
                 if let Err(e) = r {
-                    barrier.poison();
+                    gate.poison();
                     resume_unwind(e);
                 }
             }
@@ -306,20 +311,38 @@ pub(crate) fn substeps(runner: &dyn TaskRunner, stages: &mut Stages, sweep: &Swe
     }
 }
 
-/// One of the workers that all run at once: claims blocks of each stage in turn and waits
-/// for the others at the barrier after it.
-fn worker(stages: &Stages, sweep: &Sweep, w: &Written, barrier: &Barrier) {
-    for (stage, next) in stages.list.iter().zip(&stages.next) {
+/// One of the workers inside one task each: claims blocks of the current stage; whoever
+/// completes a stage's last block opens the gate to the next (the gate's generation is the
+/// stage index), and a worker waits only while another one is still inside a block of the
+/// current stage. A worker that starts late, or was descheduled, finds the stages done
+/// meanwhile and skips them, so it holds nobody up.
+fn worker(stages: &Stages, sweep: &Sweep, w: &Written, gate: &Barrier) {
+    let count = stages.list.len() as u32;
+    loop {
+        let s = gate.generation();
+        if s >= count {
+            return;
+        }
+        let (stage, next, done) = (
+            &stages.list[s as usize],
+            &stages.next[s as usize],
+            &stages.done[s as usize],
+        );
         loop {
             let b = next.fetch_add(1, Ordering::Relaxed);
             if b >= stage.blocks {
                 break;
             }
             // SAFETY: each block is claimed once; blocks of a stage touch distinct items, and
-            // the barrier keeps stages apart.
+            // no block of stage s + 1 is claimed before every block of s completed.
             unsafe { execute(stage, b, sweep, w) };
+            // AcqRel: the completions form one release sequence, so whoever completes the
+            // last block sees every block's writes and publishes them by opening the gate.
+            if done.fetch_add(1, Ordering::AcqRel) + 1 == stage.blocks {
+                gate.open(s + 1);
+            }
         }
-        barrier.wait();
+        gate.wait_past(s);
     }
 }
 

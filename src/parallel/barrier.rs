@@ -1,9 +1,12 @@
-//! A barrier for workers that all run at once (the solver's stages, see
+//! A barrier and stage gate for workers inside one task (the solver's stages, see
 //! `dynamics::solver_stages`): the workers stay inside one task for the whole sub-step loop
-//! and meet here between stages, so no thread is woken per stage. A waiting worker spins a
-//! little (a stage usually ends within microseconds), then yields its core, then parks on a
-//! condition variable, so that workers waiting on a loaded or oversubscribed machine give
-//! their cores to the ones still working. It orders nothing; it only waits.
+//! and wait here between stages, so no thread is woken per stage. The solver uses the
+//! generation as a gate (`open` to the next stage when its last block completes,
+//! `wait_past` while another worker finishes one), so a worker that is not running holds
+//! nobody up unless it is inside a block. A waiting worker spins a little (a stage usually
+//! ends within microseconds), then yields its core, then parks on a condition variable, so
+//! that workers waiting on a loaded or oversubscribed machine give their cores to the ones
+//! still working. It orders nothing; it only waits.
 
 use std::hint::spin_loop;
 use std::sync::atomic::{AtomicBool, AtomicU32, Ordering};
@@ -15,8 +18,6 @@ const SPINS: u32 = 1 << 10;
 const YIELDS: u32 = 1 << 4;
 
 pub(crate) struct Barrier {
-    parties: u32,
-    arrived: AtomicU32,
     generation: AtomicU32,
     /// Parties parked (or about to park) on `wake`.
     sleepers: AtomicU32,
@@ -27,10 +28,8 @@ pub(crate) struct Barrier {
 }
 
 impl Barrier {
-    pub(crate) fn new(parties: u32) -> Barrier {
+    pub(crate) fn new() -> Barrier {
         Barrier {
-            parties,
-            arrived: AtomicU32::new(0),
             generation: AtomicU32::new(0),
             sleepers: AtomicU32::new(0),
             lock: Mutex::new(()),
@@ -39,23 +38,25 @@ impl Barrier {
         }
     }
 
-    /// Returns when all `parties` have called it (again). Every write made before the call,
-    /// on any party, is visible after it. Panics if another party panicked.
-    pub(crate) fn wait(&self) {
-        let generation = self.generation.load(Ordering::Acquire);
-        // AcqRel: the last party to arrive sees every party's writes (the arrivals form one
-        // release sequence) and publishes them with the generation below.
-        if self.arrived.fetch_add(1, Ordering::AcqRel) + 1 == self.parties {
-            self.arrived.store(0, Ordering::Relaxed);
-            self.generation.store(generation.wrapping_add(1), Ordering::SeqCst);
-            // SeqCst with the sleeper's increment and check below: either it sees the new
-            // generation, or this sees it counted and wakes it under the lock.
-            if self.sleepers.load(Ordering::SeqCst) > 0 {
-                drop(self.lock.lock().unwrap_or_else(|e| e.into_inner()));
-                self.wake.notify_all();
-            }
-            return;
+    /// The generation (what `open` last set; 0 at first).
+    pub(crate) fn generation(&self) -> u32 {
+        self.generation.load(Ordering::Acquire)
+    }
+
+    /// Sets the generation to `to` (publishing the caller's writes) and wakes the parked.
+    pub(crate) fn open(&self, to: u32) {
+        self.generation.store(to, Ordering::SeqCst);
+        // SeqCst with the sleeper's increment and check in `wait_past`: either it sees the
+        // new generation, or this sees it counted and wakes it under the lock.
+        if self.sleepers.load(Ordering::SeqCst) > 0 {
+            drop(self.lock.lock().unwrap_or_else(|e| e.into_inner()));
+            self.wake.notify_all();
         }
+    }
+
+    /// Returns when the generation is no longer `generation`; panics if another party
+    /// panicked.
+    pub(crate) fn wait_past(&self, generation: u32) {
         let passed = || self.generation.load(Ordering::Acquire) != generation;
         for _ in 0..SPINS {
             if passed() {
@@ -101,23 +102,28 @@ mod tests {
     use super::*;
     use std::sync::atomic::AtomicU64;
 
-    fn rounds(parties: u32, rounds: u64, slow: bool) {
-        let barrier = Barrier::new(parties);
+    /// `parties` threads pass `stages` stages: each adds one to a counter per stage, and
+    /// whoever adds the last opens the gate to the next stage.
+    fn stages(parties: u32, stages: u32, slow: bool) {
+        let gate = Barrier::new();
         let counter = AtomicU64::new(0);
         std::thread::scope(|s| {
             for p in 0..parties {
-                let (barrier, counter) = (&barrier, &counter);
+                let (gate, counter) = (&gate, &counter);
                 s.spawn(move || {
-                    for round in 0..rounds {
-                        if slow && p == 0 && round % 8 == 0 {
+                    for stage in 0..stages {
+                        if slow && p == 0 && stage % 8 == 0 {
                             // Long enough for the others to reach the parking stage.
                             std::thread::sleep(std::time::Duration::from_millis(2));
                         }
-                        counter.fetch_add(1, Ordering::Relaxed);
-                        barrier.wait();
-                        // Everyone has counted this round and nobody the next one yet.
-                        assert_eq!(counter.load(Ordering::Relaxed), (round + 1) * parties as u64);
-                        barrier.wait();
+                        let total = counter.fetch_add(1, Ordering::AcqRel) + 1;
+                        if total == u64::from((stage + 1) * parties) {
+                            gate.open(stage + 1);
+                        }
+                        gate.wait_past(stage);
+                        // Everyone has counted this stage.
+                        assert!(counter.load(Ordering::Acquire) >= u64::from((stage + 1) * parties));
+                        assert!(gate.generation() > stage);
                     }
                 });
             }
@@ -125,29 +131,29 @@ mod tests {
     }
 
     #[test]
-    fn no_party_passes_a_barrier_before_all_reached_it() {
-        rounds(3, 300, false);
+    fn no_party_passes_the_gate_before_all_counted() {
+        stages(3, 300, false);
     }
 
     #[test]
-    fn parked_parties_wake_when_the_last_arrives() {
-        rounds(3, 40, true);
+    fn parked_parties_wake_when_the_gate_opens() {
+        stages(3, 40, true);
     }
 
     #[test]
     fn more_parties_than_cores_finish() {
         // Oversubscribed: the waiting parties must yield and park for the others to run.
         let cores = std::thread::available_parallelism().map_or(1, |n| n.get()) as u32;
-        rounds(2 * cores + 1, 100, false);
+        stages(2 * cores + 1, 100, false);
     }
 
     #[test]
-    fn a_poisoned_barrier_releases_the_waiting_parties() {
-        let barrier = Barrier::new(2);
+    fn a_poisoned_gate_releases_the_waiting_parties() {
+        let gate = Barrier::new();
         std::thread::scope(|s| {
-            let waiter = s.spawn(|| barrier.wait());
+            let waiter = s.spawn(|| gate.wait_past(0));
             std::thread::sleep(std::time::Duration::from_millis(20));
-            barrier.poison();
+            gate.poison();
             assert!(waiter.join().is_err());
         });
     }
