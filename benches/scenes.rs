@@ -4,9 +4,9 @@
 //!
 //! `cargo bench --bench scenes` runs all; `cargo bench --bench scenes -- pyramid` one.
 //!
-//! The `threads` group steps `pile`, `pyramid_large` and `spheres_grid` at 1 and 2 workers
+//! The `threads` group steps `pile`, `pyramid_large` and `spheres_grid` at 1, 2 and 4 workers
 //! (the world's own threads, `WorldSettings::worker_count`): `cargo bench --bench scenes --
-//! threads`. Results are bit for bit the same at both counts (tests/threads.rs).
+//! threads`. Results are bit for bit the same at every count (tests/threads.rs).
 
 #[path = "../tests/scenes/mod.rs"]
 #[allow(dead_code)]
@@ -49,7 +49,7 @@ fn bench_workers(c: &mut Criterion, name: &str, sleep: bool, build: fn(&mut Worl
     let mut group = c.benchmark_group("threads");
     group.sample_size(10);
     group.throughput(Throughput::Elements(STEPS));
-    for workers in [1u32, 2] {
+    for workers in [1u32, 2, 4] {
         group.bench_with_input(BenchmarkId::new(name, workers), &workers, |b, &workers| {
             b.iter_batched(
                 || {

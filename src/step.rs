@@ -4,7 +4,7 @@ use crate::collision::aabb::Aabb;
 use crate::collision::broad_phase::{aabb_touches_plane, world_plane};
 use crate::collision::filter::should_collide;
 use crate::dynamics::body::NONE;
-use crate::world::World;
+use crate::world::{World, AABB_MARGIN};
 
 /// Extra distance (m) within which contact points are kept before touching.
 pub const SPECULATIVE_DISTANCE: f32 = 0.02;
@@ -257,18 +257,64 @@ impl World {
         }
     }
 
+    /// Tight boxes in parallel (each awake body's shapes, which no other body owns), then on
+    /// the stepping thread, in awake order, the refit of every proxy whose swept box left its
+    /// fat box — exactly what `refresh_proxy` does shape by shape.
     fn update_bounds(&mut self, dt: f32) {
+        let World {
+            awake_bodies,
+            bodies,
+            shapes,
+            geometry,
+            tasks,
+            ..
+        } = self;
+        let (bodies_ref, geometry) = (&*bodies, &*geometry);
+        let shapes_mut = shapes.disjoint();
+        crate::parallel::run(
+            &**tasks,
+            awake_bodies.len() as u32,
+            BOUNDS_MIN_RANGE,
+            &|start, end, _| {
+                for &bi in &awake_bodies[start as usize..end as usize] {
+                    let body = bodies_ref.at(bi);
+                    for link in &body.shapes {
+                        // SAFETY: a shape belongs to one body, and each awake body is listed once.
+                        let shape = unsafe { shapes_mut.at_mut(link.index) };
+                        if shape.proxy != NONE {
+                            shape.aabb = shape.geometry.aabb(geometry, &body.xf);
+                        }
+                    }
+                }
+            },
+        );
         for k in 0..self.awake_bodies.len() {
             let bi = self.awake_bodies[k];
             let body = self.bodies.at(bi);
             let d = body.v * dt;
             for j in 0..body.shapes.len() {
                 let s = self.bodies.at(bi).shapes[j].index;
-                self.refresh_proxy(s, d, false);
+                let shape = self.shapes.at(s);
+                if shape.proxy == NONE {
+                    continue;
+                }
+                let bb = shape.aabb.swept(d);
+                if !shape.fat_aabb.contains(&bb) {
+                    // Sweep one more step of motion ahead, so a fast body refits every other
+                    // step (as `refresh_proxy`).
+                    let fat = bb.swept(d).expanded(AABB_MARGIN);
+                    let proxy = shape.proxy;
+                    self.shapes.at_mut(s).fat_aabb = fat;
+                    self.broad.tree.move_proxy(proxy, fat);
+                    self.push_moved(s);
+                }
             }
         }
     }
 }
+
+/// Awake bodies per bounds task, at least.
+const BOUNDS_MIN_RANGE: u32 = 64;
 
 /// Contacts per narrow-phase task, at least.
 const NARROW_MIN_RANGE: u32 = 16;

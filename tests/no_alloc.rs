@@ -27,6 +27,27 @@ unsafe impl GlobalAlloc for Counting {
 #[global_allocator]
 static GLOBAL: Counting = Counting;
 
+/// A host job system that runs each task in ranges of the minimum length on the calling
+/// thread, without allocating.
+struct InlineHost {
+    workers: u32,
+}
+
+impl hearth::parallel::TaskRunner for InlineHost {
+    fn worker_count(&self) -> u32 {
+        self.workers
+    }
+
+    fn run(&self, count: u32, min_range: u32, task: &hearth::parallel::Task) {
+        let mut start = 0;
+        while start < count {
+            let end = (start + min_range.max(1)).min(count);
+            task(start, end, start / min_range.max(1) % self.workers);
+            start = end;
+        }
+    }
+}
+
 fn allocations_per_step(world: &mut hearth::World, warmup: usize, measured: usize) -> usize {
     for _ in 0..warmup {
         world.step(1.0 / 60.0).unwrap();
@@ -110,6 +131,22 @@ fn steady_steps_do_not_allocate() {
         let mut w = hearth::World::new(settings).unwrap();
         scenes::pile(&mut w, 400);
         assert_eq!(allocations_per_step(&mut w, 240, 60), 0, "pile at {workers} workers");
+    }
+    // A host that runs every task on the calling thread (the solver then runs one task per
+    // stage instead of workers meeting at a barrier).
+    for workers in [2, 4] {
+        let mut w = hearth::World::new(hearth::WorldSettings {
+            enable_sleep: false,
+            ..Default::default()
+        })
+        .unwrap();
+        w.set_task_runner(Box::new(InlineHost { workers })).unwrap();
+        scenes::pyramid(&mut w, 10);
+        assert_eq!(
+            allocations_per_step(&mut w, 120, 60),
+            0,
+            "pyramid on an inline host of {workers} workers"
+        );
     }
     assert_eq!(
         capi_scene::hosted_pyramid_allocations(),

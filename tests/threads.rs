@@ -259,6 +259,80 @@ fn a_host_that_shuffles_tasks_onto_random_threads_gives_the_golden_hashes() {
     }
 }
 
+/// A host job system that runs every task on the calling thread, range by range (of the
+/// minimum length), last range first, while claiming `workers` workers: it never runs two
+/// ranges at once, so the solver must not wait for ranges to meet (it runs one task per
+/// stage for a host).
+struct SerialHost {
+    workers: u32,
+}
+
+impl hearth::parallel::TaskRunner for SerialHost {
+    fn worker_count(&self) -> u32 {
+        self.workers
+    }
+
+    fn run(&self, count: u32, min_range: u32, task: &hearth::parallel::Task) {
+        let starts: Vec<u32> = (0..count).step_by(min_range.max(1) as usize).collect();
+        for (i, &start) in starts.iter().enumerate().rev() {
+            let end = (start + min_range.max(1)).min(count);
+            task(start, end, i as u32 % self.workers);
+        }
+    }
+}
+
+#[test]
+fn a_host_that_runs_every_task_serially_on_the_calling_thread_gives_the_golden_hashes() {
+    for workers in [2u32, 4] {
+        check_golden_with(&format!("a serial host claiming {workers} workers"), || {
+            let mut w = World::new(settings(LaneWidth::Auto)).unwrap();
+            w.set_task_runner(Box::new(SerialHost { workers })).unwrap();
+            w
+        });
+    }
+}
+
+#[test]
+fn two_and_four_workers_match_one_step_by_step_with_joints_and_locked_axes() {
+    // The staged solver over many steps of a pile (contacts forming, parting and sleeping)
+    // beside a joint chain, with some boxes' axes locked (the serial stages between the
+    // colours), at four lanes: the same state as one worker, step for step.
+    let build = |w: &mut World| {
+        let boxes = scenes::pile(w, 300);
+        for b in boxes.iter().step_by(7) {
+            w.set_locked_axes(*b, u32::from(hearth::dynamics::body::LOCK_ANGULAR_X))
+                .unwrap();
+        }
+        scenes::joint_chain(w, 10);
+    };
+    let mut one = World::new(settings(LaneWidth::Four)).unwrap();
+    build(&mut one);
+    let mut many: Vec<World> = [2u32, 4]
+        .iter()
+        .map(|&workers| {
+            let mut w = World::new(WorldSettings {
+                worker_count: workers,
+                ..settings(LaneWidth::Four)
+            })
+            .unwrap();
+            build(&mut w);
+            w
+        })
+        .collect();
+    for step in 0..300 {
+        one.step(DT).unwrap();
+        for w in &mut many {
+            w.step(DT).unwrap();
+            assert_eq!(
+                w.state_hash(),
+                one.state_hash(),
+                "step {step} at {} workers",
+                w.settings.worker_count
+            );
+        }
+    }
+}
+
 #[test]
 fn worker_counts_outside_one_to_sixty_four_are_refused() {
     for bad in [0, 65, u32::MAX] {

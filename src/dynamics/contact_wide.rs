@@ -27,6 +27,7 @@ use crate::pool::Pool;
 #[cfg(target_arch = "x86_64")]
 use crate::simd::F8;
 use crate::simd::{Lanes, F4, M, V};
+use std::ops::Range;
 
 const MAXP: usize = MAX_MANIFOLD_POINTS;
 
@@ -208,11 +209,11 @@ mod eight {
     }
 
     entry! {
-        pack_all(members: &[Vec<u32>], singles: &[u32], refs: &[ContactRef], sources: &Sources);
+        pack_all(members: &[Vec<u32>], singles: &[u32], refs: &[ContactRef], sources: &Sources, ends: &mut Vec<u32>);
         set_softness_all(soft: &SoftSweep, inv_h: f32);
         refresh_all(states: &[BodyState], first: bool);
-        refresh_warm_start_all(states: &[BodyState], vel: &mut [Velocity], first: bool);
-        solve_all(vel: &mut [Velocity], inv_h: f32, forward: bool, bias: Option<&SoftSweep>);
+        refresh_warm_start_all(states: &[BodyState], vel: &mut [Velocity], first: bool, range: Range<usize>);
+        solve_all(vel: &mut [Velocity], inv_h: f32, forward: bool, bias: Option<&SoftSweep>, range: Range<usize>);
         restitution_all(vel: &mut [Velocity], threshold: f32);
         store_all(refs: &[ContactRef], contacts: &mut Pool<Contact>);
     }
@@ -227,6 +228,9 @@ pub struct Batches {
     singles: Vec<u32>,
     /// A colour's members ordered by `order_key` (reused).
     ordered: Vec<u32>,
+    /// The end of each non-empty colour's batches (batches are packed colour by colour), then
+    /// the end of the constraints that fit no colour (one batch each, solved in order).
+    ends: Vec<u32>,
 }
 
 impl Default for Batches {
@@ -254,6 +258,7 @@ impl Batches {
             color_members: Vec::new(),
             singles: Vec::new(),
             ordered: Vec::new(),
+            ends: Vec::new(),
         }
     }
 
@@ -309,8 +314,27 @@ impl Batches {
         }
         dispatch!(
             &mut self.sets,
-            pack_all(&self.color_members, &self.singles, refs, sources)
+            pack_all(&self.color_members, &self.singles, refs, sources, &mut self.ends)
         )
+    }
+
+    /// Batches in all.
+    pub fn len(&self) -> usize {
+        self.ends.last().map_or(0, |&e| e as usize)
+    }
+
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+
+    /// The batches by colour, in solve order: each range but the last holds one colour's
+    /// batches, which share no dynamic body and may be solved at the same time; the last holds
+    /// the constraints that fit no colour, which must be solved one after another.
+    pub fn colours(&self) -> impl Iterator<Item = Range<usize>> + '_ {
+        let starts = std::iter::once(0).chain(self.ends.iter().copied());
+        starts
+            .zip(self.ends.iter().copied())
+            .map(|(s, e)| s as usize..e as usize)
     }
 }
 
@@ -344,8 +368,10 @@ fn pack_all<L: Lanes + Default>(
     singles: &[u32],
     refs: &[ContactRef],
     sources: &Sources,
+    ends: &mut Vec<u32>,
 ) {
     let mut used = 0;
+    ends.clear();
     for members in members {
         for group in members.chunk_by(|&x, &y| refs[x as usize].kind() == refs[y as usize].kind()) {
             for chunk in group.chunks(L::N) {
@@ -354,12 +380,16 @@ fn pack_all<L: Lanes + Default>(
                 used += 1;
             }
         }
+        if !members.is_empty() {
+            ends.push(used as u32);
+        }
     }
     for &i in singles {
         next_slot(batches, used);
         pack(&mut batches[used], &[i], refs, sources);
         used += 1;
     }
+    ends.push(used as u32);
     batches.truncate(used);
 }
 
@@ -1135,7 +1165,19 @@ fn rel<L: Lanes, const SB: bool>(va: V<L>, wa: V<L>, vb: V<L>, wb: V<L>, d: V<L>
 /// by batch in one pass over the constraints. Refreshing reads positions only, so this is
 /// the same as refreshing every batch and then warm starting every batch.
 pub fn refresh_warm_start(states: &[BodyState], vel: &mut [Velocity], batches: &mut Batches, first: bool) {
-    dispatch!(&mut batches.sets, refresh_warm_start_all(states, vel, first))
+    let all = 0..batches.len();
+    dispatch!(&mut batches.sets, refresh_warm_start_all(states, vel, first, all))
+}
+
+/// `refresh_warm_start` over the batches of `range` only.
+pub fn refresh_warm_start_range(
+    states: &[BodyState],
+    vel: &mut [Velocity],
+    batches: &mut Batches,
+    first: bool,
+    range: Range<usize>,
+) {
+    dispatch!(&mut batches.sets, refresh_warm_start_all(states, vel, first, range))
 }
 
 #[inline(always)]
@@ -1145,8 +1187,9 @@ fn refresh_warm_start_all<L: Lanes>(
     states: &[BodyState],
     vel: &mut [Velocity],
     first: bool,
+    range: Range<usize>,
 ) {
-    for w in batches.iter_mut() {
+    for w in batches[range].iter_mut() {
         match (w.count == 1, w.b_static) {
             (true, true) => refresh_warm_start_batch::<L, 1, true>(states, vel, w, first),
             (true, false) => refresh_warm_start_batch::<L, 1, false>(states, vel, w, first),
@@ -1232,7 +1275,20 @@ pub struct SoftSweep {
 /// One sweep: soft and biased (`Some`), or rigid without bias (`None`, the relax sweep).
 /// Speculative points (positive separation) may close their gap within the sub-step, no more.
 pub fn solve(vel: &mut [Velocity], batches: &mut Batches, inv_h: f32, forward: bool, bias: Option<&SoftSweep>) {
-    dispatch!(&mut batches.sets, solve_all(vel, inv_h, forward, bias))
+    let all = 0..batches.len();
+    dispatch!(&mut batches.sets, solve_all(vel, inv_h, forward, bias, all))
+}
+
+/// `solve` over the batches of `range` only.
+pub fn solve_range(
+    vel: &mut [Velocity],
+    batches: &mut Batches,
+    inv_h: f32,
+    forward: bool,
+    bias: Option<&SoftSweep>,
+    range: Range<usize>,
+) {
+    dispatch!(&mut batches.sets, solve_all(vel, inv_h, forward, bias, range))
 }
 
 #[inline(always)]
@@ -1243,8 +1299,9 @@ fn solve_all<L: Lanes>(
     inv_h: f32,
     forward: bool,
     bias: Option<&SoftSweep>,
+    range: Range<usize>,
 ) {
-    for w in batches.iter_mut() {
+    for w in batches[range].iter_mut() {
         match (w.count == 1, w.b_static) {
             (true, true) => solve_batch::<L, 1, true>(vel, w, inv_h, forward, bias),
             (true, false) => solve_batch::<L, 1, false>(vel, w, inv_h, forward, bias),

@@ -14,3 +14,4 @@ pub mod integrate_wide;
 pub mod island;
 pub mod joints;
 pub mod solver;
+pub(crate) mod solver_stages;

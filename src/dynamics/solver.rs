@@ -217,6 +217,8 @@ pub struct SolverScratch {
     /// Solver indices of the bodies with locked axes this step.
     pub locked: Vec<u32>,
     pub batches: contact_wide::Batches,
+    /// The sub-steps as stages for several workers (`solver_stages`).
+    pub stages: crate::dynamics::solver_stages::Stages,
 }
 
 /// Soft constraint coefficients (Box2D v3 `b2Softness`), for a sub-step of `h` seconds.
@@ -603,7 +605,7 @@ fn kinematic_target_velocity(body: &mut Body, dt: f32, max_v: f32, max_w: f32) -
 
 /// Velocity update of a body with torque or gyroscopic motion (RK4 bodies are integrated in
 /// `integrate_general_positions`).
-fn integrate_general_velocities(
+pub(crate) fn integrate_general_velocities(
     vel: &mut [Velocity],
     drives: &[Drive],
     states: &[BodyState],
@@ -635,7 +637,7 @@ fn integrate_general_velocities(
 
 /// Moves the bodies with torque, gyroscopic motion or RK4 by their velocities, capped at the
 /// speed limits before and after (RK4's stiff damping is split out, see `rk4_step`).
-fn integrate_general_positions(
+pub(crate) fn integrate_general_positions(
     vel: &mut [Velocity],
     states: &mut [BodyState],
     sims: &[BodySim],
@@ -678,11 +680,11 @@ fn integrate_general_positions(
 #[derive(Default)]
 pub struct Paths {
     /// Dynamic, plain (`Path::Plain`): velocities in lanes.
-    plain: Vec<u32>,
+    pub(crate) plain: Vec<u32>,
     /// Plain or kinematic: positions in lanes.
-    moving: Vec<u32>,
+    pub(crate) moving: Vec<u32>,
     /// `Path::General`: the scalar path.
-    general: Vec<u32>,
+    pub(crate) general: Vec<u32>,
 }
 
 impl Paths {
@@ -840,7 +842,38 @@ pub fn solve(world: &mut World, dt: f32) {
     };
     contact_wide::set_softness(batches, &soft, inv_h);
     let limits = (settings.max_linear_speed, settings.max_angular_speed);
-    for sub in 0..substeps {
+    let runner = &*world.tasks;
+    // On several workers, stage by stage (`solver_stages`), when there are enough batches
+    // to share; the results are those of the loop below, bit for bit.
+    let workers = runner.worker_count();
+    let staged = workers > 1 && batches.len() >= (8 * workers) as usize;
+    if staged {
+        use crate::dynamics::solver_stages::{substeps as staged, Sweep, Written};
+        use crate::parallel::SharedMut;
+        let sweep = Sweep {
+            substeps,
+            iterations: settings.velocity_iterations,
+            h,
+            inv_h,
+            eight,
+            limits,
+            soft: &soft,
+            sims,
+            drives,
+            paths,
+            locked,
+        };
+        let written = Written {
+            vel: SharedMut::new(&mut vel[..]),
+            states: SharedMut::new(&mut states[..]),
+            batches: SharedMut::new(batches),
+            joints: SharedMut::new(joints),
+            springs: SharedMut::new(springs),
+        };
+        staged(runner, &mut scratch.stages, &sweep, &written);
+    }
+    // Otherwise (and then only) the sub-steps run here.
+    for sub in 0..if staged { 0 } else { substeps } {
         // Springs between bodies kick first, from the poses at the start of the sub-step.
         crate::generators::springs::apply(springs, vel, states, h);
         integrate_wide::velocities(eight, vel, drives, &paths.plain, limits);
@@ -886,7 +919,7 @@ pub fn solve(world: &mut World, dt: f32) {
 /// their reduced effective masses. What is left to take out comes from the other stages
 /// (springs between bodies) and rounding, and taking it out only removes kinetic energy.
 /// Worlds without locks pay an empty loop.
-fn lock_velocities(vel: &mut [Velocity], states: &[BodyState], locked: &[u32]) {
+pub(crate) fn lock_velocities(vel: &mut [Velocity], states: &[BodyState], locked: &[u32]) {
     for &k in locked {
         let locks = states[k as usize].locks;
         let u = &mut vel[k as usize];
@@ -901,8 +934,14 @@ fn lock_velocities(vel: &mut [Velocity], states: &[BodyState], locked: &[u32]) {
 /// (NaN components dropped); velocities merely past the limits are left to the integration's
 /// caps, as capping inside the solve would bias it. One pass over the bodies per sweep group.
 fn guard_velocities(vel: &mut [Velocity], limits: (f32, f32)) {
+    let all = 1..vel.len();
+    guard_range(vel, limits, all);
+}
+
+/// `guard_velocities` over the solver slots of `range` (the static dummy, slot 0, excluded).
+pub(crate) fn guard_range(vel: &mut [Velocity], limits: (f32, f32), range: std::ops::Range<usize>) {
     let (v2, w2) = ((100.0 * limits.0).powi(2), (100.0 * limits.1).powi(2));
-    for u in vel.iter_mut().skip(1) {
+    for u in vel[range.start.max(1)..range.end].iter_mut() {
         let sane = |x: f32, max: f32| x.is_finite() && x <= max;
         if !sane(u.v.length_squared(), v2) || !sane(u.w.length_squared(), w2) {
             *u = Velocity::new(clamp_length(u.v, limits.0), clamp_length(u.w, limits.1));

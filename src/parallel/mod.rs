@@ -12,11 +12,13 @@
 //! threads) and, in the C layer, the host's job system through its enqueue and finish
 //! callbacks (`capi/tasks.rs`).
 
+mod barrier;
 mod pool;
 mod slots;
 
+pub(crate) use barrier::Barrier;
 pub use pool::ThreadPool;
-pub(crate) use slots::Disjoint;
+pub(crate) use slots::{Disjoint, SharedMut};
 
 /// Most workers a world may use.
 pub const MAX_WORKERS: u32 = 64;
@@ -36,6 +38,14 @@ pub trait TaskRunner: Send + Sync {
     /// Every range must run even when an earlier one panicked; the panic is then resumed
     /// on the calling thread.
     fn run(&self, count: u32, min_range: u32, task: &Task);
+
+    /// Up to how many items a `run` of `min_range` 1 surely runs all at the same time, each
+    /// on its own thread and core, so that they may wait for one another (the solver's
+    /// stage barrier, `dynamics::solver_stages`); 0 if none. Only Hearth's own pool
+    /// promises it; a host's job system may run ranges one after another.
+    fn concurrent(&self) -> u32 {
+        0
+    }
 }
 
 /// Everything on the calling thread, in one range.

@@ -36,3 +36,35 @@ impl<'a, T> Disjoint<'a, T> {
         &mut *self.ptr.add(i)
     }
 }
+
+/// One value that several tasks running at the same time reach mutably, each touching only
+/// parts no other task touches until they next meet at a barrier (the solver's colour
+/// sweeps: a worker's batches and the bodies they write, a worker's share of the bodies).
+pub(crate) struct SharedMut<'a, T: ?Sized> {
+    ptr: *mut T,
+    _borrow: PhantomData<&'a mut T>,
+}
+
+// As `Disjoint`: tasks on other threads reach disjoint parts.
+unsafe impl<T: ?Sized + Send> Sync for SharedMut<'_, T> {}
+unsafe impl<T: ?Sized + Send> Send for SharedMut<'_, T> {}
+
+impl<'a, T: ?Sized> SharedMut<'a, T> {
+    pub(crate) fn new(value: &'a mut T) -> Self {
+        SharedMut {
+            ptr: value,
+            _borrow: PhantomData,
+        }
+    }
+
+    /// The value.
+    ///
+    /// # Safety
+    /// Until the next barrier, what the caller writes through it no other task reads or
+    /// writes, and what it reads no other task writes (except with the bits already there).
+    #[allow(clippy::mut_from_ref)]
+    #[inline]
+    pub(crate) unsafe fn get(&self) -> &mut T {
+        &mut *self.ptr
+    }
+}
