@@ -256,6 +256,92 @@ const FIGURES: &[(&str, &str, Backing)] = &[
         Setting("hull_hull's EDGE_ABS_TOL, the slack an edge axis needs over a face"),
     ),
     (C, "1 mm", Setting("the body-pair manifold cache's reuse distance")),
+    // docs/comparison.md, Jolt 5.0.0 section: Jolt's settings and the peer's scene set-up
+    // (Setting), and the side-by-side measurements on a shared machine (Bench).
+    (C, "0.000 m/s", Bench),
+    (
+        C,
+        "0.02 m",
+        Setting("the Jolt runner's scene and solver settings (docs/comparison.md, Jolt 5.0.0)"),
+    ),
+    (
+        C,
+        "0.03 m/s",
+        Setting("the Jolt runner's scene and solver settings (docs/comparison.md, Jolt 5.0.0)"),
+    ),
+    (
+        C,
+        "0.05 m",
+        Setting("the Jolt runner's scene and solver settings (docs/comparison.md, Jolt 5.0.0)"),
+    ),
+    (
+        C,
+        "0.05 m/s",
+        Setting("the Jolt runner's scene and solver settings (docs/comparison.md, Jolt 5.0.0)"),
+    ),
+    (
+        C,
+        "0.2 m",
+        Setting("the Jolt runner's scene and solver settings (docs/comparison.md, Jolt 5.0.0)"),
+    ),
+    (
+        C,
+        "0.3 m",
+        Setting("the Jolt runner's scene and solver settings (docs/comparison.md, Jolt 5.0.0)"),
+    ),
+    (
+        C,
+        "0.5 s",
+        Setting("the Jolt runner's scene and solver settings (docs/comparison.md, Jolt 5.0.0)"),
+    ),
+    (
+        C,
+        "1 m",
+        Setting("the Jolt runner's scene and solver settings (docs/comparison.md, Jolt 5.0.0)"),
+    ),
+    (C, "1.24 mm", Bench),
+    (C, "110 ms/step", Bench),
+    (
+        C,
+        "12 m/s",
+        Setting("the Jolt runner's scene and solver settings (docs/comparison.md, Jolt 5.0.0)"),
+    ),
+    (C, "13 %", Bench),
+    (C, "18.8 ms/step", Bench),
+    (C, "19 ×", Bench),
+    (C, "2 ×", Bench),
+    (
+        C,
+        "256 ×",
+        Setting("the Jolt runner's scene and solver settings (docs/comparison.md, Jolt 5.0.0)"),
+    ),
+    (
+        C,
+        "400 m",
+        Setting("the Jolt runner's scene and solver settings (docs/comparison.md, Jolt 5.0.0)"),
+    ),
+    (
+        C,
+        "400 m/s",
+        Setting("the Jolt runner's scene and solver settings (docs/comparison.md, Jolt 5.0.0)"),
+    ),
+    (
+        C,
+        "400 ×",
+        Setting("the Jolt runner's scene and solver settings (docs/comparison.md, Jolt 5.0.0)"),
+    ),
+    (C, "46.9 ms/step", Bench),
+    (
+        C,
+        "5 °",
+        Setting("the Jolt runner's scene and solver settings (docs/comparison.md, Jolt 5.0.0)"),
+    ),
+    (
+        C,
+        "500 m/s",
+        Setting("the Jolt runner's scene and solver settings (docs/comparison.md, Jolt 5.0.0)"),
+    ),
+    (C, "7 mm", Bench),
     (
         C,
         "1 °",
