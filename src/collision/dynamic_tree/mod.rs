@@ -66,26 +66,32 @@ impl Default for DynamicTree {
     }
 }
 
-/// Traversal stack: a fixed array that spills into a `Vec` only if it overflows.
-struct Stack {
-    items: [u32; STACK_CAPACITY],
+/// Traversal stack: a fixed array that spills into a `Vec` only if it overflows (a tree
+/// deeper than the capacity).
+struct FixedStack<T, const N: usize> {
+    items: [T; N],
     len: usize,
-    spill: Vec<u32>,
+    spill: Vec<T>,
 }
 
-impl Stack {
+/// Node stack of the box queries and walks.
+type Stack = FixedStack<u32, STACK_CAPACITY>;
+/// Ray traversal stack of (node, entry parameter).
+type RayStack = FixedStack<(u32, f32), RAY_STACK_CAPACITY>;
+
+impl<T: Copy + Default, const N: usize> FixedStack<T, N> {
     #[inline]
     fn new() -> Self {
-        Stack {
-            items: [NULL_NODE; STACK_CAPACITY],
+        FixedStack {
+            items: [T::default(); N],
             len: 0,
             spill: Vec::new(),
         }
     }
 
     #[inline]
-    fn push(&mut self, v: u32) {
-        if self.len < STACK_CAPACITY {
+    fn push(&mut self, v: T) {
+        if self.len < N {
             self.items[self.len] = v;
             self.len += 1;
         } else {
@@ -94,7 +100,7 @@ impl Stack {
     }
 
     #[inline]
-    fn pop(&mut self) -> Option<u32> {
+    fn pop(&mut self) -> Option<T> {
         if let Some(v) = self.spill.pop() {
             Some(v)
         } else if self.len > 0 {
@@ -182,47 +188,6 @@ impl RaySlabs {
 
 /// Capacity of the on-stack ray traversal stack (entries of node and entry parameter).
 const RAY_STACK_CAPACITY: usize = 128;
-
-/// Ray traversal stack of (node, entry parameter): a fixed array that spills into a `Vec`
-/// only if it overflows (a tree deeper than the capacity).
-struct RayStack {
-    items: [(u32, f32); RAY_STACK_CAPACITY],
-    len: usize,
-    spill: Vec<(u32, f32)>,
-}
-
-impl RayStack {
-    #[inline]
-    fn new() -> Self {
-        RayStack {
-            items: [(NULL_NODE, 0.0); RAY_STACK_CAPACITY],
-            len: 0,
-            spill: Vec::new(),
-        }
-    }
-
-    #[inline]
-    fn push(&mut self, node: u32, entry: f32) {
-        if self.len < RAY_STACK_CAPACITY {
-            self.items[self.len] = (node, entry);
-            self.len += 1;
-        } else {
-            self.spill.push((node, entry));
-        }
-    }
-
-    #[inline]
-    fn pop(&mut self) -> Option<(u32, f32)> {
-        if let Some(v) = self.spill.pop() {
-            Some(v)
-        } else if self.len > 0 {
-            self.len -= 1;
-            Some(self.items[self.len])
-        } else {
-            None
-        }
-    }
-}
 
 #[inline]
 fn reciprocal(dir: Vec3) -> Vec3 {
@@ -402,7 +367,7 @@ impl DynamicTree {
             return tested;
         };
         let mut stack = RayStack::new();
-        stack.push(self.root, t_root);
+        stack.push((self.root, t_root));
         while let Some((i, entry)) = stack.pop() {
             if entry > max_t {
                 continue;
@@ -425,15 +390,15 @@ impl DynamicTree {
                     (Some(ta), Some(tb)) => {
                         // The nearer entry is popped first (ties: the first child).
                         if ta <= tb {
-                            stack.push(b, tb);
-                            stack.push(a, ta);
+                            stack.push((b, tb));
+                            stack.push((a, ta));
                         } else {
-                            stack.push(a, ta);
-                            stack.push(b, tb);
+                            stack.push((a, ta));
+                            stack.push((b, tb));
                         }
                     }
-                    (Some(ta), None) => stack.push(a, ta),
-                    (None, Some(tb)) => stack.push(b, tb),
+                    (Some(ta), None) => stack.push((a, ta)),
+                    (None, Some(tb)) => stack.push((b, tb)),
                     (None, None) => {}
                 }
             }

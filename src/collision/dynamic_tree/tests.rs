@@ -551,7 +551,7 @@ fn traversal_stack_spills_past_capacity() {
 fn ray_stack_spills_past_capacity() {
     let mut s = RayStack::new();
     for i in 0..1000 {
-        s.push(i, i as f32);
+        s.push((i, i as f32));
     }
     for i in (0..1000).rev() {
         assert_eq!(s.pop(), Some((i, i as f32)));
