@@ -56,11 +56,7 @@ impl Writer {
         let next_id = self.columns.len() as u32;
         let c = &mut self.columns[prev as usize];
         let n = c.children.len();
-        let found = if c.hint < n && c.children[c.hint].0 == name {
-            Some(c.hint)
-        } else {
-            c.children.iter().position(|k| k.0 == name)
-        };
+        let found = find_child(&c.children, c.hint, name);
         self.cur = match found {
             Some(k) => {
                 c.hint = k + 1;
@@ -160,6 +156,25 @@ impl Writer {
             .map(|(n, (l, z))| (n, l, z))
             .collect()
     }
+}
+
+/// The index of the child column named `name` among `children`, looked for at `hint` (the
+/// one after the last entered: fields are entered in order) first. Names are compared as
+/// strings; a name is nearly always the same `&'static str` (one `stringify!` or literal per
+/// call site), so they are first compared by address and length, which is enough to know
+/// they are equal, and only a miss falls back to comparing the characters.
+#[inline(always)]
+fn find_child(children: &[(&'static str, u32)], hint: usize, name: &'static str) -> Option<usize> {
+    let same = |a: &str| a.as_ptr() == name.as_ptr() && a.len() == name.len();
+    if let Some(k) = children.get(hint) {
+        if same(k.0) {
+            return Some(hint);
+        }
+    }
+    children
+        .iter()
+        .position(|k| same(k.0))
+        .or_else(|| children.iter().position(|k| k.0 == name))
 }
 
 /// Byte planes a column of `len` bytes with value width `width` is stored as (1: as is).
@@ -309,11 +324,7 @@ impl<'a> Reader<'a> {
         let prev = self.cur;
         let c = &mut self.columns[prev as usize];
         let n = c.children.len();
-        let found = if c.hint < n && c.children[c.hint].0 == name {
-            Some(c.hint)
-        } else {
-            c.children.iter().position(|k| k.0 == name)
-        };
+        let found = find_child(&c.children, c.hint, name);
         self.cur = match found {
             Some(k) => {
                 c.hint = k + 1;
