@@ -230,6 +230,15 @@ fn from_planes_w<const W: usize>(src: &[u8], dst: &mut [u8]) {
     }
 }
 
+/// The error of a read past a column's end (out of line: `take` is on every value's path).
+#[cold]
+#[inline(never)]
+fn ends_early<T>(wanted: usize, left: usize) -> ReadResult<T> {
+    bad(format!(
+        "snapshot corrupted: a column ends early ({wanted} bytes wanted, {left} left)"
+    ))
+}
+
 struct RColumn {
     at: usize,
     end: usize,
@@ -358,14 +367,11 @@ impl<'a> Reader<'a> {
         Ok(v)
     }
 
-    #[inline]
+    #[inline(always)]
     pub fn take(&mut self, n: usize) -> ReadResult<&'a [u8]> {
         let c = &mut self.columns[self.cur as usize];
         if c.end - c.at < n {
-            return bad(format!(
-                "snapshot corrupted: a column ends early ({n} bytes wanted, {} left)",
-                c.end - c.at
-            ));
+            return ends_early(n, c.end - c.at);
         }
         let s = &self.data[c.at..c.at + n];
         c.at += n;

@@ -151,7 +151,7 @@ macro_rules! snap_num {
             fn put(&self, w: &mut Writer) {
                 w.bytes(&self.to_le_bytes());
             }
-            #[inline]
+            #[inline(always)]
             fn get(r: &mut Reader) -> ReadResult<Self> {
                 let b = r.take(std::mem::size_of::<$t>())?;
                 Ok(<$t>::from_le_bytes(b.try_into().expect("sized")))
