@@ -317,7 +317,8 @@ impl Snap for glam::DQuat {
 }
 
 impl crate::world::World {
-    /// Bytes a snapshot of the world takes now.
+    /// Bytes a snapshot of the world takes now. The snapshot is compressed, so this runs a
+    /// whole save into a scratch buffer (as costly as `save_snapshot`).
     pub fn snapshot_size(&self) -> usize {
         saved_size(self)
     }
