@@ -49,15 +49,30 @@ impl Writer {
     }
 
     /// Makes the current column's child `name` current; returns the column to go back to
-    /// (`leave`).
-    #[inline]
+    /// (`leave`). Inlined for the usual case, the field after the last one entered.
+    #[inline(always)]
     pub fn enter(&mut self, name: &'static str) -> u32 {
         let prev = self.cur;
-        let next_id = self.columns.len() as u32;
         let c = &mut self.columns[prev as usize];
+        if let Some(&(k, id)) = c.children.get(c.hint) {
+            if k.as_ptr() == name.as_ptr() && k.len() == name.len() {
+                c.hint += 1;
+                self.cur = id;
+                return prev;
+            }
+        }
+        self.enter_other(name);
+        prev
+    }
+
+    /// `enter` when `name` is not the hinted child: looked up among the children, or a new
+    /// column the first time.
+    #[inline(never)]
+    fn enter_other(&mut self, name: &'static str) {
+        let next_id = self.columns.len() as u32;
+        let c = &mut self.columns[self.cur as usize];
         let n = c.children.len();
-        let found = find_child(&c.children, c.hint, name);
-        self.cur = match found {
+        self.cur = match find_child(&c.children, c.hint, name) {
             Some(k) => {
                 c.hint = k + 1;
                 c.children[k].1
@@ -69,7 +84,6 @@ impl Writer {
                 next_id
             }
         };
-        prev
     }
 
     #[inline]
@@ -328,13 +342,29 @@ impl<'a> Reader<'a> {
 
     /// Makes the current column's child `name` current (the next column of the payload
     /// the first time the path is entered); returns the column to go back to (`leave`).
-    #[inline]
+    /// Inlined for the usual case, the field after the last one entered.
+    #[inline(always)]
     pub fn enter(&mut self, name: &'static str) -> ReadResult<u32> {
         let prev = self.cur;
         let c = &mut self.columns[prev as usize];
+        if let Some(&(k, id)) = c.children.get(c.hint) {
+            if k.as_ptr() == name.as_ptr() && k.len() == name.len() {
+                c.hint += 1;
+                self.cur = id;
+                return Ok(prev);
+            }
+        }
+        self.enter_other(name)?;
+        Ok(prev)
+    }
+
+    /// `enter` when `name` is not the hinted child: looked up among the children, or the
+    /// payload's next column the first time.
+    #[inline(never)]
+    fn enter_other(&mut self, name: &'static str) -> ReadResult<()> {
+        let c = &mut self.columns[self.cur as usize];
         let n = c.children.len();
-        let found = find_child(&c.children, c.hint, name);
-        self.cur = match found {
+        self.cur = match find_child(&c.children, c.hint, name) {
             Some(k) => {
                 c.hint = k + 1;
                 c.children[k].1
@@ -350,7 +380,7 @@ impl<'a> Reader<'a> {
                 id
             }
         };
-        Ok(prev)
+        Ok(())
     }
 
     #[inline]
