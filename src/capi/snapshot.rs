@@ -27,6 +27,11 @@ unsafe fn idle_world<'a>(ptr: *const HearthWorld) -> Result<&'a crate::world::Wo
 
 /// Writes the size in bytes of the snapshot `hearth_world_snapshot_save` would write now
 /// to `*out_size`. The size changes as the world changes (bodies, contacts, particles).
+/// The snapshot is compressed, so its size depends on every byte: this runs a whole save
+/// (into a scratch buffer) and costs as much as `hearth_world_snapshot_save`. A host that
+/// saves often can instead keep a buffer with room to spare and call the save directly: when
+/// the buffer is too small, the save fails with `HEARTH_ERROR_BUFFER_TOO_SMALL` and writes
+/// the size needed.
 ///
 /// Errors: `HEARTH_ERROR_NULL_POINTER` (`world`, `out_size`), `HEARTH_ERROR_WORLD_LOCKED`
 /// (called from a callback during a step).

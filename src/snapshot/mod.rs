@@ -151,7 +151,7 @@ macro_rules! snap_num {
             fn put(&self, w: &mut Writer) {
                 w.bytes(&self.to_le_bytes());
             }
-            #[inline]
+            #[inline(always)]
             fn get(r: &mut Reader) -> ReadResult<Self> {
                 let b = r.take(std::mem::size_of::<$t>())?;
                 Ok(<$t>::from_le_bytes(b.try_into().expect("sized")))
@@ -317,7 +317,8 @@ impl Snap for glam::DQuat {
 }
 
 impl crate::world::World {
-    /// Bytes a snapshot of the world takes now.
+    /// Bytes a snapshot of the world takes now. The snapshot is compressed, so this runs a
+    /// whole save into a scratch buffer (as costly as `save_snapshot`).
     pub fn snapshot_size(&self) -> usize {
         saved_size(self)
     }
