@@ -338,10 +338,8 @@ impl<T: crate::snapshot::Snap> crate::snapshot::Snap for Pool<T> {
         } = self;
         first_counter.put(w);
         w.put_len(slots.len());
-        for Slot { counter, value } in slots {
-            w.within("#counter", |w| counter.put(w));
-            value.put(w);
-        }
+        w.within("#counter", |w| u32::put_all(slots.iter().map(|s| &s.counter), w));
+        Option::<T>::put_all(slots.iter().map(|s| &s.value), w);
         w.within("#free", |w| free.put(w));
         w.put_len(*len);
     }
@@ -349,17 +347,17 @@ impl<T: crate::snapshot::Snap> crate::snapshot::Snap for Pool<T> {
         use crate::snapshot::bad;
         let first_counter = u32::get(r)?;
         let n = r.count()?;
-        let mut slots = Vec::with_capacity(n);
-        let mut live = 0;
-        for _ in 0..n {
-            let counter = r.within("#counter", u32::get)?;
-            if counter == 0 || counter > COUNTER_MASK {
-                return bad(format!("snapshot corrupted: slot counter {counter} out of range"));
-            }
-            let value = Option::<T>::get(r)?;
-            live += value.is_some() as usize;
-            slots.push(Slot { counter, value });
+        let counters = r.within("#counter", |r| u32::get_all(n, r))?;
+        if let Some(c) = counters.iter().find(|&&c| c == 0 || c > COUNTER_MASK) {
+            return bad(format!("snapshot corrupted: slot counter {c} out of range"));
         }
+        let values = Option::<T>::get_all(n, r)?;
+        let live = values.iter().filter(|v| v.is_some()).count();
+        let slots: Vec<_> = counters
+            .into_iter()
+            .zip(values)
+            .map(|(counter, value)| Slot { counter, value })
+            .collect();
         let free = r.within("#free", Vec::<u32>::get)?;
         let len = r.within("#len", usize::get)?;
         if len != live

@@ -74,8 +74,8 @@ const FIGURES: &[(&str, &str, Backing)] = &[
     ),
     (R, "0.1 s", Range),
     // README: snapshots.
-    (R, "75 B/body", Measured(&["snapshot::pile_snapshot_size_per_body"])),
-    (R, "90 B/body", Measured(&["snapshot::pile_snapshot_size_per_body"])),
+    (R, "56 B/body", Measured(&["snapshot::pile_snapshot_size_per_body"])),
+    (R, "68 B/body", Measured(&["snapshot::pile_snapshot_size_per_body"])),
     (R, "1 ms", Range),
     (
         R,

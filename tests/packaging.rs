@@ -146,8 +146,8 @@ fn shared_library_has_a_soname_and_versioned_links() {
         !archive.contains(".debug_info") && !archive.contains(".llvmbc"),
         "libhearth.a is not stripped"
     );
-    // Sizes (bindings/packaging/README.md): about 3 and 6 MB today, under 4 and 10 MB.
-    for (f, limit) in [(real.as_str(), 4e6), ("libhearth.a", 10e6)] {
+    // Sizes (bindings/packaging/README.md): about 4 and 12 MB today, under 5 and 14 MB.
+    for (f, limit) in [(real.as_str(), 5e6), ("libhearth.a", 14e6)] {
         let size = std::fs::metadata(lib.join(f)).unwrap().len() as f64;
         println!("installed {f}: {:.2} MB", size / 1e6);
         assert!(size < limit, "{f} is {:.1} MB, over {:.0} MB", size / 1e6, limit / 1e6);

@@ -5,7 +5,7 @@
 //! whose values all have one width (2, 4 or 8 bytes) is stored as byte planes (every
 //! value's first byte, then every second byte, …): equal fields (masses, inertias, zero
 //! velocities of sleeping bodies, sign and exponent bytes of nearby positions) become long
-//! runs that the DEFLATE stage after this one shrinks.
+//! runs that the zstd stage after this one shrinks.
 //!
 //! A column is known by its path only while writing; the payload lists the columns in the
 //! order the writer first entered them, and the reader, which walks the same structure in
@@ -30,7 +30,10 @@ struct WColumn {
 
 /// Appends little-endian values to the columns of a payload.
 pub struct Writer {
+    /// The payload's columns are `columns[..used]`; the rest are columns of an earlier
+    /// payload kept for their capacity (`clear`).
     columns: Vec<WColumn>,
+    used: u32,
     cur: u32,
 }
 
@@ -44,8 +47,38 @@ impl Writer {
     pub fn new() -> Writer {
         Writer {
             columns: vec![WColumn::default()],
+            used: 1,
             cur: 0,
         }
+    }
+
+    /// Empties the writer for another payload, keeping its buffers' capacity. What it
+    /// writes next does not depend on what it wrote before: columns are numbered afresh.
+    pub fn clear(&mut self) {
+        self.used = 0;
+        self.cur = 0;
+        self.new_column();
+    }
+
+    /// A new empty column (a kept one when there is one); its id.
+    fn new_column(&mut self) -> u32 {
+        let id = self.used;
+        self.used += 1;
+        match self.columns.get_mut(id as usize) {
+            Some(c) => {
+                c.bytes.clear();
+                c.width = 0;
+                c.children.clear();
+                c.hint = 0;
+            }
+            None => self.columns.push(WColumn::default()),
+        }
+        id
+    }
+
+    /// The payload's columns.
+    fn live(&self) -> &[WColumn] {
+        &self.columns[..self.used as usize]
     }
 
     /// Makes the current column's child `name` current; returns the column to go back to
@@ -54,6 +87,9 @@ impl Writer {
     pub fn enter(&mut self, name: &'static str) -> u32 {
         let prev = self.cur;
         let c = &mut self.columns[prev as usize];
+        if c.hint == c.children.len() {
+            c.hint = 0;
+        }
         if let Some(&(k, id)) = c.children.get(c.hint) {
             if k.as_ptr() == name.as_ptr() && k.len() == name.len() {
                 c.hint += 1;
@@ -69,7 +105,7 @@ impl Writer {
     /// column the first time.
     #[inline(never)]
     fn enter_other(&mut self, name: &'static str) {
-        let next_id = self.columns.len() as u32;
+        let next_id = self.used;
         let c = &mut self.columns[self.cur as usize];
         let n = c.children.len();
         self.cur = match find_child(&c.children, c.hint, name) {
@@ -80,8 +116,7 @@ impl Writer {
             None => {
                 c.children.push((name, next_id));
                 c.hint = n + 1;
-                self.columns.push(WColumn::default());
-                next_id
+                self.new_column()
             }
         };
     }
@@ -110,38 +145,54 @@ impl Writer {
         c.bytes.extend_from_slice(b);
     }
 
-    /// Bytes the payload takes before compression.
-    pub fn raw_len(&self) -> usize {
-        4 + 9 * self.columns.len() + self.columns.iter().map(|c| c.bytes.len()).sum::<usize>()
+    /// Appends values of one width (`W` bytes each) to the current column.
+    #[inline]
+    pub fn values<const W: usize>(&mut self, values: impl Iterator<Item = [u8; W]>) {
+        let c = &mut self.columns[self.cur as usize];
+        let start = c.bytes.len();
+        for v in values {
+            c.bytes.extend_from_slice(&v);
+        }
+        if c.bytes.len() > start && c.width != W as u8 {
+            c.width = if c.width == 0 { W as u8 } else { MIXED };
+        }
     }
 
-    /// Appends the payload to `out`: the column count (`u32`), each column's length (`u64`)
+    /// Bytes the payload takes before compression.
+    pub fn raw_len(&self) -> usize {
+        4 + 9 * self.live().len() + self.live().iter().map(|c| c.bytes.len()).sum::<usize>()
+    }
+
+    /// Replaces `out`'s content with the payload: the column count (`u32`), each column's length (`u64`)
     /// and width (`u8`: 2, 4 or 8 for byte planes, otherwise stored as is), then the
     /// columns in order.
     pub fn finish(&self, out: &mut Vec<u8>) {
-        out.reserve(self.raw_len());
-        out.extend_from_slice(&(self.columns.len() as u32).to_le_bytes());
-        for c in &self.columns {
-            out.extend_from_slice(&(c.bytes.len() as u64).to_le_bytes());
-            out.push(c.width);
+        // Sized once and written in place: a buffer reused from the last payload of about
+        // this size is neither cleared nor zeroed again.
+        out.resize(self.raw_len(), 0);
+        let live = self.live();
+        out[..4].copy_from_slice(&(live.len() as u32).to_le_bytes());
+        for (k, c) in live.iter().enumerate() {
+            let e = &mut out[4 + 9 * k..4 + 9 * k + 9];
+            e[..8].copy_from_slice(&(c.bytes.len() as u64).to_le_bytes());
+            e[8] = c.width;
         }
-        for c in &self.columns {
-            let w = planes(c.width, c.bytes.len());
-            if w == 1 {
-                out.extend_from_slice(&c.bytes);
-                continue;
+        let mut at = 4 + 9 * live.len();
+        for c in live {
+            let dst = &mut out[at..at + c.bytes.len()];
+            match planes(c.width, c.bytes.len()) {
+                1 => dst.copy_from_slice(&c.bytes),
+                w => to_planes(&c.bytes, dst, w),
             }
-            let at = out.len();
-            out.resize(at + c.bytes.len(), 0);
-            to_planes(&c.bytes, &mut out[at..], w);
+            at += c.bytes.len();
         }
     }
 
-    /// Each column's path, length, and length compressed alone (byte planes, DEFLATE), for
+    /// Each column's path, length, and length compressed alone (byte planes, zstd), for
     /// size reports.
     pub fn column_sizes(&self) -> Vec<(String, usize, usize)> {
-        let mut names = vec![String::new(); self.columns.len()];
-        for (i, c) in self.columns.iter().enumerate() {
+        let mut names = vec![String::new(); self.live().len()];
+        for (i, c) in self.live().iter().enumerate() {
             for &(name, k) in &c.children {
                 names[k as usize] = if i == 0 {
                     name.to_string()
@@ -158,15 +209,18 @@ impl Writer {
                     children: Vec::new(),
                     hint: 0,
                 }],
+                used: 1,
                 cur: 0,
             };
             let mut raw = Vec::new();
             one.finish(&mut raw);
-            miniz_oxide::deflate::compress_to_vec(&raw[13..], super::write::DEFLATE_LEVEL).len()
+            let mut z = Vec::new();
+            super::write::compress_into(&raw[13..], &mut z);
+            z.len()
         };
         names
             .into_iter()
-            .zip(self.columns.iter().map(|c| (c.bytes.len(), packed(c))))
+            .zip(self.live().iter().map(|c| (c.bytes.len(), packed(c))))
             .map(|(n, (l, z))| (n, l, z))
             .collect()
     }
@@ -203,46 +257,74 @@ fn planes(width: u8, len: usize) -> usize {
 /// value's first byte, then every second byte, and so on.
 fn to_planes(values: &[u8], dst: &mut [u8], w: usize) {
     match w {
-        2 => to_planes_w::<2>(values, dst),
-        4 => to_planes_w::<4>(values, dst),
-        _ => to_planes_w::<8>(values, dst),
-    }
-}
-
-/// `to_planes` for width `W`, one plane at a time (no index checks in the loops).
-fn to_planes_w<const W: usize>(values: &[u8], dst: &mut [u8]) {
-    let n = values.len() / W;
-    if n == 0 {
-        return;
-    }
-    for (p, plane) in dst.chunks_exact_mut(n).enumerate() {
-        for (b, v) in plane.iter_mut().zip(values.chunks_exact(W)) {
-            *b = v[p];
-        }
+        2 => planes_u16::split(values, dst),
+        4 => planes_u32::split(values, dst),
+        _ => planes_u64::split(values, dst),
     }
 }
 
 /// Undoes `to_planes`: joins the byte planes of `src` into values of width `w` in `dst`.
 fn from_planes(src: &[u8], dst: &mut [u8], w: usize) {
     match w {
-        2 => from_planes_w::<2>(src, dst),
-        4 => from_planes_w::<4>(src, dst),
-        _ => from_planes_w::<8>(src, dst),
+        2 => planes_u16::join(src, dst),
+        4 => planes_u32::join(src, dst),
+        _ => planes_u64::join(src, dst),
     }
 }
 
-/// `from_planes` for width `W`, one plane at a time.
-fn from_planes_w<const W: usize>(src: &[u8], dst: &mut [u8]) {
-    let n = src.len() / W;
-    if n == 0 {
-        return;
-    }
-    for (p, plane) in src.chunks_exact(n).enumerate() {
-        for (v, &b) in dst.chunks_exact_mut(W).zip(plane) {
-            v[p] = b;
+/// Values are moved in blocks of this many: a block's words and planes stay in the first
+/// level cache, and the loops over a block are shifts over fixed-length arrays, which the
+/// compiler vectorises.
+const BLOCK: usize = 64;
+
+macro_rules! planes_of {
+    ($m:ident, $t:ty) => {
+        mod $m {
+            use super::BLOCK;
+            const W: usize = std::mem::size_of::<$t>();
+
+            /// Byte planes of the little-endian values in `values`, into `dst`.
+            pub(super) fn split(values: &[u8], dst: &mut [u8]) {
+                let n = values.len() / W;
+                let mut words = [0 as $t; BLOCK];
+                let mut plane = [0u8; BLOCK];
+                for (b, chunk) in values.chunks(BLOCK * W).enumerate() {
+                    let (i, k) = (b * BLOCK, chunk.len() / W);
+                    for (x, v) in words.iter_mut().zip(chunk.chunks_exact(W)) {
+                        *x = <$t>::from_le_bytes(v.try_into().expect("W bytes"));
+                    }
+                    for p in 0..W {
+                        for (y, x) in plane.iter_mut().zip(&words) {
+                            *y = (x >> (8 * p)) as u8;
+                        }
+                        dst[p * n + i..p * n + i + k].copy_from_slice(&plane[..k]);
+                    }
+                }
+            }
+
+            /// Little-endian values from the byte planes in `src`, into `dst`.
+            pub(super) fn join(src: &[u8], dst: &mut [u8]) {
+                let n = src.len() / W;
+                let mut words = [0 as $t; BLOCK];
+                for (b, chunk) in dst.chunks_mut(BLOCK * W).enumerate() {
+                    let (i, k) = (b * BLOCK, chunk.len() / W);
+                    words.fill(0);
+                    for p in 0..W {
+                        for (x, &y) in words.iter_mut().zip(&src[p * n + i..p * n + i + k]) {
+                            *x |= (y as $t) << (8 * p);
+                        }
+                    }
+                    for (v, x) in chunk.chunks_exact_mut(W).zip(&words) {
+                        v.copy_from_slice(&x.to_le_bytes());
+                    }
+                }
+            }
         }
-    }
+    };
 }
+planes_of!(planes_u16, u16);
+planes_of!(planes_u32, u32);
+planes_of!(planes_u64, u64);
 
 /// The error of a read past a column's end (out of line: `take` is on every value's path).
 #[cold]
@@ -291,9 +373,9 @@ pub(crate) fn unpack(payload: &[u8], plain: &mut Vec<u8>) -> ReadResult<Vec<(usi
     };
     let mut spans = Vec::with_capacity(count as usize);
     let mut at = 0usize;
-    plain.clear();
-    plain.reserve(payload.len() - table_len);
     let body = &payload[table_len..];
+    // Written in place: a buffer kept from the last restore is not zeroed again.
+    plain.resize(body.len(), 0);
     for k in 0..count as usize {
         let e = &payload[4 + 9 * k..4 + 9 * k + 9];
         let len = u64::from_le_bytes(e[..8].try_into().expect("8"));
@@ -301,14 +383,10 @@ pub(crate) fn unpack(payload: &[u8], plain: &mut Vec<u8>) -> ReadResult<Vec<(usi
             Ok(l) if l <= body.len() - at => l,
             _ => return corrupt(),
         };
-        let src = &body[at..at + len];
-        let w = planes(e[8], len);
-        if w == 1 {
-            plain.extend_from_slice(src);
-        } else {
-            let start = plain.len();
-            plain.resize(start + len, 0);
-            from_planes(src, &mut plain[start..], w);
+        let (src, dst) = (&body[at..at + len], &mut plain[at..at + len]);
+        match planes(e[8], len) {
+            1 => dst.copy_from_slice(src),
+            w => from_planes(src, dst, w),
         }
         spans.push((at, at + len));
         at += len;
@@ -347,6 +425,9 @@ impl<'a> Reader<'a> {
     pub fn enter(&mut self, name: &'static str) -> ReadResult<u32> {
         let prev = self.cur;
         let c = &mut self.columns[prev as usize];
+        if c.hint == c.children.len() {
+            c.hint = 0;
+        }
         if let Some(&(k, id)) = c.children.get(c.hint) {
             if k.as_ptr() == name.as_ptr() && k.len() == name.len() {
                 c.hint += 1;
@@ -407,6 +488,18 @@ impl<'a> Reader<'a> {
         c.at += n;
         self.left -= n;
         Ok(s)
+    }
+
+    /// `n` values of `width` bytes from the current column, as `n` calls of `take(width)`.
+    #[inline]
+    pub fn take_values(&mut self, n: usize, width: usize) -> ReadResult<&'a [u8]> {
+        match n.checked_mul(width) {
+            Some(len) => self.take(len),
+            None => ends_early(
+                usize::MAX,
+                self.columns[self.cur as usize].end - self.columns[self.cur as usize].at,
+            ),
+        }
     }
 
     /// Bytes not read yet, over all columns.

@@ -9,8 +9,8 @@
 //!   `skip` (scratch that every step rewrites before reading it, or a value `predicted.rs`
 //!   stores after the pool only where it differs from what the reader rebuilds).
 //! * `write.rs` writes the world section by section into columns (`columns.rs`: one column
-//!   per field path, byte planes), compresses them with DEFLATE and frames them (magic,
-//!   version, length, checksum); `read.rs` checks the frame, inflates, decodes every section
+//!   per field path, byte planes), compresses them with zstd and frames them (magic,
+//!   version, length, checksum); `read.rs` checks the frame, decompresses, decodes every section
 //!   into a new world state, checks its cross-references (`check.rs`) and only then swaps it
 //!   into the target world, so a failing restore changes nothing.
 //! * Ids keep their slot index and reuse counter; the world tag in their top bits is the
@@ -34,7 +34,7 @@ pub use write::{column_sizes, save, saved_size};
 /// First eight bytes of every snapshot.
 pub const MAGIC: [u8; 8] = *b"HEARTHSS";
 /// Format version; a snapshot of another version is refused.
-pub const VERSION: u32 = 2;
+pub const VERSION: u32 = 3;
 /// Bytes before the payload: magic, version, payload length (u64), checksum (u64).
 pub const HEADER_LEN: usize = 8 + 4 + 8 + 8;
 
@@ -104,6 +104,24 @@ impl Reader<'_> {
         Ok(n as usize)
     }
 
+    /// `n` counts from the current column's `#len`, as `n` calls of `count` would read them
+    /// and check them: together they are at most what is left, so the elements they
+    /// announce cannot ask for a huge allocation.
+    pub fn counts(&mut self, n: usize) -> ReadResult<Vec<usize>> {
+        let lens = self.within("#len", |r| u64::get_all(n, r))?;
+        let mut total = 0u64;
+        for &k in &lens {
+            total = total.saturating_add(k);
+            if total > self.remaining() as u64 {
+                return bad(format!(
+                    "snapshot corrupted: count {k} exceeds the {} bytes left",
+                    self.remaining()
+                ));
+            }
+        }
+        Ok(lens.into_iter().map(|k| k as usize).collect())
+    }
+
     /// An enum's variant tag, below `n`.
     pub fn tag(&mut self, what: &str, n: u8) -> ReadResult<u8> {
         let t = self.within("#tag", u8::get)?;
@@ -115,9 +133,38 @@ impl Reader<'_> {
 }
 
 /// A type stored in snapshots.
+///
+/// `put_all` and `get_all` store and load many values at once, column by column: a struct
+/// enters each field's column once and writes that field of every value, so the per-value
+/// cost is a plain loop rather than a column lookup per field. They write and read the
+/// same bytes in every column as `put` and `get` on each value in order would; the
+/// defaults do exactly that, one value at a time, and structs, numbers, vectors, options,
+/// arrays and pools override them.
 pub trait Snap: Sized {
     fn put(&self, w: &mut Writer);
     fn get(r: &mut Reader) -> ReadResult<Self>;
+
+    /// `put` of every value of `items`, in order.
+    #[inline]
+    fn put_all<'s, I>(items: I, w: &mut Writer)
+    where
+        I: Iterator<Item = &'s Self> + Clone,
+        Self: 's,
+    {
+        for x in items {
+            x.put(w);
+        }
+    }
+
+    /// `n` values, as `n` calls of `get` would read them.
+    #[inline]
+    fn get_all(n: usize, r: &mut Reader) -> ReadResult<Vec<Self>> {
+        let mut v = Vec::with_capacity(n.min(r.remaining()));
+        for _ in 0..n {
+            v.push(Self::get(r)?);
+        }
+        Ok(v)
+    }
 }
 
 /// Implements [`Snap`] for a struct by listing its fields, all of them: the writer
@@ -139,6 +186,29 @@ macro_rules! snap_struct {
                     $($($s: Default::default(),)*)?
                 })
             }
+            fn put_all<'s, I>(items: I, w: &mut $crate::snapshot::Writer)
+            where
+                I: Iterator<Item = &'s Self> + Clone,
+                Self: 's,
+            {
+                $( w.within(stringify!($f), |w| {
+                    $crate::snapshot::Snap::put_all(items.clone().map(|x: &'s $t| &x.$f), w)
+                }); )*
+            }
+            fn get_all(
+                n: usize,
+                r: &mut $crate::snapshot::Reader,
+            ) -> $crate::snapshot::ReadResult<Vec<Self>> {
+                $( let mut $f = r
+                    .within(stringify!($f), |r| $crate::snapshot::Snap::get_all(n, r))?
+                    .into_iter(); )*
+                Ok((0..n)
+                    .map(|_| $t {
+                        $($f: $f.next().expect("n values"),)*
+                        $($($s: Default::default(),)*)?
+                    })
+                    .collect())
+            }
         }
     };
 }
@@ -155,6 +225,20 @@ macro_rules! snap_num {
             fn get(r: &mut Reader) -> ReadResult<Self> {
                 let b = r.take(std::mem::size_of::<$t>())?;
                 Ok(<$t>::from_le_bytes(b.try_into().expect("sized")))
+            }
+            fn put_all<'s, I>(items: I, w: &mut Writer)
+            where
+                I: Iterator<Item = &'s Self> + Clone,
+                Self: 's,
+            {
+                w.values(items.map(|x| x.to_le_bytes()));
+            }
+            fn get_all(n: usize, r: &mut Reader) -> ReadResult<Vec<Self>> {
+                const W: usize = std::mem::size_of::<$t>();
+                let b = r.take_values(n, W)?;
+                Ok(b.chunks_exact(W)
+                    .map(|c| <$t>::from_le_bytes(c.try_into().expect("sized")))
+                    .collect())
             }
         }
     )*};
@@ -182,6 +266,20 @@ impl Snap for bool {
             v => bad(format!("snapshot corrupted: flag {v} is not 0 or 1")),
         }
     }
+    fn put_all<'s, I>(items: I, w: &mut Writer)
+    where
+        I: Iterator<Item = &'s Self> + Clone,
+        Self: 's,
+    {
+        w.values(items.map(|&x| [x as u8]));
+    }
+    fn get_all(n: usize, r: &mut Reader) -> ReadResult<Vec<Self>> {
+        let b = r.take_values(n, 1)?;
+        if let Some(v) = b.iter().find(|&&v| v > 1) {
+            return bad(format!("snapshot corrupted: flag {v} is not 0 or 1"));
+        }
+        Ok(b.iter().map(|&v| v == 1).collect())
+    }
 }
 
 impl<T: Snap> Snap for Vec<T> {
@@ -199,6 +297,22 @@ impl<T: Snap> Snap for Vec<T> {
         }
         Ok(v)
     }
+    fn put_all<'s, I>(items: I, w: &mut Writer)
+    where
+        I: Iterator<Item = &'s Self> + Clone,
+        Self: 's,
+    {
+        w.within("#len", |w| {
+            w.values(items.clone().map(|v| (v.len() as u64).to_le_bytes()))
+        });
+        T::put_all(items.flat_map(|v| v.iter()), w);
+    }
+    fn get_all(n: usize, r: &mut Reader) -> ReadResult<Vec<Self>> {
+        let lens = r.counts(n)?;
+        let total = lens.iter().sum();
+        let mut all = T::get_all(total, r)?.into_iter();
+        Ok(lens.iter().map(|&k| all.by_ref().take(k).collect()).collect())
+    }
 }
 
 impl<T: Snap> Snap for Option<T> {
@@ -215,6 +329,19 @@ impl<T: Snap> Snap for Option<T> {
             None
         })
     }
+    fn put_all<'s, I>(items: I, w: &mut Writer)
+    where
+        I: Iterator<Item = &'s Self> + Clone,
+        Self: 's,
+    {
+        w.within("#some", |w| w.values(items.clone().map(|x| [x.is_some() as u8])));
+        T::put_all(items.filter_map(|x| x.as_ref()), w);
+    }
+    fn get_all(n: usize, r: &mut Reader) -> ReadResult<Vec<Self>> {
+        let some = r.within("#some", |r| bool::get_all(n, r))?;
+        let mut values = T::get_all(some.iter().filter(|&&s| s).count(), r)?.into_iter();
+        Ok(some.iter().map(|&s| if s { values.next() } else { None }).collect())
+    }
 }
 
 impl<T: Snap, const N: usize> Snap for [T; N] {
@@ -229,6 +356,22 @@ impl<T: Snap, const N: usize> Snap for [T; N] {
             v.push(T::get(r)?);
         }
         Ok(v.try_into().ok().expect("N elements"))
+    }
+    fn put_all<'s, I>(items: I, w: &mut Writer)
+    where
+        I: Iterator<Item = &'s Self> + Clone,
+        Self: 's,
+    {
+        T::put_all(items.flat_map(|a| a.iter()), w);
+    }
+    fn get_all(n: usize, r: &mut Reader) -> ReadResult<Vec<Self>> {
+        let Some(total) = n.checked_mul(N) else {
+            return bad("snapshot corrupted: an array count out of range");
+        };
+        let mut all = T::get_all(total, r)?.into_iter();
+        Ok((0..n)
+            .map(|_| std::array::from_fn(|_| all.next().expect("n * N values")))
+            .collect())
     }
 }
 
@@ -283,9 +426,30 @@ macro_rules! snap_floats {
                 $( self.$f.put(w); )*
             }
             fn get(r: &mut Reader) -> ReadResult<Self> {
-                let mut v = <$t>::ZERO;
+                let mut v = <$t>::default();
                 $( v.$f = Snap::get(r)?; )*
                 Ok(v)
+            }
+            fn put_all<'s, I>(items: I, w: &mut Writer)
+            where
+                I: Iterator<Item = &'s Self> + Clone,
+                Self: 's,
+            {
+                Snap::put_all(items.flat_map(|v: &'s $t| [$(&v.$f),*]), w);
+            }
+            fn get_all(n: usize, r: &mut Reader) -> ReadResult<Vec<Self>> {
+                const K: usize = [$(stringify!($f)),*].len();
+                let Some(total) = n.checked_mul(K) else {
+                    return bad("snapshot corrupted: a count out of range");
+                };
+                let mut all = Snap::get_all(total, r)?.into_iter();
+                Ok((0..n)
+                    .map(|_| {
+                        let mut v = <$t>::default();
+                        $( v.$f = all.next().expect("n * K values"); )*
+                        v
+                    })
+                    .collect())
             }
         }
     )*};
@@ -296,24 +460,8 @@ snap_floats! {
     glam::DVec3: x, y, z;
     glam::Mat3: x_axis, y_axis, z_axis;
     glam::Mat3A: x_axis, y_axis, z_axis;
-}
-
-impl Snap for glam::Quat {
-    fn put(&self, w: &mut Writer) {
-        self.to_array().put(w)
-    }
-    fn get(r: &mut Reader) -> ReadResult<Self> {
-        Ok(glam::Quat::from_array(Snap::get(r)?))
-    }
-}
-
-impl Snap for glam::DQuat {
-    fn put(&self, w: &mut Writer) {
-        self.to_array().put(w)
-    }
-    fn get(r: &mut Reader) -> ReadResult<Self> {
-        Ok(glam::DQuat::from_array(Snap::get(r)?))
-    }
+    glam::Quat: x, y, z, w;
+    glam::DQuat: x, y, z, w;
 }
 
 impl crate::world::World {

@@ -53,35 +53,65 @@ fn payload(bytes: &[u8]) -> ReadResult<&[u8]> {
     Ok(payload)
 }
 
-/// The payload's columns: its length before compression (`u64`, at most 1,032 times the
-/// compressed length, DEFLATE's largest ratio) and the DEFLATE stream, which must inflate
-/// to exactly that length.
-fn decompress(payload: &[u8]) -> ReadResult<Vec<u8>> {
+/// The payload's columns: its length before compression (`u64`) and one zstd frame, which
+/// must decompress to exactly that length. The length is checked against zstd's largest
+/// ratio (a 128 KiB block from a 4-byte RLE block) before anything is allocated, so a
+/// corrupted length cannot ask for a huge buffer.
+fn decompress(payload: &[u8], z: &mut zstd::bulk::Decompressor<'static>, raw: &mut Vec<u8>) -> ReadResult<()> {
     if payload.len() < 8 {
         return bad("snapshot corrupted: payload shorter than its length field");
     }
     let raw_len = u64::from_le_bytes(payload[..8].try_into().expect("8 bytes"));
     let stream = &payload[8..];
-    if raw_len > 1032 * stream.len() as u64 + 16 {
+    if raw_len > 32 * 1024 * stream.len() as u64 {
         return bad(format!(
             "snapshot corrupted: {raw_len} bytes cannot come from a {}-byte stream",
             stream.len()
         ));
     }
-    match miniz_oxide::inflate::decompress_to_vec_with_limit(stream, raw_len as usize) {
-        Ok(raw) if raw.len() as u64 == raw_len => Ok(raw),
-        _ => bad("snapshot corrupted: its compressed columns do not inflate to their length"),
+    raw.clear();
+    raw.reserve(raw_len as usize);
+    match z.decompress_to_buffer(stream, raw) {
+        Ok(n) if n as u64 == raw_len => Ok(()),
+        _ => bad("snapshot corrupted: its compressed columns do not decompress to their length"),
     }
+}
+
+/// What a restore reuses from the last one on the same thread: the zstd context, the
+/// payload before compression and its columns without byte planes.
+struct Scratch {
+    zstd: zstd::bulk::Decompressor<'static>,
+    raw: Vec<u8>,
+    plain: Vec<u8>,
 }
 
 /// Restores `world` from `bytes` (see the module docs of `snapshot`). On error the world is
 /// unchanged.
 pub fn restore(world: &mut World, bytes: &[u8]) -> Result<(), SnapshotError> {
+    thread_local! {
+        static SCRATCH: std::cell::RefCell<Option<Scratch>> = const { std::cell::RefCell::new(None) };
+    }
     let payload = payload(bytes)?;
-    let raw = decompress(payload)?;
-    let mut plain = Vec::new();
-    let spans = super::columns::unpack(&raw, &mut plain)?;
-    let mut r = Reader::new(&plain, &spans, world.tag());
+    SCRATCH.with(|s| {
+        let mut s = s.borrow_mut();
+        if s.is_none() {
+            *s = Some(Scratch {
+                zstd: zstd::bulk::Decompressor::new().expect("a zstd context"),
+                raw: Vec::new(),
+                plain: Vec::new(),
+            });
+        }
+        let Scratch { zstd, raw, plain } = s.as_mut().expect("made above");
+        decompress(payload, zstd, raw)?;
+        let spans = super::columns::unpack(raw, plain)?;
+        decode(world, plain, &spans)
+    })
+}
+
+/// Decodes the columns `plain` (with their `spans`) into a new world state and swaps it
+/// into `world`.
+fn decode(world: &mut World, plain: &[u8], spans: &[(usize, usize)]) -> Result<(), SnapshotError> {
+    let mut r = Reader::new(plain, spans, world.tag());
     let r = &mut r;
     use section::*;
     let mut settings: WorldSettings = get_section(r, SETTINGS, Snap::get)?;
