@@ -5241,6 +5241,23 @@ HearthResult hearth_world_set_gravity(struct HearthWorld *world, struct HearthVe
 HearthResult hearth_world_get_gravity(const struct HearthWorld *world, struct HearthVec3 *out);
 
 /**
+ * Rebuilds the broad-phase tree top-down with a binned surface-area heuristic. Bodies
+ * created one by one (a level load) leave the tree deeper and looser than that; after a
+ * rebuild, ray casts, overlaps and the search for new contact pairs test fewer boxes (a
+ * settled 1,000-body pile: 22.3 -> 16.1 boxes per closest ray). Ids, contacts and every
+ * query's results are unchanged. Later steps find their new pairs in the new tree's order,
+ * so they are not bit-identical to those of a world that did not rebuild (the same calls
+ * still give the same results). Allocates scratch memory: call it after loading, not every
+ * step.
+ *
+ * Errors: `HEARTH_ERROR_NULL_POINTER`, `HEARTH_ERROR_WORLD_LOCKED` (called from a callback).
+ *
+ * # Safety
+ * `world` must be NULL or a live world.
+ */
+HearthResult hearth_world_rebuild_broadphase(struct HearthWorld *world);
+
+/**
  * Reads the world's counters.
  *
  * # Safety

@@ -967,4 +967,14 @@ impl World {
     pub fn tree_height(&self) -> u32 {
         self.broad.tree.height()
     }
+
+    /// Rebuilds the broad-phase tree top-down with a binned surface-area heuristic (the
+    /// incremental inserts of a level load leave it deeper and looser than that). Proxy
+    /// ids, fat boxes and contacts are unchanged; later queries and pair searches visit
+    /// fewer boxes, and since pairs are found in tree order, later steps differ from those
+    /// of a world that did not rebuild (deterministically: the same calls give the same
+    /// tree). Allocates scratch; meant for loading time, not every step.
+    pub fn rebuild_broadphase(&mut self) {
+        self.broad.tree.rebuild();
+    }
 }

@@ -1165,6 +1165,8 @@ public:
     Ret<WorldCounters> counters() const { HEARTH_CPP_READ(WorldCounters, hearth_world_get_counters(world_, &out)); }
     /** hearth_world_get_hash: equal for equal runs at any worker count and lane width. */
     Ret<uint64_t> state_hash() const { HEARTH_CPP_READ(uint64_t, hearth_world_get_hash(world_, &out)); }
+    /** hearth_world_rebuild_broadphase: after loading a level; ids and query results unchanged. */
+    Ret<void> rebuild_broadphase() const { return P::check(hearth_world_rebuild_broadphase(world_)); }
 
     // Events of the last step: arrays owned by the world, valid until the next step or destroy.
     Ret<ContactEvents> contact_events() const {

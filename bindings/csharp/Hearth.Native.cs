@@ -2126,6 +2126,8 @@ namespace Hearth
         public static extern Result hearth_world_get_counters(WorldHandle world, out WorldCounters value);
         [DllImport(Lib, CallingConvention = CallingConvention.Cdecl)]
         public static extern Result hearth_world_get_hash(WorldHandle world, out ulong hash);
+        [DllImport(Lib, CallingConvention = CallingConvention.Cdecl)]
+        public static extern Result hearth_world_rebuild_broadphase(WorldHandle world);
 
         [DllImport(Lib, CallingConvention = CallingConvention.Cdecl)]
         public static extern Result hearth_world_get_transforms(WorldHandle world, [In] BodyId[] bodies, UIntPtr count, [Out] Transform[] outTransforms);

@@ -631,6 +631,13 @@ namespace Hearth
             }
         }
 
+        /// <summary>hearth_world_rebuild_broadphase: rebuilds the broad-phase tree (after loading a
+        /// level, so that queries and pair searches test fewer boxes); ids and query results are unchanged.</summary>
+        public void RebuildBroadphase()
+        {
+            Check(Native.hearth_world_rebuild_broadphase(Handle), "hearth_world_rebuild_broadphase");
+        }
+
         /// <summary>hearth_world_get_counters.</summary>
         public WorldCounters Counters
         {

@@ -419,6 +419,27 @@ pub unsafe extern "C" fn hearth_world_get_gravity(world: *const HearthWorld, out
     })
 }
 
+/// Rebuilds the broad-phase tree top-down with a binned surface-area heuristic. Bodies
+/// created one by one (a level load) leave the tree deeper and looser than that; after a
+/// rebuild, ray casts, overlaps and the search for new contact pairs test fewer boxes (a
+/// settled 1,000-body pile: 22.3 -> 16.1 boxes per closest ray). Ids, contacts and every
+/// query's results are unchanged. Later steps find their new pairs in the new tree's order,
+/// so they are not bit-identical to those of a world that did not rebuild (the same calls
+/// still give the same results). Allocates scratch memory: call it after loading, not every
+/// step.
+///
+/// Errors: `HEARTH_ERROR_NULL_POINTER`, `HEARTH_ERROR_WORLD_LOCKED` (called from a callback).
+///
+/// # Safety
+/// `world` must be NULL or a live world.
+#[no_mangle]
+pub unsafe extern "C" fn hearth_world_rebuild_broadphase(world: *mut HearthWorld) -> HearthResult {
+    guard(|| {
+        world_mut(world)?.rebuild_broadphase();
+        Ok(())
+    })
+}
+
 /// Counters of a world, for tools and tests.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default)]

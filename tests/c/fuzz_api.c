@@ -2453,6 +2453,10 @@ static void op_misc(FWorld *fw) {
         {
             CALL(hearth_world_get_hash(w, nul ? NULL : &hash), f == F_NULL_WORLD || nul ? HEARTH_ERROR_NULL_POINTER : HEARTH_OK, NULL, &hash, sizeof hash);
         }
+        {
+            /* (No random draw: the default run's sequence, which reaches every export, stays.) */
+            CALL(hearth_world_rebuild_broadphase(w), f == F_NULL_WORLD ? HEARTH_ERROR_NULL_POINTER : HEARTH_OK, NULL, NULL, 0);
+        }
         break;
     }
     case 5: {

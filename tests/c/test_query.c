@@ -128,6 +128,7 @@ typedef struct {
     float answer; /* what the callback returns; < -1.5: the hit's own fraction */
     HearthRayHit last;
     HearthResult mutation;
+    HearthResult rebuild;
 } RayLog;
 
 static float on_hit(void *user_data, const HearthRayHit *hit) {
@@ -136,6 +137,7 @@ static float on_hit(void *user_data, const HearthRayHit *hit) {
     log->last = *hit;
     /* Changing the world from inside a query callback is refused; reading works. */
     log->mutation = hearth_body_set_linear_velocity(log->world, hit->body, v3(0, 1, 0));
+    log->rebuild = hearth_world_rebuild_broadphase(log->world);
     HearthTransform t;
     ENSURE_OK(hearth_body_get_transform(log->world, hit->body, &t));
     return log->answer < -1.5f ? hit->fraction : log->answer;
@@ -175,6 +177,7 @@ static void test_rays(void) {
     ENSURE_OK(hearth_world_cast_ray(w, v3(-4, 5, 0), v3(20, 0, 0), &all, on_hit, &log));
     ENSURE(log.calls == 4);
     ENSURE(log.mutation == HEARTH_ERROR_WORLD_LOCKED);
+    ENSURE(log.rebuild == HEARTH_ERROR_WORLD_LOCKED);
     log.calls = 0;
     log.answer = 0.0f;
     ENSURE_OK(hearth_world_cast_ray(w, v3(-4, 5, 0), v3(20, 0, 0), &all, on_hit, &log));
@@ -244,6 +247,61 @@ static void test_rays(void) {
     ENSURE_RESULT(hearth_world_cast_rays(w, rays, 3, NULL, hits), HEARTH_ERROR_NULL_POINTER);
     ENSURE_RESULT(hearth_world_cast_rays(NULL, rays, 3, &all, hits), HEARTH_ERROR_NULL_POINTER);
     ENSURE(untouched(hits, sizeof hits));
+    hearth_world_destroy(w);
+}
+
+/* ------------------------------------------------------------------ broad-phase rebuild */
+
+/* 300 spheres created one by one on a 3D grid, 64 seeded rays: a rebuild changes no hit and
+ * no state, the tree is no taller, the world still steps; NULL is refused. */
+static void test_rebuild_broadphase(void) {
+    HearthWorld *w = new_world();
+    HearthShapeDef sd = hearth_shape_def_default();
+    for (int i = 0; i < 300; i++) {
+        HearthVec3 p = v3((float)(i % 10) * 1.5f, 1.0f + (float)(i / 100) * 1.5f, (float)(i / 10 % 10) * 1.5f);
+        add_sphere(w, new_body(w, HEARTH_BODY_DYNAMIC, p, 1), 0.5f, &sd);
+    }
+    HearthQueryFilter all = hearth_query_filter_default();
+    HearthRayHit before[64], after[64];
+    uint32_t seed = 12345;
+    for (int pass = 0; pass < 2; pass++) {
+        HearthRayHit *out = pass == 0 ? before : after;
+        seed = 12345;
+        for (int k = 0; k < 64; k++) {
+            float r[6];
+            for (int j = 0; j < 6; j++) {
+                seed = seed * 1664525u + 1013904223u;
+                r[j] = (float)(seed >> 8) / 16777216.0f;
+            }
+            HearthVec3 o = v3(-2.0f + 17.0f * r[0], -1.0f + 7.0f * r[1], -2.0f + 17.0f * r[2]);
+            HearthVec3 d = v3(20.0f * r[3] - 10.0f, 20.0f * r[4] - 10.0f, 20.0f * r[5] - 10.0f);
+            ENSURE_OK(hearth_world_cast_ray_closest(w, o, d, &all, &out[k]));
+        }
+        if (pass == 0) {
+            HearthWorldCounters c0, c1;
+            uint64_t h0, h1;
+            ENSURE_OK(hearth_world_get_counters(w, &c0));
+            ENSURE_OK(hearth_world_get_hash(w, &h0));
+            ENSURE_OK(hearth_world_rebuild_broadphase(w));
+            ENSURE_OK(hearth_world_get_counters(w, &c1));
+            ENSURE_OK(hearth_world_get_hash(w, &h1));
+            ENSURE(c1.tree_height <= c0.tree_height);
+            ENSURE(c1.body_count == 300 && c1.contact_count == c0.contact_count);
+            ENSURE(h0 == h1);
+        }
+    }
+    int hits = 0;
+    for (int k = 0; k < 64; k++) {
+        ENSURE(same_shape(before[k].shape, after[k].shape));
+        ENSURE(before[k].fraction == after[k].fraction);
+        hits += before[k].shape.index != 0;
+    }
+    ENSURE(hits > 16);
+    for (int i = 0; i < 30; i++) ENSURE_OK(hearth_world_step(w, DT));
+    ENSURE_RESULT(hearth_world_rebuild_broadphase(NULL), HEARTH_ERROR_NULL_POINTER);
+    char msg[256];
+    hearth_last_error_message(msg, sizeof msg);
+    ENSURE(strstr(msg, "world") != NULL);
     hearth_world_destroy(w);
 }
 
@@ -406,6 +464,7 @@ int main(void) {
     test_filter_truth_table();
     test_set_filter();
     test_rays();
+    test_rebuild_broadphase();
     test_casts_and_overlaps();
     return ensure_report("test_query");
 }

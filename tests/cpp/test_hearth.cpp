@@ -955,6 +955,10 @@ static void test_queries_and_filters() {
     CHECK(hearth::is_hit(h) && hearth::same_id(h.shape, s.id()));
     CHECK_NEAR(h.fraction, 0.35, 1e-5);
     CHECK(!hearth::is_hit(w.cast_ray_closest(hearth::vec3(-4, 9, 0), hearth::vec3(10, 0, 0))));
+    // A rebuilt broad-phase tree answers the same.
+    w.rebuild_broadphase();
+    hearth::RayHit again = w.cast_ray_closest(hearth::vec3(-4, 2, 0), hearth::vec3(10, 0, 0));
+    CHECK(hearth::same_id(again.shape, s.id()) && again.fraction == h.fraction);
     int calls = 0;
     w.cast_ray(hearth::vec3(-4, 2, 0), hearth::vec3(0, -10, 0), [&](const hearth::RayHit &) {
         calls++;

@@ -1447,6 +1447,9 @@ internal static class HearthTests
             Ensure(hit.IsHit && hit.Shape == s.Id, "the ball is hit");
             Near(hit.Fraction, 0.35f, 1e-5f, "fraction (d - r) / |v|");
             Ensure(!world.CastRayClosest(new Vec3(-4f, 9f, 0f), new Vec3(10f, 0f, 0f)).IsHit, "a miss");
+            world.RebuildBroadphase();
+            RayHit again = world.CastRayClosest(new Vec3(-4f, 2f, 0f), new Vec3(10f, 0f, 0f));
+            Ensure(again.Shape == s.Id && again.Fraction == hit.Fraction, "a rebuilt broad-phase tree answers the same");
             int calls = 0;
             world.CastRay(new Vec3(-4f, 2f, 0f), new Vec3(10f, -10f, 0f), QueryFilter.Default(), h => { calls++; return 1f; });
             Equal(calls, 1, "the plane only");

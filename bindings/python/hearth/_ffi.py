@@ -1178,6 +1178,7 @@ _fn("hearth_world_set_gravity", HearthResult, POINTER(HearthWorld), HearthVec3)
 _fn("hearth_world_get_gravity", HearthResult, POINTER(HearthWorld), POINTER(HearthVec3))
 _fn("hearth_world_get_counters", HearthResult, POINTER(HearthWorld), POINTER(HearthWorldCounters))
 _fn("hearth_world_get_hash", HearthResult, POINTER(HearthWorld), POINTER(c_uint64))
+_fn("hearth_world_rebuild_broadphase", HearthResult, POINTER(HearthWorld))
 _fn(
     "hearth_world_get_transforms", HearthResult, POINTER(HearthWorld), POINTER(HearthBodyId), c_size_t,
     POINTER(HearthTransform),

@@ -279,6 +279,12 @@ class World:
         lib.hearth_world_get_hash(self._ptr, byref(out))
         return out.value
 
+    def rebuild_broadphase(self):
+        """`hearth_world_rebuild_broadphase`: rebuilds the broad-phase tree (after loading a
+        level, so that queries and pair searches test fewer boxes); results of queries and
+        ids are unchanged."""
+        lib.hearth_world_rebuild_broadphase(self._ptr)
+
     def set_particle_iterations(self, velocity_iterations, position_iterations):
         lib.hearth_world_set_particle_iterations(self._ptr, velocity_iterations, position_iterations)
 

@@ -17,6 +17,10 @@ def test_rays_hit_a_sphere_at_d_minus_r(world):
     assert hit.fraction == pytest.approx(0.35, abs=1e-5)  # (d - r) / |v| = 3.5 / 10
     assert hit.normal.x == pytest.approx(-1.0, abs=1e-5)
     assert world.cast_ray_closest((-4.0, 9.0, 0.0), (10.0, 0.0, 0.0)) is None
+    # A rebuilt broad-phase tree answers the same.
+    world.rebuild_broadphase()
+    again = world.cast_ray_closest((-4.0, 2.0, 0.0), (10.0, 0.0, 0.0))
+    assert again.shape == shape and again.fraction == hit.fraction
     hits = world.cast_rays([((-4.0, 2.0, 0.0), (10.0, 0.0, 0.0)), ((0.0, 9.0, 0.0), (1.0, 0.0, 0.0))])
     assert hits[0].shape == shape and hits[1] is None
     seen = []
