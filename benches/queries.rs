@@ -7,14 +7,17 @@
 //!   25 m high, random directions, 40 m long;
 //! * `sphere_overlaps_10k`: 10,000 sphere overlaps (`World::overlap_shape`), radius 0.5 to
 //!   1.5 m, centres uniform in the lower 10 m of the container;
-//! * `aabb_overlaps_10k`: 10,000 box overlaps (`World::overlap_aabb`), the spheres' bounds.
+//! * `aabb_overlaps_10k`: 10,000 box overlaps (`World::overlap_aabb`), the spheres' bounds;
+//! * `rebuilt/*`: the same three after `World::rebuild_broadphase` (the tree rebuilt with a
+//!   binned SAH, as a host does after loading a level).
 //!
 //! Criterion reports the time per batch; divided by the batch size it is the time per query.
 //! `cargo bench --bench queries`.
 //!
 //! Instruction counts (repeatable on a loaded machine): `HEARTH_QUERY_PROFILE=<kind>` runs
 //! the batch of one kind (`rays`, `spheres` or `aabbs`) once, prints a checksum and
-//! exits (`stats` prints the tree boxes a closest ray tests on average), without criterion; `HEARTH_QUERY_SNAPSHOT=<file>` keeps the settled pile in a
+//! exits (`stats` prints the tree boxes a closest ray tests on average), without criterion
+//! (with `HEARTH_QUERY_REBUILD=1`, after rebuilding the tree); `HEARTH_QUERY_SNAPSHOT=<file>` keeps the settled pile in a
 //! snapshot file (written when missing), so a run under
 //! `valgrind --tool=callgrind` does not settle the pile under emulation. Run once with the
 //! kind `none` to only count the setup, and subtract.
@@ -133,23 +136,35 @@ fn aabb_overlaps(w: &World, q: &Inputs) -> usize {
 }
 
 fn benches(c: &mut Criterion) {
-    let w = settled_pile();
+    let mut w = settled_pile();
     let q = inputs();
-    let mut group = c.benchmark_group("queries");
-    group.sample_size(10);
-    group.throughput(Throughput::Elements(RAYS as u64));
-    group.bench_function("rays_100k", |b| b.iter(|| rays(&w, &q)));
-    group.throughput(Throughput::Elements(OVERLAPS as u64));
-    group.bench_function("sphere_overlaps_10k", |b| b.iter(|| sphere_overlaps(&w, &q)));
-    group.bench_function("aabb_overlaps_10k", |b| b.iter(|| aabb_overlaps(&w, &q)));
-    group.finish();
+    for prefix in ["", "rebuilt/"] {
+        if !prefix.is_empty() {
+            w.rebuild_broadphase();
+        }
+        let mut group = c.benchmark_group("queries");
+        group.sample_size(10);
+        group.throughput(Throughput::Elements(RAYS as u64));
+        group.bench_function(format!("{prefix}rays_100k"), |b| b.iter(|| rays(&w, &q)));
+        group.throughput(Throughput::Elements(OVERLAPS as u64));
+        group.bench_function(format!("{prefix}sphere_overlaps_10k"), |b| {
+            b.iter(|| sphere_overlaps(&w, &q))
+        });
+        group.bench_function(format!("{prefix}aabb_overlaps_10k"), |b| {
+            b.iter(|| aabb_overlaps(&w, &q))
+        });
+        group.finish();
+    }
 }
 
 criterion_group!(queries, benches);
 
 fn main() {
     if let Ok(kind) = std::env::var("HEARTH_QUERY_PROFILE") {
-        let w = settled_pile();
+        let mut w = settled_pile();
+        if std::env::var_os("HEARTH_QUERY_REBUILD").is_some() {
+            w.rebuild_broadphase();
+        }
         let q = inputs();
         let n = match kind.as_str() {
             "rays" => rays(&w, &q),
