@@ -23,6 +23,7 @@ use crate::collision::narrow_phase::MAX_MANIFOLD_POINTS;
 use crate::dynamics::contact_solver::{self, ContactRef, LaneImpulses, Sources};
 use crate::dynamics::solver::{BodyState, Velocity};
 use crate::math::Vec3;
+use crate::parallel::{SharedMut, TaskRunner};
 use crate::pool::Pool;
 #[cfg(target_arch = "x86_64")]
 use crate::simd::F8;
@@ -209,7 +210,8 @@ mod eight {
     }
 
     entry! {
-        pack_all(members: &[Vec<u32>], singles: &[u32], refs: &[ContactRef], sources: &Sources, ends: &mut Vec<u32>);
+        grow_all(used: usize);
+        pack_range_all(spans: &[Span], members: &[Vec<u32>], singles: &[u32], refs: &[ContactRef], sources: &Sources, range: Range<usize>);
         set_softness_all(soft: &SoftSweep, inv_h: f32);
         refresh_all(states: &[BodyState], first: bool);
         refresh_warm_start_all(states: &[BodyState], vel: &mut [Velocity], first: bool, range: Range<usize>);
@@ -228,6 +230,8 @@ pub struct Batches {
     singles: Vec<u32>,
     /// A colour's members ordered by `order_key` (reused).
     ordered: Vec<u32>,
+    /// Each batch's constraints: a run of a colour's members or one single (`layout`).
+    spans: Vec<Span>,
     /// The end of each non-empty colour's batches (batches are packed colour by colour), then
     /// the end of the constraints that fit no colour (one batch each, solved in order).
     ends: Vec<u32>,
@@ -258,6 +262,7 @@ impl Batches {
             color_members: Vec::new(),
             singles: Vec::new(),
             ordered: Vec::new(),
+            spans: Vec::new(),
             ends: Vec::new(),
         }
     }
@@ -272,8 +277,10 @@ impl Batches {
     }
 
     /// Colours the contacts of `refs` and packs their constraints into batches, building
-    /// each lane's constraint from `sources`.
-    pub fn build(&mut self, refs: &[ContactRef], sources: &Sources) {
+    /// each lane's constraint from `sources`. Colouring and the layout of the batches run on
+    /// the calling thread; the batches are then packed by `runner`'s workers, each batch from
+    /// its own constraints only, so every worker count packs the same bits.
+    pub fn build(&mut self, refs: &[ContactRef], sources: &Sources, runner: &dyn TaskRunner) {
         self.body_colors.clear();
         self.body_colors.resize(sources.states.len(), 0);
         self.color_members.resize_with(COLORS, Vec::new);
@@ -312,10 +319,53 @@ impl Batches {
         for members in self.color_members.iter_mut() {
             order(members, &mut self.ordered, refs);
         }
-        dispatch!(
-            &mut self.sets,
-            pack_all(&self.color_members, &self.singles, refs, sources, &mut self.ends)
-        )
+        let used = self.layout(refs);
+        dispatch!(&mut self.sets, grow_all(used));
+        let shared = SharedMut::new(self);
+        crate::parallel::run(runner, used as u32, PACK_MIN_RANGE, &|start, end, _| {
+            // SAFETY: each range packs its own batches (`Disjoint` slots of `sets`) and only
+            // reads the rest of `self`, which nobody writes until `run` returns.
+            let b = unsafe { shared.get() };
+            let range = start as usize..end as usize;
+            dispatch!(
+                &mut b.sets,
+                pack_range_all(&b.spans, &b.color_members, &b.singles, refs, sources, range)
+            )
+        });
+    }
+
+    /// Lays out the batches: each colour's members (ordered, see `order`) kind by kind in
+    /// runs of up to a batch's lanes, then the constraints that fit no colour one per batch.
+    /// Fills `spans` and `ends`; returns the number of batches.
+    fn layout(&mut self, refs: &[ContactRef]) -> usize {
+        let lanes = self.lanes();
+        self.spans.clear();
+        self.ends.clear();
+        for (list, members) in self.color_members.iter().enumerate() {
+            let mut start = 0;
+            for group in members.chunk_by(|&x, &y| refs[x as usize].kind() == refs[y as usize].kind()) {
+                for chunk in group.chunks(lanes) {
+                    self.spans.push(Span {
+                        list: list as u32,
+                        start: start as u32,
+                        len: chunk.len() as u32,
+                    });
+                    start += chunk.len();
+                }
+            }
+            if !members.is_empty() {
+                self.ends.push(self.spans.len() as u32);
+            }
+        }
+        for k in 0..self.singles.len() {
+            self.spans.push(Span {
+                list: SINGLES,
+                start: k as u32,
+                len: 1,
+            });
+        }
+        self.ends.push(self.spans.len() as u32);
+        self.spans.len()
     }
 
     /// Batches in all.
@@ -358,44 +408,52 @@ fn order(members: &mut [u32], scratch: &mut Vec<u32>, refs: &[ContactRef]) {
     members.copy_from_slice(scratch);
 }
 
-/// Packs each colour's constraints (ordered, see `order`), kind by kind, into batches of
-/// `L::N` lanes, then the constraints that fit no colour one per batch. Batches are packed in
-/// place over last step's storage: no zeroing, no copies.
+/// Batches packed per task, at least.
+const PACK_MIN_RANGE: u32 = 32;
+
+/// `Span::list` of the constraints that fit no colour.
+const SINGLES: u32 = COLORS as u32;
+
+/// One batch's constraints: `len` members of `color_members[list]` (or of `singles` when
+/// `list` is `SINGLES`) from `start`.
+#[derive(Clone, Copy, Debug)]
+struct Span {
+    list: u32,
+    start: u32,
+    len: u32,
+}
+
+/// Exactly `used` batches, last step's storage reused (no zeroing: `pack` writes every field).
 #[inline(always)]
-fn pack_all<L: Lanes + Default>(
+fn grow_all<L: Lanes + Default>(batches: &mut Vec<WideContact<L>>, used: usize) {
+    batches.truncate(used);
+    while batches.len() < used {
+        batches.push(WideContact::default());
+    }
+}
+
+/// Packs the batches of `range`, each from its span of constraints, in place over last
+/// step's storage: no zeroing, no copies.
+#[inline(always)]
+#[allow(clippy::ptr_arg)] // all passes take the storage `grow_all` sizes (see `dispatch!`)
+fn pack_range_all<L: Lanes + Default>(
     batches: &mut Vec<WideContact<L>>,
+    spans: &[Span],
     members: &[Vec<u32>],
     singles: &[u32],
     refs: &[ContactRef],
     sources: &Sources,
-    ends: &mut Vec<u32>,
+    range: Range<usize>,
 ) {
-    let mut used = 0;
-    ends.clear();
-    for members in members {
-        for group in members.chunk_by(|&x, &y| refs[x as usize].kind() == refs[y as usize].kind()) {
-            for chunk in group.chunks(L::N) {
-                next_slot(batches, used);
-                pack(&mut batches[used], chunk, refs, sources);
-                used += 1;
-            }
-        }
-        if !members.is_empty() {
-            ends.push(used as u32);
-        }
-    }
-    for &i in singles {
-        next_slot(batches, used);
-        pack(&mut batches[used], &[i], refs, sources);
-        used += 1;
-    }
-    ends.push(used as u32);
-    batches.truncate(used);
-}
-
-fn next_slot<L: Lanes + Default>(batches: &mut Vec<WideContact<L>>, used: usize) {
-    if batches.len() == used {
-        batches.push(WideContact::default());
+    for k in range {
+        let s = spans[k];
+        let list = if s.list == SINGLES {
+            singles
+        } else {
+            &members[s.list as usize][..]
+        };
+        let lanes = &list[s.start as usize..(s.start + s.len) as usize];
+        pack(&mut batches[k], lanes, refs, sources);
     }
 }
 

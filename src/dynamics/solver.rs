@@ -824,7 +824,7 @@ pub fn solve(world: &mut World, dt: f32) {
         states: &scratch.states,
         vel: &scratch.vel,
     };
-    scratch.batches.build(&scratch.refs, &sources);
+    scratch.batches.build(&scratch.refs, &sources, &*world.tasks);
     scratch.paths.sort(&scratch.drives);
     let eight = scratch.batches.lanes() == 8;
     let (vel, states, sims, drives) = (&mut scratch.vel, &mut scratch.states, &scratch.sims, &scratch.drives);
