@@ -323,8 +323,9 @@ impl Batches {
         dispatch!(&mut self.sets, grow_all(used));
         let shared = SharedMut::new(self);
         crate::parallel::run(runner, used as u32, PACK_MIN_RANGE, &|start, end, _| {
-            // SAFETY: each range packs its own batches (`Disjoint` slots of `sets`) and only
-            // reads the rest of `self`, which nobody writes until `run` returns.
+            // SAFETY: (as the solver stages' `SharedMut<Batches>`) each range writes only its
+            // own batches of `sets` and reads `spans` and the members, which nobody writes
+            // until `run` returns.
             let b = unsafe { shared.get() };
             let range = start as usize..end as usize;
             dispatch!(
