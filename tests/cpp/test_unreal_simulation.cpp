@@ -651,6 +651,42 @@ static void test_random_sessions() {
 
 // ---- gravity and errors
 
+/** A level streamed in body by body: once 256 bodies were added, the next Advance rebuilds the
+ * broad-phase tree (once), and a ray hits what it hit before; fewer bodies do not rebuild. */
+static void test_broadphase_rebuilt_after_a_level_load() {
+    Core::FSimulation sim;
+    CHECK(sim.Create(world_def(EARTH_G)));
+    add_ground(sim);
+    for (int i = 0; i < 299; i++) {
+        add_box(sim, at((i % 10) * 1.0, 0.25 + (i / 100) * 0.5, (i / 10 % 10) * 1.0), HearthVec3{0.25f, 0.25f, 0.25f}, 1.0, true);
+    }
+    const HearthQueryFilter all = hearth_query_filter_default();
+    HearthRayHit before{}, after{};
+    CHECK(hearth_world_cast_ray_closest(sim.GetWorld(), HearthVec3{4.1f, 10, 4.2f}, HearthVec3{0, -20, 0}, &all, &before) == HEARTH_OK);
+    HearthWorldCounters c0{}, c1{};
+    CHECK(hearth_world_get_counters(sim.GetWorld(), &c0) == HEARTH_OK);
+    CHECK(sim.Advance(0.0) == 0 && sim.GetBroadphaseRebuildCount() == 0); // no step, no rebuild
+    CHECK(sim.Advance(H) == 1);
+    CHECK(sim.GetBroadphaseRebuildCount() == 1);
+    CHECK(hearth_world_get_counters(sim.GetWorld(), &c1) == HEARTH_OK);
+    CHECK(c1.tree_height <= c0.tree_height);
+    CHECK(hearth_world_cast_ray_closest(sim.GetWorld(), HearthVec3{4.1f, 10, 4.2f}, HearthVec3{0, -20, 0}, &all, &after) == HEARTH_OK);
+    CHECK(before.shape.index != 0 && before.shape.index == after.shape.index);
+    add_box(sim, at(20, 1, 0), HearthVec3{0.25f, 0.25f, 0.25f}, 1.0);
+    sim.Advance(H);
+    CHECK(sim.GetBroadphaseRebuildCount() == 1 && sim.GetReportedErrorCount() == 0);
+    // Switched off.
+    Core::FSimulation off;
+    Core::FSimulationSettings settings;
+    settings.RebuildBroadphaseAfterBodies = 0;
+    CHECK(off.Create(world_def(EARTH_G), settings));
+    for (int i = 0; i < 300; i++) {
+        add_box(off, at(i * 1.0, 1, 0), HearthVec3{0.25f, 0.25f, 0.25f}, 1.0);
+    }
+    off.Advance(H);
+    CHECK(off.GetBroadphaseRebuildCount() == 0);
+}
+
 static void test_gravity_followed() {
     Core::FSimulation sim;
     CHECK(sim.Create(world_def(EARTH_G)));
@@ -1280,6 +1316,7 @@ int main() {
     test_gameplay_moves_teleport();
     test_random_sessions();
     test_gravity_followed();
+    test_broadphase_rebuilt_after_a_level_load();
     test_errors_are_throttled();
     test_version_compatibility();
     test_shapes_from_elements();

@@ -139,6 +139,11 @@ struct FSimulationSettings {
     int MaxStepsPerFrame = 8;
     /** Repeats of one error are reported at most once per this many seconds of frame time. */
     double ErrorIntervalSeconds = 5.0;
+    /** When at least this many bodies were added since the last rebuild (a level streamed in
+     * body by body), the next Advance rebuilds the broad-phase tree first
+     * (hearth_world_rebuild_broadphase: queries and pair searches then test fewer boxes).
+     * 0: never. */
+    int RebuildBroadphaseAfterBodies = 256;
 };
 
 /** Whether two poses are the same up to the rounding of a trip through the host's types:
@@ -259,6 +264,7 @@ public:
             SlotByIndex.resize(static_cast<size_t>(Id.index) + 1, -1);
         }
         SlotByIndex[Id.index] = static_cast<int32_t>(Bodies.size());
+        ++BodiesAddedSinceRebuild;
         Bodies.push_back(Body);
         Ids.push_back(Id);
         Previous.push_back(Def.transform);
@@ -625,6 +631,13 @@ public:
         if (FrameSeconds > 0.0 && std::isfinite(FrameSeconds)) {
             ClockSeconds += FrameSeconds;
         }
+        if (Steps > 0 && Settings.RebuildBroadphaseAfterBodies > 0 &&
+            BodiesAddedSinceRebuild >= Settings.RebuildBroadphaseAfterBodies) {
+            BodiesAddedSinceRebuild = 0;
+            if (Check(hearth_world_rebuild_broadphase(World), "hearth_world_rebuild_broadphase")) {
+                ++BroadphaseRebuilds;
+            }
+        }
         int Ran = 0;
         for (; Ran < Steps; ++Ran) {
             // This step covers [Ran·h, (Ran+1)·h) of the queue (carried time, then the frame).
@@ -692,6 +705,8 @@ public:
     int GetTeleportCount() const { return TeleportCount; }
     /** Steps run since Create. */
     uint64_t GetStepCount() const { return StepCount; }
+    /** Broad-phase rebuilds since Create (FSimulationSettings::RebuildBroadphaseAfterBodies). */
+    int GetBroadphaseRebuildCount() const { return BroadphaseRebuilds; }
     /** Frame time passed to Advance since Create (s): the clock of the error throttle. */
     double GetClockSeconds() const { return ClockSeconds; }
     int GetReportedErrorCount() const { return ReportedErrors; }
@@ -981,6 +996,8 @@ private:
     bool bStopped = false;
     uint64_t StepCount = 0;
     int TeleportCount = 0;
+    int BodiesAddedSinceRebuild = 0;
+    int BroadphaseRebuilds = 0;
     double ClockSeconds = 0.0;
     int ReportedErrors = 0;
 
