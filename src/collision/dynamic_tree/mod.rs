@@ -604,41 +604,41 @@ impl DynamicTree {
     /// grandchild on the other side when that lowers the summed area of the internal nodes
     /// (Box2D v3's `b2RotateNodes`). The box of `a` is unchanged; its height is refit.
     fn rotate(&mut self, a: u32) {
-        let na = self.nodes[a as usize];
+        let nodes = &self.nodes;
+        let na = &nodes[a as usize];
         if na.height < 2 {
             return;
         }
         let (b, c) = (na.child1, na.child2);
-        let nb = self.nodes[b as usize];
-        let nc = self.nodes[c as usize];
 
-        // Candidate: (child of `a` to move down, internal sibling receiving it, which
-        // grandchild slot it swaps with). Delta = area change of the receiving sibling.
+        // Candidates, in this order: (child of `a` to move down, internal sibling receiving
+        // it, which grandchild slot it swaps with). Delta = area change of the receiving
+        // sibling; the first strictly better one (lower area, or equal area and lower
+        // height) wins.
         let mut best: Option<(u32, u32, bool)> = None;
         let mut best_delta = 0.0f32;
         let mut best_height = na.height;
-        let mut consider = |down: &Node, down_i: u32, side: &Node, side_i: u32| {
+        for (down_i, side_i) in [(b, c), (c, b)] {
+            let side = &nodes[side_i as usize];
             if side.is_leaf() {
-                return;
+                continue;
             }
-            let f = &self.nodes[side.child1 as usize];
-            let g = &self.nodes[side.child2 as usize];
+            let down = &nodes[down_i as usize];
+            let f = &nodes[side.child1 as usize];
+            let g = &nodes[side.child2 as usize];
             let base = side.aabb.perimeter();
-            // Swap `down` with f: side becomes (down, g), `a` gets (f, side').
+            // Swap `down` with f: side becomes (down, g), `a` gets (f, side'); then with g.
             for (first, keep, up) in [(true, g, f), (false, f, g)] {
                 let delta = down.aabb.union(&keep.aabb).perimeter() - base;
                 let side_h = 1 + down.height.max(keep.height);
                 let height = 1 + side_h.max(up.height);
-                // Strictly lower area, or equal area and strictly lower height.
                 if delta < best_delta || (delta == best_delta && height < best_height) {
                     best_delta = delta;
                     best_height = height;
                     best = Some((down_i, side_i, first));
                 }
             }
-        };
-        consider(&nb, b, &nc, c);
-        consider(&nc, c, &nb, b);
+        }
 
         let Some((down, side, first)) = best else {
             return;
