@@ -9,7 +9,9 @@
 #[allow(dead_code)]
 mod scenes;
 
+use hearth::math::{Quat, Transform, Vec3};
 use hearth::world::{LaneWidth, World, WorldSettings};
+use hearth::{BodyDef, Geometry, ShapeDef};
 
 const DT: f32 = 1.0 / 60.0;
 const GOLDEN: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/golden_hashes.txt");
@@ -34,7 +36,38 @@ fn golden_scenes() -> Vec<Scene> {
         ("soft_ball", 120, |w| {
             scenes::soft_ball(w);
         }),
+        ("crate_mesh", 120, |w| egg_crate(w, false)),
+        ("crate_heightfield", 120, |w| egg_crate(w, true)),
     ]
+}
+
+/// 400 mixed bodies (`scenes::terrain_drop`) dropped from 3 m onto an egg crate of 1 m cells,
+/// every other sample 0.6 m up, as a mesh or a heightfield: sharp creases, where a body
+/// touches faces of several normals (contacts with several manifolds).
+fn egg_crate(w: &mut World, heightfield: bool) {
+    const CELLS: u32 = 48;
+    let n = CELLS + 1;
+    let heights: Vec<f32> = (0..n * n)
+        .map(|i| if (i / n + i % n) % 2 == 0 { 0.0 } else { 0.6 })
+        .collect();
+    let half = 0.5 * CELLS as f32;
+    let geometry = if heightfield {
+        Geometry::Heightfield {
+            heightfield: w.create_heightfield(n, n, &heights, None).unwrap(),
+            local: Transform::new(Vec3::new(-half, 0.0, -half), Quat::IDENTITY),
+            scale: Vec3::ONE,
+        }
+    } else {
+        let (v, t) = scenes::grid_mesh(CELLS, 1.0, &heights);
+        Geometry::Mesh {
+            mesh: w.create_mesh(&v, &t).unwrap(),
+            local: Transform::IDENTITY,
+            scale: Vec3::ONE,
+        }
+    };
+    let ground = w.create_body(&BodyDef::default()).unwrap();
+    w.create_shape(ground, &ShapeDef::default(), &geometry).unwrap();
+    scenes::terrain_drop(w, 400, 3.0, 3);
 }
 
 fn settings(lanes: LaneWidth) -> WorldSettings {
@@ -376,4 +409,44 @@ fn two_pooled_worlds_step_side_by_side_and_drop_cleanly() {
         b.step(DT).unwrap();
     }
     assert_eq!((a.state_hash(), b.state_hash()), (want, want));
+}
+
+/// The egg crates (`egg_crate`), where contacts hold several manifolds (one per triangle
+/// patch; their results are stored apart from the parallel store, `contact_wide::store`):
+/// two and four workers give one worker's state step by step.
+#[test]
+fn terrain_contacts_with_several_manifolds_match_one_worker_step_by_step() {
+    for heightfield in [false, true] {
+        let build = |w: &mut World| egg_crate(w, heightfield);
+        let make = |workers: u32| {
+            let mut w = World::new(WorldSettings {
+                worker_count: workers,
+                ..settings(LaneWidth::Auto)
+            })
+            .unwrap();
+            build(&mut w);
+            w
+        };
+        let mut one = make(1);
+        let mut many = [make(2), make(4)];
+        let mut most_manifolds = 0;
+        for step in 0..240 {
+            one.step(DT).unwrap();
+            let manifolds = one.contacts.iter().map(|(_, c)| c.manifold_count()).max().unwrap_or(0);
+            most_manifolds = most_manifolds.max(manifolds);
+            for w in &mut many {
+                w.step(DT).unwrap();
+                assert_eq!(
+                    w.state_hash(),
+                    one.state_hash(),
+                    "heightfield {heightfield}, step {step} at {} workers",
+                    w.settings.worker_count
+                );
+            }
+        }
+        assert!(
+            most_manifolds > 1,
+            "heightfield {heightfield}: no contact had several manifolds"
+        );
+    }
 }

@@ -39,6 +39,7 @@ pub struct ContactRef {
 const SPINS: u8 = 1 << 3;
 const WRITES_A: u8 = 1 << 4;
 const WRITES_B: u8 = 1 << 5;
+const SHARED: u8 = 1 << 6;
 
 impl ContactRef {
     #[allow(clippy::too_many_arguments)]
@@ -52,6 +53,7 @@ impl ContactRef {
         count: usize,
         spins: bool,
         loaded: bool,
+        shared: bool,
     ) -> ContactRef {
         // A static (or sleeping) A goes to B.
         let swapped = a == 0 && b != 0;
@@ -66,7 +68,8 @@ impl ContactRef {
                 | u8::from(b != 0) << 1
                 | u8::from(loaded)
                 | if ma > 0.0 { WRITES_A } else { 0 }
-                | if mb > 0.0 { WRITES_B } else { 0 },
+                | if mb > 0.0 { WRITES_B } else { 0 }
+                | if shared { SHARED } else { 0 },
             child,
         }
     }
@@ -81,6 +84,13 @@ impl ContactRef {
     #[inline(always)]
     pub fn writes_b(&self) -> bool {
         self.key & WRITES_B != 0
+    }
+
+    /// Its contact has several manifolds (one constraint each): their results are stored
+    /// one after another, never from two tasks at once (`contact_wide::store`).
+    #[inline(always)]
+    pub fn shared(&self) -> bool {
+        self.key & SHARED != 0
     }
 
     /// Whether it resists rolling and spin, point-count class and whether side B is dynamic:
@@ -167,6 +177,7 @@ pub fn prepare(world: &mut World) {
         }
         bounces |= c.restitution > 0.0;
         let spins = c.rolling_resistance > 0.0 || c.torsional_friction > 0.0;
+        let shared = c.manifold_count() > 1;
         for k in 0..c.manifold_count() {
             let (m, impulses, _) = c.child(k);
             let count = m.count;
@@ -174,7 +185,9 @@ pub fn prepare(world: &mut World) {
                 continue;
             }
             let loaded = impulses[..count].iter().any(|p| p.normal > 0.0);
-            refs.push(ContactRef::new(ci, k as u16, a, b, ma, mb, count, spins, loaded));
+            refs.push(ContactRef::new(
+                ci, k as u16, a, b, ma, mb, count, spins, loaded, shared,
+            ));
         }
     }
     for (gi, g) in world.generated_contacts.iter().enumerate() {
@@ -187,7 +200,18 @@ pub fn prepare(world: &mut World) {
             continue;
         }
         bounces |= g.restitution > 0.0;
-        refs.push(ContactRef::new(GENERATED | gi as u32, 0, a, b, ma, mb, 1, false, false));
+        refs.push(ContactRef::new(
+            GENERATED | gi as u32,
+            0,
+            a,
+            b,
+            ma,
+            mb,
+            1,
+            false,
+            false,
+            false,
+        ));
     }
     scratch.bounces = bounces;
 }
@@ -203,21 +227,16 @@ pub struct LaneImpulses {
 
 /// Keeps a lane's rolling-resistance impulse (on side B, world) on its contact.
 #[inline]
-pub fn store_rolling(r: &ContactRef, rolling: Vec3, contacts: &mut Pool<Contact>) {
-    if let Some(ci) = r.contact() {
-        let (_, _, friction) = contacts.at_mut(ci).child_impulses_mut(r.child as usize);
-        let rolling = if rolling.is_finite() { rolling } else { Vec3::ZERO };
-        friction.rolling = if r.swapped { -rolling } else { rolling };
-    }
+pub fn store_rolling(r: &ContactRef, rolling: Vec3, contact: &mut Contact) {
+    let (_, _, friction) = contact.child_impulses_mut(r.child as usize);
+    let rolling = if rolling.is_finite() { rolling } else { Vec3::ZERO };
+    friction.rolling = if r.swapped { -rolling } else { rolling };
 }
 
 /// Keeps a lane's impulses on its contact (generated contacts keep none).
 #[inline]
-pub fn store(r: &ContactRef, out: &LaneImpulses, contacts: &mut Pool<Contact>) {
-    let Some(ci) = r.contact() else {
-        return;
-    };
-    let (count, impulses, friction) = contacts.at_mut(ci).child_impulses_mut(r.child as usize);
+pub fn store(r: &ContactRef, out: &LaneImpulses, contact: &mut Contact) {
+    let (count, impulses, friction) = contact.child_impulses_mut(r.child as usize);
     // A diverged lane (see `solver::guard_velocities`) must not warm-start the next step.
     let finite = out.normal[..count].iter().all(|n| n.is_finite()) && out.tangent.is_finite() && out.twist.is_finite();
     for (imp, &n) in impulses[..count].iter_mut().zip(&out.normal) {

@@ -24,7 +24,7 @@ use crate::dynamics::contact_solver::{self, ContactRef, LaneImpulses, Sources};
 use crate::dynamics::solver::{BodyState, Velocity};
 use crate::math::Vec3;
 use crate::parallel::{SharedMut, TaskRunner};
-use crate::pool::Pool;
+use crate::pool::{DisjointPool, Pool};
 #[cfg(target_arch = "x86_64")]
 use crate::simd::F8;
 use crate::simd::{Lanes, F4, M, V};
@@ -156,6 +156,8 @@ pub struct WideContact<L: Lanes> {
     /// Squared relative motion under which a refresh is light (`LIGHT_REFRESH_MOTION`).
     light_tol2: L,
     has_restitution: bool,
+    /// Some lane's contact has several manifolds (`ContactRef::shared`, `store`).
+    shared: bool,
     points: [WidePoint<L>; MAXP],
     k: [[L; MAXP]; MAXP],
     k_inv: [[L; MAXP]; MAXP],
@@ -217,7 +219,7 @@ mod eight {
         refresh_warm_start_all(states: &[BodyState], vel: &mut [Velocity], first: bool, range: Range<usize>);
         solve_all(vel: &mut [Velocity], inv_h: f32, forward: bool, bias: Option<&SoftSweep>, range: Range<usize>);
         restitution_all(vel: &mut [Velocity], threshold: f32);
-        store_all(refs: &[ContactRef], contacts: &mut Pool<Contact>);
+        store_all(refs: &[ContactRef], contacts: &DisjointPool<Contact>, shared: bool, range: Range<usize>);
     }
 }
 
@@ -667,8 +669,15 @@ fn pack<L: Lanes>(w: &mut WideContact<L>, lanes: &[u32], refs: &[ContactRef], so
     let mut st = Staging::<L>::new();
     let mut src = L::Indices::default();
     src.as_mut().fill(EMPTY);
-    (w.a, w.b, w.src, w.count, w.has_restitution, w.locked) =
-        (L::Indices::default(), L::Indices::default(), src, 1, false, false);
+    (w.a, w.b, w.src, w.count, w.has_restitution, w.locked, w.shared) = (
+        L::Indices::default(),
+        L::Indices::default(),
+        src,
+        1,
+        false,
+        false,
+        false,
+    );
     // Batches hold one kind (see `pack_all`), so the first lane speaks for all.
     w.spin = refs[lanes[0] as usize].spins();
     for (i, &k) in lanes.iter().enumerate() {
@@ -676,6 +685,7 @@ fn pack<L: Lanes>(w: &mut WideContact<L>, lanes: &[u32], refs: &[ContactRef], so
         w.a.as_mut()[i] = r.a;
         w.b.as_mut()[i] = r.b;
         w.src.as_mut()[i] = k;
+        w.shared |= r.shared();
         match r.contact() {
             Some(ci) => {
                 let c = sources.contacts.at(ci);
@@ -1649,15 +1659,44 @@ fn floats3<L: Lanes>(v: &V<L>) -> [L::Floats; 3] {
     [v.x.to_floats(), v.y.to_floats(), v.z.to_floats()]
 }
 
-/// Writes each lane's impulses back to its contact.
-pub fn store(batches: &mut Batches, refs: &[ContactRef], contacts: &mut Pool<Contact>) {
-    dispatch!(&mut batches.sets, store_all(refs, contacts))
+/// Writes each lane's impulses back to its contact: batch by batch on `runner`'s workers,
+/// then, on the calling thread, the lanes of contacts with several manifolds (two tasks
+/// would otherwise reach one contact at once). Each lane writes only its own manifold's
+/// impulses, so the order changes nothing.
+pub fn store(batches: &mut Batches, refs: &[ContactRef], contacts: &mut Pool<Contact>, runner: &dyn TaskRunner) {
+    let n = batches.len() as u32;
+    let out = contacts.disjoint();
+    let sets = SharedMut::new(batches);
+    crate::parallel::run(runner, n, STORE_MIN_RANGE, &|start, end, _| {
+        // SAFETY: each range reads only its own batches, and writes the contacts of their
+        // lanes, which no other lane names (`shared` contacts are left to the pass below).
+        let b = unsafe { sets.get() };
+        dispatch!(&mut b.sets, store_all(refs, &out, false, start as usize..end as usize))
+    });
+    // SAFETY: one thread; a contact is reached by one lane at a time.
+    let b = unsafe { sets.get() };
+    let all = 0..n as usize;
+    dispatch!(&mut b.sets, store_all(refs, &out, true, all))
 }
 
+/// Batches stored per task, at least.
+const STORE_MIN_RANGE: u32 = 64;
+
+/// `store` over the batches of `range`: the lanes whose contact has several manifolds when
+/// `shared`, the others otherwise.
 #[inline(always)]
-#[allow(clippy::ptr_arg)] // all passes take the storage `pack_all` grows (see `dispatch!`)
-fn store_all<L: Lanes>(batches: &mut Vec<WideContact<L>>, refs: &[ContactRef], contacts: &mut Pool<Contact>) {
-    for w in batches.iter() {
+#[allow(clippy::ptr_arg)] // all passes take the storage `grow_all` sizes (see `dispatch!`)
+fn store_all<L: Lanes>(
+    batches: &mut Vec<WideContact<L>>,
+    refs: &[ContactRef],
+    contacts: &DisjointPool<Contact>,
+    shared: bool,
+    range: Range<usize>,
+) {
+    for w in batches[range].iter() {
+        if shared && !w.shared {
+            continue;
+        }
         let f = &w.friction;
         let (t0, t1, tw, sl) = (
             f.tangent_impulse[0].to_floats(),
@@ -1674,6 +1713,10 @@ fn store_all<L: Lanes>(batches: &mut Vec<WideContact<L>>, refs: &[ContactRef], c
             if src == EMPTY {
                 continue;
             }
+            let r = &refs[src as usize];
+            let Some(ci) = r.contact().filter(|_| r.shared() == shared) else {
+                continue;
+            };
             let at = |x: &L::Floats| x.as_ref()[lane];
             let tangent = |k: usize| Vec3::new(at(&tangents[k][0]), at(&tangents[k][1]), at(&tangents[k][2]));
             let out = LaneImpulses {
@@ -1682,10 +1725,11 @@ fn store_all<L: Lanes>(batches: &mut Vec<WideContact<L>>, refs: &[ContactRef], c
                 twist: at(&tw),
                 sliding: sl & (1 << lane) != 0,
             };
-            contact_solver::store(&refs[src as usize], &out, contacts);
+            // SAFETY: (see `store`) no other task reaches this contact now.
+            contact_solver::store(r, &out, unsafe { contacts.at_mut(ci) });
         }
         if w.spin {
-            store_rolling(w, &tangents, refs, contacts);
+            store_rolling(w, &tangents, refs, contacts, shared);
         }
     }
 }
@@ -1696,7 +1740,8 @@ fn store_rolling<L: Lanes>(
     w: &WideContact<L>,
     tangents: &[[L::Floats; 3]; 2],
     refs: &[ContactRef],
-    contacts: &mut Pool<Contact>,
+    contacts: &DisjointPool<Contact>,
+    shared: bool,
 ) {
     let r = [
         w.friction.rolling_impulse[0].to_floats(),
@@ -1706,11 +1751,16 @@ fn store_rolling<L: Lanes>(
         if src == EMPTY {
             continue;
         }
+        let rf = &refs[src as usize];
+        let Some(ci) = rf.contact().filter(|_| rf.shared() == shared) else {
+            continue;
+        };
         let mut rolling = Vec3::ZERO;
         for (t, imp) in tangents.iter().zip(&r) {
             let at = |x: &L::Floats| x.as_ref()[lane];
             rolling += Vec3::new(at(&t[0]), at(&t[1]), at(&t[2])) * at(imp);
         }
-        contact_solver::store_rolling(&refs[src as usize], rolling, contacts);
+        // SAFETY: (see `store`) no other task reaches this contact now.
+        contact_solver::store_rolling(rf, rolling, unsafe { contacts.at_mut(ci) });
     }
 }

@@ -906,7 +906,7 @@ pub fn solve(world: &mut World, dt: f32) {
         contact_wide::restitution(vel, batches, settings.restitution_threshold);
         lock_velocities(vel, &scratch.states, &scratch.locked);
     }
-    contact_wide::store(batches, &scratch.refs, &mut world.contacts);
+    contact_wide::store(batches, &scratch.refs, &mut world.contacts, &*world.tasks);
     crate::dynamics::joints::solver::store(world, h);
     finalize_bodies(world);
 }
