@@ -258,7 +258,20 @@ impl Eq {
                 k[j][i] = v;
             }
         }
-        Spd::factor(&k, self.n, b.locked)
+        if !b.locked {
+            return Spd::factor(&k, self.n, false);
+        }
+        // How large each row would be on the bodies without locks: a row that the locks leave
+        // almost nothing of is left out (`Spd::factor_locked`).
+        let mut free = [0.0f32; MAX_ROWS];
+        for (i, f) in free.iter_mut().enumerate().take(self.n) {
+            let r = &self.rows[i];
+            *f = b.free_a.0 * r.la.length_squared()
+                + b.free_a.1 * r.aa.length_squared()
+                + b.free_b.0 * r.lb.length_squared()
+                + b.free_b.1 * r.ab.length_squared();
+        }
+        Spd::factor_locked(&k, self.n, &free)
     }
 
     /// Solves the rows together as one block (for a joint outside the tree solve): rigid with
@@ -268,10 +281,30 @@ impl Eq {
         for i in 0..self.n {
             r[i] = -(b.cdot(&self.rows[i]) + ctx.rigid_bias(self.err[i]));
         }
+        if k.any_dropped() {
+            // A row left out (locked axes) gives up its accumulated impulse first: kept, the
+            // warm start would push along it every sub-step with nothing to answer it; taken
+            // out before the solve, the rows kept answer for it.
+            let acc = self.acc(imp);
+            let mut d = [0.0f32; MAX_ROWS];
+            for i in 0..self.n {
+                if k.dropped(i) {
+                    d[i] = -acc[i];
+                    b.apply_row(&self.rows[i], d[i]);
+                }
+            }
+            self.add(imp, &d, 1.0);
+            for i in 0..self.n {
+                r[i] = -(b.cdot(&self.rows[i]) + ctx.rigid_bias(self.err[i]));
+            }
+        }
         let x = k.solve(&r);
         let acc = self.acc(imp);
         let mut d = [0.0f32; MAX_ROWS];
         for i in 0..self.n {
+            if k.dropped(i) {
+                continue;
+            }
             d[i] = ctx.respond(x[i], acc[i]);
             b.apply_row(&self.rows[i], d[i]);
         }
@@ -345,27 +378,56 @@ impl Coupled {
     }
 }
 
+/// Below this fraction of its own diagonal, a row's pivot (what is left of it once the rows
+/// taken before are eliminated) marks it as dependent on them. Only bodies with locked axes
+/// (`body::LOCK_*`) have such rows: their rounding-level pivots are 1e-7 and smaller.
+const DEPENDENT_PIVOT: f32 = 1.0e-4;
+/// Below this fraction of what it would be without locks, a row's diagonal marks it as one
+/// the locks leave (nearly) nothing of (`Spd::factor_locked`).
+pub const FREE_ROW: f32 = 1.0e-2;
+
 /// Cholesky factor `L Lᵀ` of a small symmetric positive definite matrix (size `n <= 6`), with
-/// the reciprocals of the diagonal.
+/// the reciprocals of the diagonal. With `drop_weak` the rows are taken largest pivot first
+/// and the (nearly) dependent ones are left out.
 #[derive(Clone, Copy, Debug)]
 pub struct Spd {
     n: usize,
     l: [[f32; MAX_ROWS]; MAX_ROWS],
     inv_diag: [f32; MAX_ROWS],
+    /// Row `i` of the factor is row `perm[i]` of the matrix.
+    perm: [usize; MAX_ROWS],
+    /// Rows of the factor kept (the others, left out, get zero).
+    kept: usize,
 }
 
 impl Spd {
-    /// `None` when `k` is not positive definite (to a relative tolerance); with `drop_weak`
-    /// (bodies with locked axes) the rows that make it singular are left out instead.
+    /// `None` when `k` is not positive definite (to a relative tolerance).
+    ///
+    /// With `drop_weak` (bodies with locked axes) the rows that make it singular are left out
+    /// instead (their impulses stay zero): diagonal pivoting takes the remaining row with the
+    /// largest pivot relative to its diagonal, and stops once that row is dependent on those
+    /// taken. Locks make rows dependent in exact arithmetic: a hinge's two alignment rows on
+    /// bodies that may turn about one axis across the hinge both act about that one axis.
+    /// Taken in their given order, whichever came first was kept with a pivot as small as
+    /// the sine of the link's angle to a world axis, the other one's pivot was rounding, and
+    /// the angular error the bodies cannot correct came back as a huge spin.
     pub fn factor(k: &[[f32; MAX_ROWS]; MAX_ROWS], n: usize, drop_weak: bool) -> Option<Spd> {
         let mut s = Spd {
             n,
             l: [[0.0; MAX_ROWS]; MAX_ROWS],
             inv_diag: [0.0; MAX_ROWS],
+            perm: [0, 1, 2, 3, 4, 5],
+            kept: n,
         };
         let scale = (0..n).map(|i| k[i][i]).fold(0.0f32, f32::max);
         if !(scale > 0.0 && scale.is_finite()) {
             return None;
+        }
+        if drop_weak {
+            // Unknown sizes: every row judged against the largest.
+            let free = [scale; MAX_ROWS];
+            s.factor_pivoted(k, &free);
+            return (s.kept > 0).then_some(s);
         }
         for j in 0..n {
             let mut d = k[j][j];
@@ -373,13 +435,7 @@ impl Spd {
                 d -= s.l[j][p] * s.l[j][p];
             }
             if d <= 1.0e-7 * scale {
-                if !drop_weak {
-                    return None;
-                }
-                // Locked axes (`body::LOCK_*`) leave rows the bodies cannot (or can hardly)
-                // move along: such a row is left out (its impulse stays zero) and the others
-                // are solved.
-                continue;
+                return None;
             }
             let djj = d.sqrt();
             s.l[j][j] = djj;
@@ -395,25 +451,108 @@ impl Spd {
         Some(s)
     }
 
-    /// `K⁻¹ b`.
-    pub fn solve(&self, b: &[f32; MAX_ROWS]) -> [f32; MAX_ROWS] {
+    /// The factor of `K` for bodies with locked axes, `free[i]` the diagonal row `i` would have
+    /// on the bodies without locks: `factor` with `drop_weak`, where also a row the locks
+    /// leave less than [`FREE_ROW`] of is left out. Such a row (a hinge's alignment row
+    /// nearly along a locked axis, once the links have tilted a little about a free one)
+    /// asks the bodies to correct an error nearly all along the locked axis through the
+    /// little that is free of it: the biased sweep turned a link by radians within a step,
+    /// and a three-link chain locked in linear Z and angular X came apart by 50 m.
+    pub fn factor_locked(k: &[[f32; MAX_ROWS]; MAX_ROWS], n: usize, free: &[f32; MAX_ROWS]) -> Option<Spd> {
+        let mut s = Spd {
+            n,
+            l: [[0.0; MAX_ROWS]; MAX_ROWS],
+            inv_diag: [0.0; MAX_ROWS],
+            perm: [0, 1, 2, 3, 4, 5],
+            kept: n,
+        };
+        s.factor_pivoted(k, free);
+        (s.kept > 0).then_some(s)
+    }
+
+    /// The pivoted factor: `perm`, `kept` and the first `kept` rows of `l` (in pivot order,
+    /// over the permuted matrix).
+    fn factor_pivoted(&mut self, k: &[[f32; MAX_ROWS]; MAX_ROWS], free: &[f32; MAX_ROWS]) {
         let n = self.n;
-        let mut y = [0.0f32; MAX_ROWS];
+        // Residual pivots of the rows not yet taken, updated as rows are taken.
+        let mut d = [0.0f32; MAX_ROWS];
         for i in 0..n {
-            let mut v = b[i];
+            d[i] = k[i][i];
+        }
+        for j in 0..n {
+            // The row most independent of those taken, relative to its own size.
+            let mut best = j;
+            let mut best_ratio = -1.0f32;
+            for c in j..n {
+                let i = self.perm[c];
+                let diag = k[i][i];
+                let usable = diag > FREE_ROW * free[i] && diag.is_finite() && free[i].is_finite();
+                let ratio = if usable { d[c] / diag } else { 0.0 };
+                if ratio > best_ratio {
+                    best = c;
+                    best_ratio = ratio;
+                }
+            }
+            if !(best_ratio > DEPENDENT_PIVOT) {
+                self.kept = j;
+                return;
+            }
+            self.perm.swap(j, best);
+            d.swap(j, best);
+            self.l.swap(j, best);
+            let djj = d[j].sqrt();
+            self.l[j][j] = djj;
+            self.inv_diag[j] = 1.0 / djj;
+            let pj = self.perm[j];
+            for c in j + 1..n {
+                let i = self.perm[c];
+                let mut v = k[i][pj];
+                for p in 0..j {
+                    v -= self.l[c][p] * self.l[j][p];
+                }
+                let lij = v * self.inv_diag[j];
+                self.l[c][j] = lij;
+                d[c] -= lij * lij;
+            }
+        }
+        self.kept = n;
+    }
+
+    /// Row `i` of the matrix was left out (`drop_weak`).
+    #[inline]
+    pub fn dropped(&self, i: usize) -> bool {
+        self.perm[self.kept..self.n].contains(&i)
+    }
+
+    /// Whether any row was left out.
+    #[inline]
+    pub fn any_dropped(&self) -> bool {
+        self.kept < self.n
+    }
+
+    /// `K⁻¹ b` (rows left out get zero, and their entries of `b` are not read).
+    pub fn solve(&self, b: &[f32; MAX_ROWS]) -> [f32; MAX_ROWS] {
+        let m = self.kept;
+        let mut y = [0.0f32; MAX_ROWS];
+        for i in 0..m {
+            let mut v = b[self.perm[i]];
             for p in 0..i {
                 v -= self.l[i][p] * y[p];
             }
             y[i] = v * self.inv_diag[i];
         }
-        for i in (0..n).rev() {
+        for i in (0..m).rev() {
             let mut v = y[i];
-            for p in i + 1..n {
+            for p in i + 1..m {
                 v -= self.l[p][i] * y[p];
             }
             y[i] = v * self.inv_diag[i];
         }
-        y
+        let mut x = [0.0f32; MAX_ROWS];
+        for i in 0..m {
+            x[self.perm[i]] = y[i];
+        }
+        x
     }
 }
 

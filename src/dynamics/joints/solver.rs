@@ -243,6 +243,10 @@ pub struct Bodies {
     pub ib: Mat3,
     /// Either body has locked axes: singular blocks drop their dependent rows.
     pub locked: bool,
+    /// With `locked`: each body's inverse mass and mean inverse inertia as if nothing were
+    /// locked (`BodyState::free_inv_i`; the real ones for a body without locks).
+    pub free_a: (f32, f32),
+    pub free_b: (f32, f32),
 }
 
 /// The sweep being run, and how its rigid rows respond: in the biased sweep a stiff soft
@@ -347,8 +351,6 @@ impl Bodies {
         let rhs = -(cdot + bias);
         let x = if det.abs() > f32::MIN_POSITIVE && det.is_finite() {
             k.inverse() * rhs
-        } else if let Some(x) = self.locked.then(|| locked_solve(&k, rhs)).flatten() {
-            x
         } else {
             return;
         };
@@ -547,23 +549,22 @@ pub(crate) fn load(c: &JointConstraint, vel: &[Velocity], states: &[BodyState]) 
             ia: sa.inv_i(),
             ib: sb.inv_i(),
             locked: sa.locks | sb.locks != 0,
+            free_a: free_size(sa),
+            free_b: free_size(sb),
         },
         Frames::new(c, sa, sb),
     )
 }
 
-/// `K⁻¹ b` for a point block that locked axes make singular: the rows the bodies cannot move
-/// along are left out, the others solved (`rows::Spd`).
-fn locked_solve(k: &Mat3, b: Vec3) -> Option<Vec3> {
-    let mut m = [[0.0f32; super::rows::MAX_ROWS]; super::rows::MAX_ROWS];
-    for (c, col) in [k.x_axis, k.y_axis, k.z_axis].iter().enumerate() {
-        for r in 0..3 {
-            m[r][c] = col[r];
-        }
+/// A body's inverse mass and a mean inverse inertia as if nothing were locked.
+#[inline]
+fn free_size(s: &BodyState) -> (f32, f32) {
+    if s.locks != 0 {
+        (s.inv_mass, s.free_inv_i)
+    } else {
+        let m = s.inv_i();
+        (s.inv_mass, (m.x_axis.x + m.y_axis.y + m.z_axis.z) / 3.0)
     }
-    let f = super::rows::Spd::factor(&m, 3, true)?;
-    let x = f.solve(&[b.x, b.y, b.z, 0.0, 0.0, 0.0]);
-    Some(Vec3::new(x[0], x[1], x[2]))
 }
 
 /// Writes the velocities back to the dynamic bodies: index 0 (static, sleeping, the world)
@@ -619,15 +620,15 @@ pub fn solve(set: &mut JointSet, vel: &mut [Velocity], states: &[BodyState], h: 
             if c.tree && !scalars {
                 continue;
             }
-            if !scalars && matches!(c.kind, JointKind::Ball(_)) {
+            let (mut b, f) = load(c, vel, states);
+            if !scalars && !b.locked && matches!(c.kind, JointKind::Ball(_)) {
                 // A plain ball joint closing a loop (the joint grid's cross links): the 3×3
-                // point block in glam, the hot path of large joint meshes.
-                let (mut b, f) = load(c, vel, states);
+                // point block in glam, the hot path of large joint meshes. With locked axes
+                // the block may be singular: the rows' pivoted factor below.
                 b.solve_point(&f, &mut c.imp.linear, &ctx);
                 write(c, &b, vel);
                 continue;
             }
-            let (mut b, f) = load(c, vel, states);
             let eq = Eq::of(&c.kind, &f);
             let k = eq.factor(&b);
             let imp = &mut c.imp;
