@@ -44,6 +44,7 @@ fn link(w: &mut World, xf: Transform, locks: u8, h: Vec3, density: f32, collide:
 /// One joint of a chain: the child, its parent (None: the world) and the joint frames on
 /// each (the parent's in world space for the world).
 struct Joint {
+    handle: hearth::joints::JointHandle,
     child: BodyHandle,
     parent: Option<BodyHandle>,
     on_child: Transform,
@@ -63,8 +64,9 @@ fn join(w: &mut World, kind: JointKind, child: BodyHandle, parent: Option<BodyHa
         }
         None => frame,
     };
-    w.create_joint(&def).unwrap();
+    let handle = w.create_joint(&def).unwrap();
     Joint {
+        handle,
         child,
         parent,
         on_child: def.frame_a,
@@ -72,10 +74,11 @@ fn join(w: &mut World, kind: JointKind, child: BodyHandle, parent: Option<BodyHa
     }
 }
 
-/// Largest distance between the two anchors of the joints.
+/// Largest distance between the two anchors of the joints (but sliders').
 fn separation(w: &World, joints: &[Joint]) -> f32 {
     joints
         .iter()
+        .filter(|j| !matches!(w.joint(j.handle).unwrap().def.kind, JointKind::Slider(_)))
         .map(|j| {
             let a = w.transform(j.child).unwrap().apply(j.on_child.p);
             let b = match j.parent {
@@ -239,4 +242,74 @@ fn locked_pendulum_swings_with_the_period_of_its_reduced_inertia() {
         println!("tilt {tilt}: period {measured:.5} s, formula {period:.5} s, error {err:.2e}");
         assert!(err < 0.01, "tilt {tilt}: period {measured} s against {period} s");
     }
+}
+
+/// Two balls locked in linear Y on a spring at 53° to X (rest length 1 m, stretched 3 mm
+/// along X): only X is free, so the spring's stiffness along it is `k n_x²` and the
+/// relative motion oscillates at `ω² = k n_x² (1/m_a + 1/m_b)` with the reduced mass.
+#[test]
+fn spring_between_locked_bodies_oscillates_at_the_reduced_mass_frequency() {
+    use hearth::dynamics::body::LOCK_LINEAR_Y;
+    use hearth::generators::{End, GeneratorDef, Spring};
+    let mut w = World::new(hearth::WorldSettings {
+        gravity: Vec3::ZERO,
+        enable_sleep: false,
+        ..Default::default()
+    })
+    .unwrap();
+    let ball = |w: &mut World, p: Vec3, r: f32| {
+        let b = w
+            .create_body(&BodyDef {
+                body_type: BodyType::Dynamic,
+                transform: Transform::new(p, Quat::IDENTITY),
+                locked_axes: LOCK_LINEAR_Y,
+                ..Default::default()
+            })
+            .unwrap();
+        let g = Geometry::Sphere {
+            center: Vec3::ZERO,
+            radius: r,
+        };
+        w.create_shape(b, &ShapeDef::default(), &g).unwrap();
+        b
+    };
+    let a = ball(&mut w, Vec3::ZERO, 0.1);
+    let b = ball(&mut w, Vec3::new(0.603, 0.8, 0.0), 0.2);
+    let k = 400.0f32;
+    let g = w
+        .create_generator(&GeneratorDef::Spring(Spring {
+            other: End::Body {
+                body: b,
+                local: Vec3::ZERO,
+            },
+            local_point: Vec3::ZERO,
+            rest_length: 1.0,
+            stiffness: k,
+            damping: 0.0,
+        }))
+        .unwrap();
+    w.attach_body(g, a).unwrap();
+    let (ma, mb) = (w.body(a).unwrap().mass as f64, w.body(b).unwrap().mass as f64);
+    let omega = (k as f64 * 0.36 * (1.0 / ma + 1.0 / mb)).sqrt();
+    let expected = 2.0 * std::f64::consts::PI / omega;
+    let rel = |w: &World| (w.body(b).unwrap().center.x - w.body(a).unwrap().center.x) as f64 - 0.6;
+    let (mut crossings, mut prev) = (Vec::new(), rel(&w));
+    for step in 1..=1200 {
+        w.step(DT).unwrap();
+        for h in [a, b] {
+            assert_locked(&w, h, LOCK_LINEAR_Y, "spring");
+        }
+        let now = rel(&w);
+        if prev < 0.0 && now >= 0.0 {
+            crossings.push((step as f64 - now / (now - prev)) * DT as f64);
+        }
+        prev = now;
+    }
+    let period = (crossings[crossings.len() - 1] - crossings[0]) / (crossings.len() - 1) as f64;
+    let err = (period / expected - 1.0).abs();
+    println!("spring period {period:.5} s, reduced-mass formula {expected:.5} s, error {err:.2e}");
+    assert!(
+        crossings.len() >= 5 && err < 0.01,
+        "period {period} s against {expected} s"
+    );
 }

@@ -493,7 +493,7 @@ impl Spd {
                     best_ratio = ratio;
                 }
             }
-            if !(best_ratio > DEPENDENT_PIVOT) {
+            if best_ratio <= DEPENDENT_PIVOT {
                 self.kept = j;
                 return;
             }
