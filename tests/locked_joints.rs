@@ -74,7 +74,8 @@ fn join(w: &mut World, kind: JointKind, child: BodyHandle, parent: Option<BodyHa
     }
 }
 
-/// Largest distance between the two anchors of the joints (but sliders').
+/// Largest error of the joints: the distance between the anchors (less the length of a
+/// distance joint; sliders left out).
 fn separation(w: &World, joints: &[Joint]) -> f32 {
     joints
         .iter()
@@ -85,7 +86,10 @@ fn separation(w: &World, joints: &[Joint]) -> f32 {
                 Some(p) => w.transform(p).unwrap().apply(j.on_parent.p),
                 None => j.on_parent.p,
             };
-            (a - b).length()
+            match w.joint(j.handle).unwrap().def.kind {
+                JointKind::Distance(p) => ((a - b).length() - p.length).abs(),
+                _ => (a - b).length(),
+            }
         })
         .fold(0.0, f32::max)
 }
@@ -184,6 +188,21 @@ fn hinge_chain_locked_in_linear_z_and_angular_x_holds_together() {
         rise / scale
     );
     assert!(gap < 0.012, "separation {gap} m");
+    assert!(rise <= 0.01 * scale, "energy rose {rise} J");
+}
+
+/// The same chain with its links colliding with each other (the first and third meet as it
+/// folds): contacts at z = ±0.1 m pitch the links about the free Y axis. It came apart by
+/// 50–130 m; measured now 30 mm.
+#[test]
+fn colliding_hinge_chain_locked_in_linear_z_and_angular_x_holds_together() {
+    let (gap, rise, scale) = swing(3, LOCK_LINEAR_Z | LOCK_ANGULAR_X, true, 1200);
+    println!(
+        "separation {:.2} mm, energy rise {:.3e} of m g L",
+        gap * 1e3,
+        rise / scale
+    );
+    assert!(gap < 0.05, "separation {gap} m");
     assert!(rise <= 0.01 * scale, "energy rose {rise} J");
 }
 
@@ -312,4 +331,126 @@ fn spring_between_locked_bodies_oscillates_at_the_reduced_mass_frequency() {
         crossings.len() >= 5 && err < 0.01,
         "period {period} s against {expected} s"
     );
+}
+
+/// Seeded random chains: every lock mask, 1–6 links, each joint a hinge, ball, fixed,
+/// slider or rigid distance joint at a random frame, links turned at random (their axes off
+/// the locks'), densities 1:100, a kick at the start. Locked velocity components stay
+/// exactly zero, the state finite; after the kick the joint error stays under 15 cm (the
+/// random frames make many chains over-constrained under their locks, and joints on locked
+/// bodies are solved by Gauss–Seidel outside the forest), the energy rises by less than 5 %
+/// of the chain's weight times a metre plus its kinetic energy, and no body passes 120 m/s
+/// (an unlimited slider falls freely along its axis: 98 m/s after 10 s).
+#[test]
+fn seeded_random_locked_chains_of_every_joint_kind() {
+    use hearth::joints::{BallParams, DistanceParams, SliderParams};
+    let (mut worst_gap, mut worst_rise, mut worst_speed) = (0.0f32, 0.0f64, 0.0f32);
+    for seed in 0..128u64 {
+        let mut rng = scenes::Rng(0x5eed_0000 + seed * 7919);
+        let mut w = scenes::world(false);
+        let locks = (seed % 64) as u8;
+        let n = 1 + (rng.next_u32() % 6) as usize;
+        let (mut bodies, mut joints) = (Vec::new(), Vec::new());
+        let mut anchor = Vec3::new(0.0, 10.0, 0.0);
+        for _ in 0..n {
+            let dir = rng.vec(1.0).normalize_or(Vec3::X);
+            let p = anchor + 0.4 * dir;
+            let density = 10f32.powf(rng.range(1.0, 3.0));
+            let b = link(
+                &mut w,
+                Transform::new(p, rng.quat()),
+                locks,
+                Vec3::new(0.3, 0.1, 0.1),
+                density,
+                false,
+            );
+            let frame = Transform::new(anchor, rng.quat());
+            let kind = match rng.next_u32() % 5 {
+                0 => JointKind::Hinge(HingeParams::default()),
+                1 => JointKind::Ball(BallParams::default()),
+                2 => JointKind::Fixed,
+                3 => JointKind::Slider(SliderParams::default()),
+                _ => JointKind::Distance(DistanceParams::default()),
+            };
+            let kind = match kind {
+                // A rigid rod 0.1 m long.
+                JointKind::Distance(mut p) => {
+                    p.length = 0.1;
+                    p.enable_spring = false;
+                    JointKind::Distance(p)
+                }
+                k => k,
+            };
+            let parent = bodies.last().copied();
+            let mut j = join(&mut w, kind, b, parent, frame);
+            if let JointKind::Distance(_) = kind {
+                // A rigid rod 0.1 m long: the child's anchor 0.1 m further along the chain.
+                let on_child = Transform::new(frame.p + 0.1 * dir, frame.q);
+                w.destroy_joint(j.handle).unwrap();
+                let mut def = JointDef::new(kind);
+                def.body_a = b;
+                def.frame_a = w.transform(b).unwrap().inv_mul(&on_child);
+                def.frame_b = match parent {
+                    Some(p) => {
+                        def.body_b = p;
+                        w.transform(p).unwrap().inv_mul(&frame)
+                    }
+                    None => frame,
+                };
+                j = Joint {
+                    handle: w.create_joint(&def).unwrap(),
+                    child: b,
+                    parent,
+                    on_child: def.frame_a,
+                    on_parent: def.frame_b,
+                };
+            }
+            joints.push(j);
+            bodies.push(b);
+            anchor = p + 0.4 * dir;
+        }
+        let last = *bodies.last().unwrap();
+        let kick = rng.vec(3.0) * w.body(last).unwrap().mass;
+        w.apply_linear_impulse(last, kick, true).unwrap();
+        w.step(DT).unwrap();
+        let e0 = energy(&w, &bodies);
+        // The energy scale: the chain's weight times a metre plus its kinetic energy now.
+        let scale: f64 = bodies
+            .iter()
+            .map(|&b| {
+                let body = w.body(b).unwrap();
+                body.mass as f64 * 9.81 + body.kinetic_energy() as f64
+            })
+            .sum();
+        let (mut seed_gap, mut seed_rise, mut seed_speed) = (0.0f32, 0.0f64, 0.0f32);
+        for _ in 0..600 {
+            w.step(DT).unwrap();
+            for &b in &bodies {
+                assert_locked(&w, b, locks, "random chain");
+                let body = w.body(b).unwrap();
+                assert!(body.center.is_finite() && body.xf.q.is_finite(), "seed {seed}");
+                worst_speed = worst_speed.max(body.v.length());
+                seed_speed = seed_speed.max(body.v.length());
+            }
+            worst_gap = worst_gap.max(separation(&w, &joints));
+            seed_gap = seed_gap.max(separation(&w, &joints));
+            seed_rise = seed_rise.max((energy(&w, &bodies) - e0) / scale);
+            worst_rise = worst_rise.max((energy(&w, &bodies) - e0) / scale);
+        }
+        // Measured worst over the 128 seeds: 0.106 m, 0.040, 103 m/s (sliders free-fall
+        // along their axes for 10 s).
+        assert!(
+            seed_gap < 0.15,
+            "seed {seed} (locks {locks:#x}, {n} links): joint error {seed_gap} m"
+        );
+        assert!(
+            seed_rise < 0.05,
+            "seed {seed} (locks {locks:#x}, {n} links): energy rose {seed_rise}"
+        );
+        assert!(
+            seed_speed < 120.0,
+            "seed {seed} (locks {locks:#x}, {n} links): {seed_speed} m/s"
+        );
+    }
+    println!("worst joint error {worst_gap} m, energy rise {worst_rise} of the scale, speed {worst_speed} m/s");
 }

@@ -261,7 +261,7 @@ impl Eq {
         if !b.locked {
             return Spd::factor(&k, self.n, false);
         }
-        // How large each row would be on the bodies without locks: a row that the locks leave
+        // How large each row would be on the bodies without locks: one that the locks leave
         // almost nothing of is left out (`Spd::factor_locked`).
         let mut free = [0.0f32; MAX_ROWS];
         for (i, f) in free.iter_mut().enumerate().take(self.n) {
@@ -271,7 +271,7 @@ impl Eq {
                 + b.free_b.0 * r.lb.length_squared()
                 + b.free_b.1 * r.ab.length_squared();
         }
-        Spd::factor_locked(&k, self.n, &free)
+        Some(Spd::factor_locked(&k, self.n, &free))
     }
 
     /// Solves the rows together as one block (for a joint outside the tree solve): rigid with
@@ -379,12 +379,22 @@ impl Coupled {
 }
 
 /// Below this fraction of its own diagonal, a row's pivot (what is left of it once the rows
-/// taken before are eliminated) marks it as dependent on them. Only bodies with locked axes
-/// (`body::LOCK_*`) have such rows: their rounding-level pivots are 1e-7 and smaller.
-const DEPENDENT_PIVOT: f32 = 1.0e-4;
+/// taken before are eliminated) marks it as dependent on them: at most a tenth of the row's
+/// direction (in the bodies' mass metric) is new, so its error is answered with at most ten
+/// times its bias speed. Only bodies with locked axes (`body::LOCK_*`) have such rows; with
+/// 1e-4 (a hundred times the speed) random locked chains of four to six joints gained
+/// hundreds of joules in a step (`tests/locked_joints.rs`, seeds 40, 80, 97).
+const DEPENDENT_PIVOT: f32 = 1.0e-2;
 /// Below this fraction of what it would be without locks, a row's diagonal marks it as one
-/// the locks leave (nearly) nothing of (`Spd::factor_locked`).
-pub const FREE_ROW: f32 = 1.0e-2;
+/// the locks leave (nearly) nothing of (`Spd::factor_locked`): two bodies that may only turn,
+/// hinged where their arms are nearly in line, cannot move the anchors along the line, and
+/// the rounding-level error there spun a 0.24 kg link to 257 rad/s in one step. Not more: a
+/// slider between bodies that may only translate has rows whose lever on the other body
+/// (where they act, `SliderRows`) is a hundredth of their size without locks.
+pub const FREE_ROW: f32 = 1.0e-3;
+/// Below this fraction of the block's largest diagonal, any row counts as one the bodies
+/// cannot move along.
+const NULL_ROW: f32 = 1.0e-9;
 
 /// Cholesky factor `L Lᵀ` of a small symmetric positive definite matrix (size `n <= 6`), with
 /// the reciprocals of the diagonal. With `drop_weak` the rows are taken largest pivot first
@@ -424,9 +434,8 @@ impl Spd {
             return None;
         }
         if drop_weak {
-            // Unknown sizes: every row judged against the largest.
-            let free = [scale; MAX_ROWS];
-            s.factor_pivoted(k, &free);
+            // Rows judged by their dependence and against the largest.
+            s.factor_pivoted(k, &[0.0; MAX_ROWS]);
             return (s.kept > 0).then_some(s);
         }
         for j in 0..n {
@@ -452,13 +461,13 @@ impl Spd {
     }
 
     /// The factor of `K` for bodies with locked axes, `free[i]` the diagonal row `i` would have
-    /// on the bodies without locks: `factor` with `drop_weak`, where also a row the locks
-    /// leave less than [`FREE_ROW`] of is left out. Such a row (a hinge's alignment row
-    /// nearly along a locked axis, once the links have tilted a little about a free one)
-    /// asks the bodies to correct an error nearly all along the locked axis through the
-    /// little that is free of it: the biased sweep turned a link by radians within a step,
-    /// and a three-link chain locked in linear Z and angular X came apart by 50 m.
-    pub fn factor_locked(k: &[[f32; MAX_ROWS]; MAX_ROWS], n: usize, free: &[f32; MAX_ROWS]) -> Option<Spd> {
+    /// on the bodies without locks (mean inverse inertia): `factor` with `drop_weak`, where
+    /// also a row the locks leave less than [`FREE_ROW`] of is left out. Such a row (a
+    /// hinge's alignment row nearly along a locked axis, once the links have tilted a little
+    /// about a free one) asks the bodies to correct an error nearly all along the locked axis
+    /// through the little that is free of it, and the biased sweep turned a link by radians
+    /// within a step.
+    pub fn factor_locked(k: &[[f32; MAX_ROWS]; MAX_ROWS], n: usize, free: &[f32; MAX_ROWS]) -> Spd {
         let mut s = Spd {
             n,
             l: [[0.0; MAX_ROWS]; MAX_ROWS],
@@ -467,13 +476,14 @@ impl Spd {
             kept: n,
         };
         s.factor_pivoted(k, free);
-        (s.kept > 0).then_some(s)
+        s
     }
 
     /// The pivoted factor: `perm`, `kept` and the first `kept` rows of `l` (in pivot order,
     /// over the permuted matrix).
     fn factor_pivoted(&mut self, k: &[[f32; MAX_ROWS]; MAX_ROWS], free: &[f32; MAX_ROWS]) {
         let n = self.n;
+        let scale = (0..n).map(|i| k[i][i]).filter(|x| x.is_finite()).fold(0.0f32, f32::max);
         // Residual pivots of the rows not yet taken, updated as rows are taken.
         let mut d = [0.0f32; MAX_ROWS];
         for i in 0..n {
@@ -486,7 +496,8 @@ impl Spd {
             for c in j..n {
                 let i = self.perm[c];
                 let diag = k[i][i];
-                let usable = diag > FREE_ROW * free[i] && diag.is_finite() && free[i].is_finite();
+                let usable =
+                    diag > NULL_ROW * scale && diag > FREE_ROW * free[i] && diag.is_finite() && free[i].is_finite();
                 let ratio = if usable { d[c] / diag } else { 0.0 };
                 if ratio > best_ratio {
                     best = c;
