@@ -140,11 +140,14 @@ fn hinge_chain(w: &mut World, n: usize, locks: u8, collide: bool) -> (Vec<BodyHa
     (bodies, joints)
 }
 
-/// Runs a chain released from rest for `steps`: the largest joint separation, the largest
-/// energy rise above the start (J) and the mechanical energy scale `m g L` (J).
-fn swing(n: usize, locks: u8, collide: bool, steps: usize) -> (f32, f64, f64) {
+/// Runs a chain released from rest, its last link given `kick` (m/s, along Y), for `steps`:
+/// the largest joint separation, the largest energy rise above the start (J) and the
+/// mechanical energy scale `m g L` (J).
+fn swing(n: usize, locks: u8, collide: bool, steps: usize, kick: f32) -> (f32, f64, f64) {
     let mut w = scenes::world(false);
     let (bodies, joints) = hinge_chain(&mut w, n, locks, collide);
+    let last = *bodies.last().unwrap();
+    w.set_linear_velocity(last, Vec3::new(0.0, kick, 0.0)).unwrap();
     let e0 = energy(&w, &bodies);
     let (mut gap, mut rise) = (0.0f32, 0.0f64);
     for _ in 0..steps {
@@ -154,56 +157,71 @@ fn swing(n: usize, locks: u8, collide: bool, steps: usize) -> (f32, f64, f64) {
         for &b in &bodies {
             assert_locked(&w, b, locks, "chain");
             let c = w.body(b).unwrap().center;
-            assert_eq!(c.z, 0.0, "left the plane");
+            if locks & LOCK_LINEAR_Z != 0 {
+                assert_eq!(c.z, 0.0, "left the plane");
+            }
         }
     }
     let m: f64 = bodies.iter().map(|&b| w.body(b).unwrap().mass as f64).sum();
     (gap, rise, m * 9.81 * 0.8 * n as f64)
 }
 
+/// Kicks of the last link (m/s): released from rest, and four small pushes, each a different
+/// (chaotic) swing of a chain of several links.
+const KICKS: [f32; 5] = [0.0, -0.6, -1.2, -1.8, -2.4];
+
+/// The worst separation (m) and energy rise (of `m g L`) of a chain over `KICKS`, 10 s each.
+fn swings(n: usize, locks: u8, collide: bool) -> (f32, f64) {
+    let (mut gap, mut rise) = (0.0f32, 0.0f64);
+    for kick in KICKS {
+        let (g, r, scale) = swing(n, locks, collide, 600, kick);
+        gap = gap.max(g);
+        rise = rise.max(r / scale);
+    }
+    (gap, rise)
+}
+
+/// Planar chains of 1, 3 and 6 links released horizontal (and kicked) swing for 10 s in their
+/// plane. Measured worst separations over the kicks: 1 link 0.8 mm, 3 links 9.4 mm, 6 links
+/// 19.6 mm, against 14.8 mm for the same 6-link chain without locks (the whipping end turns
+/// 0.1 rad per sub-step; the joints' soft rows at six sub-steps, not only the locks). The
+/// energy never rises by 1 % of `m g L` (measured 2e-3 for one link, 7e-4 for three).
 #[test]
 fn planar_hinge_chains_swing_in_their_plane_hold_together_and_gain_no_energy() {
-    for (n, max_gap) in [(1, 0.002), (3, 0.012), (6, 0.02)] {
-        let (gap, rise, scale) = swing(n, PLANAR, false, 1200);
+    for (n, max_gap) in [(1, 0.01), (3, 0.01), (6, 0.025)] {
+        let (gap, rise) = swings(n, PLANAR, false);
         println!(
-            "{n} links: separation {:.2} mm, energy rise {:.3e} of m g L",
-            gap * 1e3,
-            rise / scale
+            "{n} links: separation {:.2} mm, energy rise {rise:.3e} of m g L",
+            gap * 1e3
         );
         assert!(gap < max_gap, "{n} links: separation {gap} m");
-        // The soft joint correction may add a trace: 1 % of m g L.
-        assert!(
-            rise <= 0.01 * scale,
-            "{n} links: energy rose {rise} J (m g L {scale} J)"
-        );
+        assert!(rise <= 0.01, "{n} links: energy rose {rise} of m g L");
     }
 }
 
+/// Locked in linear Z and angular X only, the links may also pitch about Y, which the hinges
+/// forbid. Measured worst separation over the kicks 9.4 mm, energy rise 7e-4 of `m g L`.
 #[test]
 fn hinge_chain_locked_in_linear_z_and_angular_x_holds_together() {
-    let (gap, rise, scale) = swing(3, LOCK_LINEAR_Z | LOCK_ANGULAR_X, false, 1200);
-    println!(
-        "separation {:.2} mm, energy rise {:.3e} of m g L",
-        gap * 1e3,
-        rise / scale
-    );
-    assert!(gap < 0.012, "separation {gap} m");
-    assert!(rise <= 0.01 * scale, "energy rose {rise} J");
+    let (gap, rise) = swings(3, LOCK_LINEAR_Z | LOCK_ANGULAR_X, false);
+    println!("separation {:.2} mm, energy rise {rise:.3e} of m g L", gap * 1e3);
+    assert!(gap < 0.01, "separation {gap} m");
+    assert!(rise <= 0.01, "energy rose {rise} of m g L");
 }
 
 /// The same chain with its links colliding with each other (the first and third meet as it
-/// folds): contacts at z = ±0.1 m pitch the links about the free Y axis. It came apart by
-/// 50–130 m; measured now 30 mm.
+/// folds): contacts at z = ±0.1 m pitch the links about the free Y axis, and turns about Y
+/// and Z leave a tilt about the locked X axis that no velocity can take back. The hinges'
+/// alignment rows, nearly along X, saw that tilt and corrected it through the little of
+/// them left on Y (`rows::BIAS_FREE_ROW`): over these kicks the chain came apart by 15 cm
+/// and gained 3.9 `m g L`. Measured worst separation now 16.5 mm, energy rise 7e-4 of
+/// `m g L`.
 #[test]
 fn colliding_hinge_chain_locked_in_linear_z_and_angular_x_holds_together() {
-    let (gap, rise, scale) = swing(3, LOCK_LINEAR_Z | LOCK_ANGULAR_X, true, 1200);
-    println!(
-        "separation {:.2} mm, energy rise {:.3e} of m g L",
-        gap * 1e3,
-        rise / scale
-    );
-    assert!(gap < 0.05, "separation {gap} m");
-    assert!(rise <= 0.01 * scale, "energy rose {rise} J");
+    let (gap, rise) = swings(3, LOCK_LINEAR_Z | LOCK_ANGULAR_X, true);
+    println!("separation {:.2} mm, energy rise {rise:.3e} of m g L", gap * 1e3);
+    assert!(gap < 0.02, "separation {gap} m");
+    assert!(rise <= 0.01, "energy rose {rise} of m g L");
 }
 
 /// A plate turned about its long axis hangs from a hinge 5 cm above its centre and swings a

@@ -265,11 +265,7 @@ impl Eq {
         // almost nothing of is left out (`Spd::factor_locked`).
         let mut free = [0.0f32; MAX_ROWS];
         for (i, f) in free.iter_mut().enumerate().take(self.n) {
-            let r = &self.rows[i];
-            *f = b.free_a.0 * r.la.length_squared()
-                + b.free_a.1 * r.aa.length_squared()
-                + b.free_b.0 * r.lb.length_squared()
-                + b.free_b.1 * r.ab.length_squared();
+            *f = self.free_diag(b, i);
         }
         Some(Spd::factor_locked(&k, self.n, &free))
     }
@@ -277,9 +273,10 @@ impl Eq {
     /// Solves the rows together as one block (for a joint outside the tree solve): rigid with
     /// the full `K⁻¹` in the relax sweep, the stiff soft response in the biased sweep.
     pub fn solve_block(&self, k: &Spd, b: &mut Bodies, imp: &mut Impulses, ctx: &Ctx) {
+        let bias = self.bias(b, ctx);
         let mut r = [0.0f32; MAX_ROWS];
         for i in 0..self.n {
-            r[i] = -(b.cdot(&self.rows[i]) + ctx.rigid_bias(self.err[i]));
+            r[i] = -(b.cdot(&self.rows[i]) + bias[i]);
         }
         if k.any_dropped() {
             // A row left out (locked axes) gives up its accumulated impulse first: kept, the
@@ -295,7 +292,7 @@ impl Eq {
             }
             self.add(imp, &d, 1.0);
             for i in 0..self.n {
-                r[i] = -(b.cdot(&self.rows[i]) + ctx.rigid_bias(self.err[i]));
+                r[i] = -(b.cdot(&self.rows[i]) + bias[i]);
             }
         }
         let x = k.solve(&r);
@@ -309,6 +306,35 @@ impl Eq {
             b.apply_row(&self.rows[i], d[i]);
         }
         self.add(imp, &d, 1.0);
+    }
+
+    /// The diagonal row `i` would have on the bodies without locks (mean inverse inertia).
+    fn free_diag(&self, b: &Bodies, i: usize) -> f32 {
+        let r = &self.rows[i];
+        b.free_a.0 * r.la.length_squared()
+            + b.free_a.1 * r.aa.length_squared()
+            + b.free_b.0 * r.lb.length_squared()
+            + b.free_b.1 * r.ab.length_squared()
+    }
+
+    /// The rows' velocity bias. On bodies with locked axes a row the locks leave less than
+    /// [`BIAS_FREE_ROW`] of its size corrects its error proportionally slower: its error is
+    /// then mostly along locked axes (a hinge's alignment row nearly along a locked axis: the
+    /// tilt about it that turns about two free axes left behind), which the bodies cannot
+    /// correct, and through the little freedom left the full bias spun them fast.
+    fn bias(&self, b: &Bodies, ctx: &Ctx) -> [f32; MAX_ROWS] {
+        let mut bias = [0.0f32; MAX_ROWS];
+        for i in 0..self.n {
+            bias[i] = ctx.rigid_bias(self.err[i]);
+            if b.locked && bias[i] != 0.0 {
+                let free = self.free_diag(b, i);
+                let kept = b.response(&self.rows[i]).dot(&self.rows[i]);
+                if kept < BIAS_FREE_ROW * free {
+                    bias[i] *= (kept / (BIAS_FREE_ROW * free)).max(0.0);
+                }
+            }
+        }
+        bias
     }
 
     /// `row` coupled with these rows (see the module notes); with no factor, `row` alone.
@@ -377,6 +403,10 @@ impl Coupled {
         eq.add(imp, &self.comp, l);
     }
 }
+
+/// Below this fraction of what it would be without locks, a row's diagonal slows the
+/// correction of its error in proportion (`Eq::bias`).
+pub const BIAS_FREE_ROW: f32 = 0.1;
 
 /// Below this fraction of its own diagonal, a row's pivot (what is left of it once the rows
 /// taken before are eliminated) marks it as dependent on them: at most a tenth of the row's
