@@ -182,10 +182,11 @@ fn swings(n: usize, locks: u8, collide: bool) -> (f32, f64) {
 }
 
 /// Planar chains of 1, 3 and 6 links released horizontal (and kicked) swing for 10 s in their
-/// plane. Measured worst separations over the kicks: 1 link 0.8 mm, 3 links 9.4 mm, 6 links
-/// 19.6 mm, against 14.8 mm for the same 6-link chain without locks (the whipping end turns
-/// 0.1 rad per sub-step; the joints' soft rows at six sub-steps, not only the locks). The
-/// energy never rises by 1 % of `m g L` (measured 2e-3 for one link, 7e-4 for three).
+/// plane. Measured worst separations over the kicks: 1 link 0.8 mm, 3 links 8.2 mm, 6 links
+/// 13.1 mm, against 14.8 mm for the same 6-link chain without locks (its whipping end turns
+/// 0.1 rad per sub-step; the joints' soft rows at six sub-steps, not the locks): the locked
+/// chain is asserted no more stretched than the unlocked one. The energy never rises by
+/// 1 % of `m g L` (measured 2e-3 for one link, 5e-4 for three, none for six).
 #[test]
 fn planar_hinge_chains_swing_in_their_plane_hold_together_and_gain_no_energy() {
     for (n, max_gap) in [(1, 0.01), (3, 0.01), (6, 0.025)] {
@@ -200,7 +201,7 @@ fn planar_hinge_chains_swing_in_their_plane_hold_together_and_gain_no_energy() {
 }
 
 /// Locked in linear Z and angular X only, the links may also pitch about Y, which the hinges
-/// forbid. Measured worst separation over the kicks 9.4 mm, energy rise 7e-4 of `m g L`.
+/// forbid. Measured worst separation over the kicks 8.2 mm, energy rise 5e-4 of `m g L`.
 #[test]
 fn hinge_chain_locked_in_linear_z_and_angular_x_holds_together() {
     let (gap, rise) = swings(3, LOCK_LINEAR_Z | LOCK_ANGULAR_X, false);
@@ -214,13 +215,13 @@ fn hinge_chain_locked_in_linear_z_and_angular_x_holds_together() {
 /// and Z leave a tilt about the locked X axis that no velocity can take back. The hinges'
 /// alignment rows, nearly along X, saw that tilt and corrected it through the little of
 /// them left on Y (`rows::BIAS_FREE_ROW`): over these kicks the chain came apart by 15 cm
-/// and gained 3.9 `m g L`. Measured worst separation now 16.5 mm, energy rise 7e-4 of
+/// and gained 3.9 `m g L`. Measured worst separation now 14.6 mm, energy rise 5e-4 of
 /// `m g L`.
 #[test]
 fn colliding_hinge_chain_locked_in_linear_z_and_angular_x_holds_together() {
     let (gap, rise) = swings(3, LOCK_LINEAR_Z | LOCK_ANGULAR_X, true);
     println!("separation {:.2} mm, energy rise {rise:.3e} of m g L", gap * 1e3);
-    assert!(gap < 0.02, "separation {gap} m");
+    assert!(gap < 0.018, "separation {gap} m");
     assert!(rise <= 0.01, "energy rose {rise} of m g L");
 }
 
