@@ -91,6 +91,12 @@ const FIGURES: &[(&str, &str, Backing)] = &[
     (R, "10 km", Range),
     (R, "100000 m", Range),
     (R, "8 mm", Fact),
+    // README, locked axes: the 6-link planar hinge chain's worst separation.
+    (
+        R,
+        "16 mm",
+        Measured(&["locked_joints::planar_hinge_chains_swing_in_their_plane_hold_together_and_gain_no_energy"]),
+    ),
     (R, "100 km", Fact),
     (R, "10000 m/s", Range),
     (R, "314.16 rad/s", Range),

@@ -57,11 +57,76 @@ pub fn lock_angular(w: Vec3, locks: u8) -> Vec3 {
     }
 }
 
-/// A world inverse inertia with the rows and columns of the locked angular axes zeroed, so
-/// angular impulses never turn the body about them and effective masses see it as infinitely
-/// stiff there (Rapier's `effective_world_inv_inertia_sqrt`, Jolt's `ScaleToAllowedDOFs`).
+/// The inverse inertia of a body that may turn only about its free world axes (`locks`,
+/// bits 3..6), from its world inertia `inertia` (about the centre of mass): `W = Pᵀ (P I Pᵀ)⁻¹ P`,
+/// with `P` selecting the free axes. The inertia restricted to the free axes is inverted, so an
+/// angular impulse `L` turns the body by `W L`, the motion of the reduced equations
+/// `P I Pᵀ ω̇ = P τ`; the rows and columns of the locked axes are exactly zero.
+///
+/// Zeroing the locked rows and columns of the full inverse `I⁻¹` instead (`P I⁻¹ Pᵀ`) is the same
+/// only while the inertia does not couple locked and free axes: a rod locked about world X
+/// that has turned about Z couples X and Y, and `P I⁻¹ Pᵀ` turned it about Y up to five
+/// times too easily. Constraints projected velocities in that wrong metric and put energy in
+/// (a three-link hinge chain locked in linear Z and angular X flew apart by 130 m).
+pub fn reduced_inverse_inertia(inertia: glam::DMat3, locks: u8) -> Mat3 {
+    let free: [usize; 3] = [0, 1, 2];
+    let mut idx = [0usize; 3];
+    let mut n = 0;
+    for k in free {
+        if locks & (8 << k) == 0 {
+            idx[n] = k;
+            n += 1;
+        }
+    }
+    let at = |r: usize, c: usize| inertia.col(c)[r];
+    let mut out = [[0.0f64; 3]; 3];
+    match n {
+        0 => {}
+        1 => {
+            let a = idx[0];
+            let d = at(a, a);
+            if d > 0.0 && d.is_finite() {
+                out[a][a] = 1.0 / d;
+            }
+        }
+        2 => {
+            let (a, b) = (idx[0], idx[1]);
+            let (p, q, r) = (at(a, a), 0.5 * (at(a, b) + at(b, a)), at(b, b));
+            let det = p * r - q * q;
+            if det > 0.0 && det.is_finite() {
+                out[a][a] = r / det;
+                out[b][b] = p / det;
+                out[a][b] = -q / det;
+                out[b][a] = -q / det;
+            }
+        }
+        _ => {
+            let det = inertia.determinant();
+            if det > 0.0 && det.is_finite() {
+                let inv = inertia.inverse();
+                for (c, o) in out.iter_mut().enumerate() {
+                    for (r, x) in o.iter_mut().enumerate() {
+                        *x = inv.col(c)[r];
+                    }
+                }
+            }
+        }
+    }
+    // `out[c][r]`: column c, row r (symmetric).
+    Mat3::from_cols_array_2d(&out.map(|c| c.map(|x| x as f32)))
+}
+
+/// The world inertia `R I Rᵀ` of a body with local inertia `local` and rotation `q` (f64).
 #[inline]
-pub fn lock_inertia(m: Mat3, locks: u8) -> Mat3 {
+pub fn world_inertia(local: &Mat3, q: glam::Quat) -> glam::DMat3 {
+    let r = glam::DMat3::from_quat(q.as_dquat());
+    r * local.as_dmat3() * r.transpose()
+}
+
+/// An isotropic (diagonal, turn-invariant) inverse inertia with the locked axes' entries
+/// zeroed: for such an inertia this is `reduced_inverse_inertia` exactly.
+#[inline]
+fn lock_isotropic(m: Mat3, locks: u8) -> Mat3 {
     if locks & 56 == 0 {
         return m;
     }
@@ -339,14 +404,21 @@ impl Body {
 
     /// Refreshes the world-space inverse inertia `R · I⁻¹ · Rᵀ` (unchanged by rotation when
     /// the inertia is isotropic: spheres, cubes).
+    /// With locked angular axes it is the reduced inverse of the world inertia
+    /// (`reduced_inverse_inertia`; for isotropic inertia, the free part of `I⁻¹`).
     #[inline]
     pub fn update_world_inertia(&mut self) {
+        let locks = self.locks();
         if self.isotropic {
-            self.inv_inertia_world = lock_inertia(self.inv_inertia_local, self.locks());
+            self.inv_inertia_world = lock_isotropic(self.inv_inertia_local, locks);
+            return;
+        }
+        if locks & 56 != 0 {
+            self.inv_inertia_world = reduced_inverse_inertia(world_inertia(&self.inertia_local, self.xf.q), locks);
             return;
         }
         let r = Mat3::from_quat(self.xf.q);
-        self.inv_inertia_world = lock_inertia(r * self.inv_inertia_local * r.transpose(), self.locks());
+        self.inv_inertia_world = r * self.inv_inertia_local * r.transpose();
     }
 
     /// Moves the origin so the centre of mass sits at `center` with rotation `q`.

@@ -11,7 +11,7 @@
 //! Plain and kinematic bodies are integrated in SIMD lanes (`integrate_wide.rs`); bodies with
 //! torque, gyroscopic motion or RK4 take the scalar path here.
 
-use crate::dynamics::body::{lock_angular, lock_linear, Body};
+use crate::dynamics::body::{lock_angular, lock_linear, reduced_inverse_inertia, world_inertia, Body};
 use crate::dynamics::contact_solver::{self, ContactRef, Sources};
 use crate::dynamics::contact_wide;
 use crate::dynamics::integrate_wide;
@@ -64,6 +64,10 @@ pub struct BodyState {
     pub inv_mass: f32,
     /// The body's locked axes (`body::LOCK_*` bits; 0 for most bodies).
     pub locks: u8,
+    /// A body with locked axes: the mean of its inverse inertia's principal values as if
+    /// nothing were locked (turn-invariant), the size against which joints judge how much of
+    /// a row the locks leave free (`joints::rows::Spd`). Zero otherwise.
+    pub free_inv_i: f32,
     /// As rows of four floats, so that lanes of bodies load with transposes: translation
     /// since the start of the step, rotation since the start of the step as a quaternion
     /// (x, y, z, w), the columns of the world inverse inertia, and the rotation since the
@@ -75,6 +79,7 @@ impl BodyState {
     pub const STATIC: BodyState = BodyState {
         inv_mass: 0.0,
         locks: 0,
+        free_inv_i: 0.0,
         rows: [[0.0; 4], [0.0, 0.0, 0.0, 1.0], [0.0; 4], [0.0; 4], [0.0; 4], [0.0; 4]],
     };
 
@@ -191,6 +196,9 @@ pub struct BodySim {
     pub inv_inertia: Mat3,
     /// Inertia is not isotropic: the gyroscopic term matters.
     pub gyroscopic: bool,
+    /// Anisotropic with some (not all) angular axes locked: turns about the free axes with the
+    /// reduced inertia, refreshed every sub-step (`integrate_general_positions`).
+    pub reduced: bool,
     /// Principal frame (body frame from principal frame) and moments, for the free
     /// rotation of gyroscopic bodies (`free_rotation`).
     pub principal: DQuat,
@@ -451,6 +459,7 @@ pub fn prepare_bodies(world: &mut World, dt: f32, h: f32) {
         inertia: Mat3::ZERO,
         inv_inertia: Mat3::ZERO,
         gyroscopic: false,
+        reduced: false,
         principal: DQuat::IDENTITY,
         moments: DVec3::ZERO,
         dynamic: false,
@@ -529,7 +538,11 @@ fn prepare_body(
     let arrive = !dynamic && kinematic_target_velocity(body, dt, max_v, max_w);
     body.update_world_inertia();
     let locks = body.locks();
-    let state = BodyState::new(body.inv_mass, body.inv_inertia_world, locks);
+    let mut state = BodyState::new(body.inv_mass, body.inv_inertia_world, locks);
+    if locks != 0 {
+        let i = &body.inv_inertia_local;
+        state.free_inv_i = (i.x_axis.x + i.y_axis.y + i.z_axis.z) / 3.0;
+    }
     let vel = Velocity::new(body.v, body.w);
     let (lin_accel, torque) = if dynamic {
         let (a, t) = bounded_drive(body, gravity, h, max_v, max_w);
@@ -538,9 +551,11 @@ fn prepare_body(
         (Vec3::ZERO, Vec3::ZERO)
     };
     // A body with a locked angular axis turns only about the free ones: no gyroscopic
-    // free rotation (it would carry spin into a locked axis); its inertia is refreshed
-    // once a step.
+    // free rotation (it would carry spin into a locked axis). An anisotropic one keeps the
+    // free components of its world angular momentum through each sub-step's turn, with its
+    // reduced inverse inertia refreshed (`integrate_general_positions`).
     let gyroscopic = dynamic && locks & 56 == 0 && has_gyroscopic_term(&body.inertia_local);
+    let reduced = dynamic && locks & 56 != 0 && locks & 56 != 56 && !body.isotropic;
     let (principal, moments) = if gyroscopic {
         principal_axes(&body.inertia_local)
     } else {
@@ -551,7 +566,7 @@ fn prepare_body(
             (h * lin_accel).extend(1.0 / (1.0 + h * body.linear_damping)).to_array(),
             [1.0 / (1.0 + h * body.angular_damping), 0.0, 0.0, 0.0],
         ],
-        path: match (dynamic, gyroscopic || torque != Vec3::ZERO) {
+        path: match (dynamic, gyroscopic || reduced || torque != Vec3::ZERO) {
             (false, _) => Path::Kinematic,
             (true, false) => Path::Plain,
             (true, true) => Path::General,
@@ -567,6 +582,7 @@ fn prepare_body(
         inertia: body.inertia_local,
         inv_inertia: body.inv_inertia_local,
         gyroscopic,
+        reduced,
         principal,
         moments,
         dynamic,
@@ -663,6 +679,17 @@ pub(crate) fn integrate_general_positions(
             (q * sim.principal.conjugate() * sim.q0.as_dquat().conjugate())
                 .normalize()
                 .as_quat()
+        } else if sim.reduced {
+            // Locked angular axes: the constraint torque that keeps them is along them, so the
+            // free components of the world angular momentum `I ω` stay through the free turn;
+            // the velocity follows from them with the turned body's reduced inertia.
+            s.set_dp(s.dp() + h * u.v);
+            let momentum = world_inertia(&sim.inertia, s.dq() * sim.q0) * u.w.as_dvec3();
+            let dq = integrate_rotation(s.dq(), u.w, h);
+            let inv_i = reduced_inverse_inertia(world_inertia(&sim.inertia, dq * sim.q0), s.locks);
+            s.set_inv_i(inv_i);
+            u.w = clamp_length((inv_i.as_dmat3() * momentum).as_vec3(), limits.1);
+            dq
         } else {
             s.set_dp(s.dp() + h * u.v);
             integrate_rotation(s.dq(), u.w, h)
@@ -914,7 +941,7 @@ pub fn solve(world: &mut World, dt: f32) {
 /// Sets the locked velocity components of the bodies with locked axes to exactly zero, after
 /// each stage that changes velocities. Contacts and joints already leave locked axes alone:
 /// angular impulses go through a world inverse inertia with the locked rows and columns zeroed
-/// (`body::lock_inertia`), linear ones through per-axis inverse masses (zero along locked
+/// (`body::reduced_inverse_inertia`), linear ones through per-axis inverse masses (zero along locked
 /// axes; `contact_wide::linear_term`, `joints::solver::Bodies::ma`), which also give the rows
 /// their reduced effective masses. What is left to take out comes from the other stages
 /// (springs between bodies) and rounding, and taking it out only removes kinetic energy.

@@ -18,7 +18,7 @@
 //!   the mass says); the anchor end feels no reaction.
 
 use super::forces::stiff_spring_gains;
-use crate::dynamics::body::Body;
+use crate::dynamics::body::{lock_linear, Body};
 use crate::dynamics::solver::{BodyState, Velocity};
 use crate::math::{Mat3, Vec3};
 use crate::pool::Pool;
@@ -99,14 +99,20 @@ pub struct BodySprings {
 /// The most a point at arm `r` of a body moves per unit impulse in any direction (1/kg):
 /// the largest eigenvalue of `1/m + [r]ᵀ I⁻¹ [r]`.
 pub fn mobility(inv_mass: f32, inv_inertia: &Mat3, r: Vec3) -> f32 {
+    locked_mobility(Vec3::splat(inv_mass), inv_inertia, r)
+}
+
+/// `mobility` of a body with locked axes: `inv_mass` per world axis (zero along locked ones)
+/// and its reduced inverse inertia (`body::reduced_inverse_inertia`), the masses the
+/// constraints and the integration move it with.
+pub fn locked_mobility(inv_mass: Vec3, inv_inertia: &Mat3, r: Vec3) -> f32 {
     let r = r.as_dvec3();
     let s = glam::DMat3::from_cols(
         glam::DVec3::new(0.0, r.z, -r.y),
         glam::DVec3::new(-r.z, 0.0, r.x),
         glam::DVec3::new(r.y, -r.x, 0.0),
     );
-    let k =
-        glam::DMat3::from_diagonal(glam::DVec3::splat(inv_mass as f64)) + s.transpose() * inv_inertia.as_dmat3() * s;
+    let k = glam::DMat3::from_diagonal(inv_mass.as_dvec3()) + s.transpose() * inv_inertia.as_dmat3() * s;
     max_eigenvalue(k) as f32
 }
 
@@ -143,7 +149,8 @@ fn resolve(end: &SpringEnd, bodies: &Pool<Body>) -> Resolved {
                 center: b.center,
                 arm: point - b.center,
                 mobility: if moves {
-                    mobility(b.inv_mass, &b.inv_inertia_world, point - b.center)
+                    let inv_mass = lock_linear(Vec3::splat(b.inv_mass), b.locks());
+                    locked_mobility(inv_mass, &b.inv_inertia_world, point - b.center)
                 } else {
                     0.0
                 },
@@ -207,7 +214,9 @@ fn push(r: &Resolved, arm: Vec3, impulse: Vec3, vel: &mut [Velocity], states: &[
     }
     let s = &states[r.index as usize];
     let u = &mut vel[r.index as usize];
-    u.v += s.inv_mass * impulse;
+    // Per-axis inverse mass: nothing along a locked axis (the angular part goes through
+    // the reduced inverse inertia, zero about locked axes).
+    u.v += lock_linear(Vec3::splat(s.inv_mass), s.locks) * impulse;
     u.w += s.inv_i() * arm.cross(impulse);
 }
 

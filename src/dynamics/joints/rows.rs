@@ -258,24 +258,83 @@ impl Eq {
                 k[j][i] = v;
             }
         }
-        Spd::factor(&k, self.n, b.locked)
+        if !b.locked {
+            return Spd::factor(&k, self.n, false);
+        }
+        // How large each row would be on the bodies without locks: one that the locks leave
+        // almost nothing of is left out (`Spd::factor_locked`).
+        let mut free = [0.0f32; MAX_ROWS];
+        for (i, f) in free.iter_mut().enumerate().take(self.n) {
+            *f = self.free_diag(b, i);
+        }
+        Some(Spd::factor_locked(&k, self.n, &free))
     }
 
     /// Solves the rows together as one block (for a joint outside the tree solve): rigid with
     /// the full `K⁻¹` in the relax sweep, the stiff soft response in the biased sweep.
     pub fn solve_block(&self, k: &Spd, b: &mut Bodies, imp: &mut Impulses, ctx: &Ctx) {
+        let bias = self.bias(b, ctx);
         let mut r = [0.0f32; MAX_ROWS];
         for i in 0..self.n {
-            r[i] = -(b.cdot(&self.rows[i]) + ctx.rigid_bias(self.err[i]));
+            r[i] = -(b.cdot(&self.rows[i]) + bias[i]);
+        }
+        if k.any_dropped() {
+            // A row left out (locked axes) gives up its accumulated impulse first: kept, the
+            // warm start would push along it every sub-step with nothing to answer it; taken
+            // out before the solve, the rows kept answer for it.
+            let acc = self.acc(imp);
+            let mut d = [0.0f32; MAX_ROWS];
+            for i in 0..self.n {
+                if k.dropped(i) {
+                    d[i] = -acc[i];
+                    b.apply_row(&self.rows[i], d[i]);
+                }
+            }
+            self.add(imp, &d, 1.0);
+            for i in 0..self.n {
+                r[i] = -(b.cdot(&self.rows[i]) + bias[i]);
+            }
         }
         let x = k.solve(&r);
         let acc = self.acc(imp);
         let mut d = [0.0f32; MAX_ROWS];
         for i in 0..self.n {
+            if k.dropped(i) {
+                continue;
+            }
             d[i] = ctx.respond(x[i], acc[i]);
             b.apply_row(&self.rows[i], d[i]);
         }
         self.add(imp, &d, 1.0);
+    }
+
+    /// The diagonal row `i` would have on the bodies without locks (mean inverse inertia).
+    fn free_diag(&self, b: &Bodies, i: usize) -> f32 {
+        let r = &self.rows[i];
+        b.free_a.0 * r.la.length_squared()
+            + b.free_a.1 * r.aa.length_squared()
+            + b.free_b.0 * r.lb.length_squared()
+            + b.free_b.1 * r.ab.length_squared()
+    }
+
+    /// The rows' velocity bias. On bodies with locked axes a row the locks leave less than
+    /// [`BIAS_FREE_ROW`] of its size corrects its error proportionally slower: its error is
+    /// then mostly along locked axes (a hinge's alignment row nearly along a locked axis: the
+    /// tilt about it that turns about two free axes left behind), which the bodies cannot
+    /// correct, and through the little freedom left the full bias spun them fast.
+    fn bias(&self, b: &Bodies, ctx: &Ctx) -> [f32; MAX_ROWS] {
+        let mut bias = [0.0f32; MAX_ROWS];
+        for i in 0..self.n {
+            bias[i] = ctx.rigid_bias(self.err[i]);
+            if b.locked && bias[i] != 0.0 {
+                let free = self.free_diag(b, i);
+                let kept = b.response(&self.rows[i]).dot(&self.rows[i]);
+                if kept < BIAS_FREE_ROW * free {
+                    bias[i] *= (kept / (BIAS_FREE_ROW * free)).max(0.0);
+                }
+            }
+        }
+        bias
     }
 
     /// `row` coupled with these rows (see the module notes); with no factor, `row` alone.
@@ -345,27 +404,69 @@ impl Coupled {
     }
 }
 
+/// Below this fraction of what it would be without locks, a row's diagonal slows the
+/// correction of its error in proportion (`Eq::bias`).
+pub const BIAS_FREE_ROW: f32 = 0.1;
+
+/// Below this fraction of its own diagonal, a row's pivot (what is left of it once the rows
+/// taken before are eliminated) marks it as dependent on them: at most a tenth of the row's
+/// direction (in the bodies' mass metric) is new, so its error is answered with at most ten
+/// times its bias speed. Only bodies with locked axes (`body::LOCK_*`) have such rows; with
+/// 1e-4 (a hundred times the speed) random locked chains of four to six joints gained
+/// hundreds of joules in a step (`tests/locked_joints.rs`, seeds 40, 80, 97).
+const DEPENDENT_PIVOT: f32 = 1.0e-2;
+/// Below this fraction of what it would be without locks, a row's diagonal marks it as one
+/// the locks leave (nearly) nothing of (`Spd::factor_locked`): two bodies that may only turn,
+/// hinged where their arms are nearly in line, cannot move the anchors along the line, and
+/// the rounding-level error there spun a 0.24 kg link to 257 rad/s in one step. Not more: a
+/// slider between bodies that may only translate has rows whose lever on the other body
+/// (where they act, `SliderRows`) is a hundredth of their size without locks.
+pub const FREE_ROW: f32 = 1.0e-3;
+/// Below this fraction of the block's largest diagonal, any row counts as one the bodies
+/// cannot move along.
+const NULL_ROW: f32 = 1.0e-9;
+
 /// Cholesky factor `L Lᵀ` of a small symmetric positive definite matrix (size `n <= 6`), with
-/// the reciprocals of the diagonal.
+/// the reciprocals of the diagonal. With `drop_weak` the rows are taken largest pivot first
+/// and the (nearly) dependent ones are left out.
 #[derive(Clone, Copy, Debug)]
 pub struct Spd {
     n: usize,
     l: [[f32; MAX_ROWS]; MAX_ROWS],
     inv_diag: [f32; MAX_ROWS],
+    /// Row `i` of the factor is row `perm[i]` of the matrix.
+    perm: [usize; MAX_ROWS],
+    /// Rows of the factor kept (the others, left out, get zero).
+    kept: usize,
 }
 
 impl Spd {
-    /// `None` when `k` is not positive definite (to a relative tolerance); with `drop_weak`
-    /// (bodies with locked axes) the rows that make it singular are left out instead.
+    /// `None` when `k` is not positive definite (to a relative tolerance).
+    ///
+    /// With `drop_weak` (bodies with locked axes) the rows that make it singular are left out
+    /// instead (their impulses stay zero): diagonal pivoting takes the remaining row with the
+    /// largest pivot relative to its diagonal, and stops once that row is dependent on those
+    /// taken. Locks make rows dependent in exact arithmetic: a hinge's two alignment rows on
+    /// bodies that may turn about one axis across the hinge both act about that one axis.
+    /// Taken in their given order, whichever came first was kept with a pivot as small as
+    /// the sine of the link's angle to a world axis, the other one's pivot was rounding, and
+    /// the angular error the bodies cannot correct came back as a huge spin.
     pub fn factor(k: &[[f32; MAX_ROWS]; MAX_ROWS], n: usize, drop_weak: bool) -> Option<Spd> {
         let mut s = Spd {
             n,
             l: [[0.0; MAX_ROWS]; MAX_ROWS],
             inv_diag: [0.0; MAX_ROWS],
+            perm: [0, 1, 2, 3, 4, 5],
+            kept: n,
         };
         let scale = (0..n).map(|i| k[i][i]).fold(0.0f32, f32::max);
         if !(scale > 0.0 && scale.is_finite()) {
             return None;
+        }
+        if drop_weak {
+            // Rows judged by their dependence and against the largest.
+            s.factor_pivoted(k, &[0.0; MAX_ROWS]);
+            return (s.kept > 0).then_some(s);
         }
         for j in 0..n {
             let mut d = k[j][j];
@@ -373,13 +474,7 @@ impl Spd {
                 d -= s.l[j][p] * s.l[j][p];
             }
             if d <= 1.0e-7 * scale {
-                if !drop_weak {
-                    return None;
-                }
-                // Locked axes (`body::LOCK_*`) leave rows the bodies cannot (or can hardly)
-                // move along: such a row is left out (its impulse stays zero) and the others
-                // are solved.
-                continue;
+                return None;
             }
             let djj = d.sqrt();
             s.l[j][j] = djj;
@@ -395,25 +490,110 @@ impl Spd {
         Some(s)
     }
 
-    /// `K⁻¹ b`.
-    pub fn solve(&self, b: &[f32; MAX_ROWS]) -> [f32; MAX_ROWS] {
+    /// The factor of `K` for bodies with locked axes, `free[i]` the diagonal row `i` would have
+    /// on the bodies without locks (mean inverse inertia): `factor` with `drop_weak`, where
+    /// also a row the locks leave less than [`FREE_ROW`] of is left out. Such a row (a
+    /// hinge's alignment row nearly along a locked axis, once the links have tilted a little
+    /// about a free one) asks the bodies to correct an error nearly all along the locked axis
+    /// through the little that is free of it, and the biased sweep turned a link by radians
+    /// within a step.
+    pub fn factor_locked(k: &[[f32; MAX_ROWS]; MAX_ROWS], n: usize, free: &[f32; MAX_ROWS]) -> Spd {
+        let mut s = Spd {
+            n,
+            l: [[0.0; MAX_ROWS]; MAX_ROWS],
+            inv_diag: [0.0; MAX_ROWS],
+            perm: [0, 1, 2, 3, 4, 5],
+            kept: n,
+        };
+        s.factor_pivoted(k, free);
+        s
+    }
+
+    /// The pivoted factor: `perm`, `kept` and the first `kept` rows of `l` (in pivot order,
+    /// over the permuted matrix).
+    fn factor_pivoted(&mut self, k: &[[f32; MAX_ROWS]; MAX_ROWS], free: &[f32; MAX_ROWS]) {
         let n = self.n;
-        let mut y = [0.0f32; MAX_ROWS];
+        let scale = (0..n).map(|i| k[i][i]).filter(|x| x.is_finite()).fold(0.0f32, f32::max);
+        // Residual pivots of the rows not yet taken, updated as rows are taken.
+        let mut d = [0.0f32; MAX_ROWS];
         for i in 0..n {
-            let mut v = b[i];
+            d[i] = k[i][i];
+        }
+        for j in 0..n {
+            // The row most independent of those taken, relative to its own size.
+            let mut best = j;
+            let mut best_ratio = -1.0f32;
+            for c in j..n {
+                let i = self.perm[c];
+                let diag = k[i][i];
+                let usable =
+                    diag > NULL_ROW * scale && diag > FREE_ROW * free[i] && diag.is_finite() && free[i].is_finite();
+                let ratio = if usable { d[c] / diag } else { 0.0 };
+                if ratio > best_ratio {
+                    best = c;
+                    best_ratio = ratio;
+                }
+            }
+            if best_ratio <= DEPENDENT_PIVOT {
+                self.kept = j;
+                return;
+            }
+            self.perm.swap(j, best);
+            d.swap(j, best);
+            self.l.swap(j, best);
+            let djj = d[j].sqrt();
+            self.l[j][j] = djj;
+            self.inv_diag[j] = 1.0 / djj;
+            let pj = self.perm[j];
+            for c in j + 1..n {
+                let i = self.perm[c];
+                let mut v = k[i][pj];
+                for p in 0..j {
+                    v -= self.l[c][p] * self.l[j][p];
+                }
+                let lij = v * self.inv_diag[j];
+                self.l[c][j] = lij;
+                d[c] -= lij * lij;
+            }
+        }
+        self.kept = n;
+    }
+
+    /// Row `i` of the matrix was left out (`drop_weak`).
+    #[inline]
+    pub fn dropped(&self, i: usize) -> bool {
+        self.perm[self.kept..self.n].contains(&i)
+    }
+
+    /// Whether any row was left out.
+    #[inline]
+    pub fn any_dropped(&self) -> bool {
+        self.kept < self.n
+    }
+
+    /// `K⁻¹ b` (rows left out get zero, and their entries of `b` are not read).
+    pub fn solve(&self, b: &[f32; MAX_ROWS]) -> [f32; MAX_ROWS] {
+        let m = self.kept;
+        let mut y = [0.0f32; MAX_ROWS];
+        for i in 0..m {
+            let mut v = b[self.perm[i]];
             for p in 0..i {
                 v -= self.l[i][p] * y[p];
             }
             y[i] = v * self.inv_diag[i];
         }
-        for i in (0..n).rev() {
+        for i in (0..m).rev() {
             let mut v = y[i];
-            for p in i + 1..n {
+            for p in i + 1..m {
                 v -= self.l[p][i] * y[p];
             }
             y[i] = v * self.inv_diag[i];
         }
-        y
+        let mut x = [0.0f32; MAX_ROWS];
+        for i in 0..m {
+            x[self.perm[i]] = y[i];
+        }
+        x
     }
 }
 
