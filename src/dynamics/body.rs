@@ -186,6 +186,9 @@ pub struct Body {
     pub awake_index: u32,
     /// The sleeping island this body belongs to while asleep.
     pub sleep_island: Handle,
+    /// The next body of its sleeping island (`NONE` after the last): islands are linked lists
+    /// through their bodies, so falling asleep and waking need no storage of their own.
+    pub island_next: u32,
     /// Index of this body's state in the solver for the current step.
     pub solver_index: u32,
     /// Kinematic target: reach this transform by the end of the next step.
@@ -266,6 +269,7 @@ impl Body {
             contacts: Vec::new(),
             awake_index: NONE,
             sleep_island: Handle::NULL,
+            island_next: NONE,
             solver_index: 0,
             kinematic_target: None,
             kinematic_stop: false,

@@ -46,11 +46,23 @@ pub fn update_motion(world: &mut World, dt: f32) -> bool {
 /// still long enough (`update_motion`); without one the islands are not built.
 pub fn sleep_islands(world: &mut World, ready: bool) {
     wake_joined_sleepers(world);
-    if !world.settings.enable_sleep || !ready {
+    if !world.settings.enable_sleep {
         return;
     }
+    // Room for every awake body, reserved while no island is ready: the step where islands
+    // first fall asleep does not allocate (capacity only grows with the awake list).
     let n = world.awake_bodies.len();
     let mut scratch = std::mem::take(&mut world.island_scratch);
+    for v in [&mut scratch.parent, &mut scratch.group] {
+        v.reserve(n.saturating_sub(v.len()));
+    }
+    scratch.min_sleep.reserve(n.saturating_sub(scratch.min_sleep.len()));
+    scratch.sleepers.reserve(n.saturating_sub(scratch.sleepers.len()));
+    world.events.fell_asleep.reserve(n);
+    if !ready {
+        world.island_scratch = scratch;
+        return;
+    }
     scratch.parent.clear();
     scratch.parent.extend(0..n as u32);
     for &ci in &world.awake_contacts {
