@@ -39,7 +39,9 @@ pub struct WorldSettings {
     pub velocity_iterations: u32,
     pub integrator: Integrator,
     pub enable_sleep: bool,
-    /// Speed (m/s, and rad/s) below which a body counts as still.
+    /// Speed (m/s, and rad/s) below which a body counts as still: an average of its v² + ω²
+    /// over the last 0.1 s (half-life, `dynamics/island.rs`) under its square, and its
+    /// current speed under twice it.
     pub sleep_threshold: f32,
     /// Seconds an island must stay still before it sleeps.
     pub time_to_sleep: f32,

@@ -174,7 +174,7 @@ pub struct Body {
     pub gravity_scale: f32,
     pub allow_sleep: bool,
     pub awake: bool,
-    /// Recency-weighted motion (v² + ω²), the seed's sleep measure.
+    /// Recency-weighted v² + ω² (half-life 0.1 s), the sleep measure (`dynamics/island.rs`).
     pub motion: f32,
     /// Seconds the motion has stayed below the sleep threshold.
     pub sleep_time: f32,
