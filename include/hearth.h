@@ -2316,7 +2316,9 @@ typedef struct HearthWorldDef {
      */
     uint8_t enable_sleep;
     /**
-     * Speed (m/s and rad/s, 0..=1e4) below which a body counts as still. Default 0.05.
+     * Speed (m/s and rad/s, 0..=1e4) below which a body counts as still: an average of its
+     * v² + ω² over the last 0.1 s (half-life) under its square, and its current speed under
+     * twice it. Default 0.05.
      */
     float sleep_threshold;
     /**

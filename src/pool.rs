@@ -185,6 +185,30 @@ impl<T> Pool<T> {
         }
     }
 
+    /// Room for `total` live objects without allocating (slots and free list).
+    pub(crate) fn reserve_total(&mut self, total: usize) {
+        self.slots.reserve(total.saturating_sub(self.slots.len()));
+        self.free.reserve(total.saturating_sub(self.free.len()));
+    }
+
+    /// The same slots, handles and free list with each live value mapped.
+    pub(crate) fn map<U>(&self, mut f: impl FnMut(&T) -> U) -> Pool<U> {
+        Pool {
+            tag: self.tag,
+            first_counter: self.first_counter,
+            slots: self
+                .slots
+                .iter()
+                .map(|s| Slot {
+                    counter: s.counter,
+                    value: s.value.as_ref().map(&mut f),
+                })
+                .collect(),
+            free: self.free.clone(),
+            len: self.len,
+        }
+    }
+
     pub fn insert(&mut self, value: T) -> Handle {
         self.len += 1;
         if let Some(index) = self.free.pop() {

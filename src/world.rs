@@ -39,7 +39,9 @@ pub struct WorldSettings {
     pub velocity_iterations: u32,
     pub integrator: Integrator,
     pub enable_sleep: bool,
-    /// Speed (m/s, and rad/s) below which a body counts as still.
+    /// Speed (m/s, and rad/s) below which a body counts as still: an average of its v² + ω²
+    /// over the last 0.1 s (half-life, `dynamics/island.rs`) under its square, and its
+    /// current speed under twice it.
     pub sleep_threshold: f32,
     /// Seconds an island must stay still before it sleeps.
     pub time_to_sleep: f32,
@@ -188,8 +190,8 @@ pub struct World {
     pub(crate) awake_bodies: Vec<u32>,
     /// Slot indices of contacts with at least one awake body.
     pub(crate) awake_contacts: Vec<u32>,
-    /// Bodies of each sleeping island.
-    pub(crate) islands: Pool<Vec<u32>>,
+    /// The first body of each sleeping island; the others follow `Body::island_next`.
+    pub(crate) islands: Pool<u32>,
     pub(crate) solver: SolverScratch,
     /// Contacts written by contact generators for the current step (cleared each step).
     pub generated_contacts: Vec<crate::collision::contact::GeneratedContact>,
@@ -290,6 +292,8 @@ impl World {
     pub fn create_body(&mut self, def: &BodyDef) -> Result<BodyHandle> {
         let def = def.validated(self.settings.max_linear_speed, self.settings.max_angular_speed)?;
         let h = self.bodies.insert(Body::new(&def));
+        // Every body could sleep alone: falling asleep and waking never allocate.
+        self.islands.reserve_total(self.bodies.len());
         if def.body_type != BodyType::Static {
             if def.awake {
                 self.add_awake_body(h.index);
@@ -873,13 +877,14 @@ impl World {
             return;
         }
         let island = body.sleep_island;
-        let members = if island.is_null() {
-            vec![b]
-        } else {
-            self.islands.remove(island).unwrap_or_else(|| vec![b])
+        let (mut m, alone) = match self.islands.remove(island) {
+            Some(first) => (first, false),
+            None => (b, true),
         };
-        for &m in &members {
+        while m != NONE {
             let body = self.bodies.at_mut(m);
+            let next = if alone { NONE } else { body.island_next };
+            body.island_next = NONE;
             body.sleep_island = Handle::NULL;
             body.sleep_time = 0.0;
             body.motion = 2.0 * threshold * threshold;
@@ -889,16 +894,21 @@ impl World {
                 let c = self.bodies.at(m).contacts[k];
                 self.add_awake_contact(c);
             }
+            m = next;
         }
     }
 
     /// Puts a set of (kinematic or dynamic) bodies to sleep as one island.
     pub(crate) fn put_to_sleep(&mut self, members: &[u32]) {
-        let island = self.islands.insert(members.to_vec());
-        for &m in members {
+        let Some(&first) = members.first() else {
+            return;
+        };
+        let island = self.islands.insert(first);
+        for (k, &m) in members.iter().enumerate() {
             self.remove_awake_body(m);
             let body = self.bodies.at_mut(m);
             body.sleep_island = island;
+            body.island_next = members.get(k + 1).copied().unwrap_or(NONE);
             body.v = Vec3::ZERO;
             body.w = Vec3::ZERO;
             body.force = Vec3::ZERO;

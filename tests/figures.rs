@@ -46,6 +46,26 @@ const C: &str = "docs/comparison.md";
 /// (document, figure as scanned: number, one space, unit; backing). Tests are named
 /// `file::function` under `tests/`.
 const FIGURES: &[(&str, &str, Backing)] = &[
+    // Sleep: the lag after a landing, the motion average's half-life and the seed's.
+    (
+        R,
+        "0.85 s",
+        Measured(&[
+            "rigid_dynamics::a_landed_box_sleeps_time_to_sleep_after_it_stopped",
+            "rigid_dynamics::random_drops_sleep_time_to_sleep_after_they_stop",
+        ]),
+    ),
+    (
+        A,
+        "0.1 s",
+        Setting("the half-life of the sleep motion average (island.rs)"),
+    ),
+    (A, "1 s", History("the seed's half-life of the sleep motion average")),
+    (
+        A,
+        "3.8 s",
+        History("how long after a landing the seed's rule slept (island.rs)"),
+    ),
     // Header: the accepted mass override (hearth_body_set_mass_data).
     (H, "1e17 kg", Measured(&["setters::bad_input_changes_nothing"])),
     (H, "1e26 kg·m²", Measured(&["setters::bad_input_changes_nothing"])),

@@ -158,6 +158,33 @@ fn steady_steps_do_not_allocate() {
     scenes::tower(&mut w, 10);
     assert_eq!(allocations_per_step(&mut w, 600, 60), 0, "sleeping tower");
 
+    // Falling asleep and waking up: a sleeping island is a list linked through its bodies
+    // and the island scratch is reserved while the bodies are awake, so the step where the
+    // tower first falls asleep, a wake and the next sleep do not allocate.
+    let mut w = scenes::world(true);
+    let top = *scenes::tower(&mut w, 10).last().unwrap();
+    for _ in 0..10 {
+        w.step(1.0 / 60.0).unwrap();
+    }
+    let before = ALLOCATIONS.load(Ordering::Relaxed);
+    let mut naps = 0;
+    for _ in 0..2 {
+        for _ in 0..600 {
+            w.step(1.0 / 60.0).unwrap();
+            if !w.is_awake(top).unwrap() {
+                break;
+            }
+        }
+        naps += !w.is_awake(top).unwrap() as usize;
+        w.set_awake(top, true).unwrap();
+    }
+    assert_eq!(naps, 2, "the tower falls asleep twice");
+    assert_eq!(
+        ALLOCATIONS.load(Ordering::Relaxed) - before,
+        0,
+        "tower falling asleep and waking"
+    );
+
     // Mixed bodies on terrain: several manifolds per pair, reused storage. The balls and
     // capsules get strong angular damping so they stop rolling into new neighbours (a new
     // pair may grow the pair storage, as in any scene).

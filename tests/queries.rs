@@ -899,7 +899,7 @@ fn rebuilding_the_broadphase_keeps_every_hit_and_tests_fewer_boxes() {
 /// Seeded random rebuild times in a falling pile of 300 bodies: the step after a rebuild
 /// finds exactly the contacts (shape pairs) of the same step without it (only their order
 /// differs), and the world then settles with finite state, speeds under 30 m/s and kinetic
-/// energy that ends below 1 % of its peak.
+/// energy that ends at most 1 % of its peak (0 when it was asleep before the rebuild).
 #[test]
 fn rebuilding_the_broadphase_at_random_times_finds_the_same_pairs() {
     let mut rng = Rng(7);
@@ -936,7 +936,8 @@ fn rebuilding_the_broadphase_at_random_times_finds_the_same_pairs() {
             peak = peak.max(energy);
             last = energy;
         }
-        assert!(last < 0.01 * peak, "seed {seed}: kinetic energy {last} of peak {peak}");
+        // `<=`: rebuilt late, the pile may already be asleep (both 0).
+        assert!(last <= 0.01 * peak, "seed {seed}: kinetic energy {last} of peak {peak}");
     }
 }
 

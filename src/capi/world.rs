@@ -54,7 +54,9 @@ pub struct HearthWorldDef {
     pub integrator: u32,
     /// 1 to let still islands sleep (default), 0 to keep everything awake.
     pub enable_sleep: u8,
-    /// Speed (m/s and rad/s, 0..=1e4) below which a body counts as still. Default 0.05.
+    /// Speed (m/s and rad/s, 0..=1e4) below which a body counts as still: an average of its
+    /// v² + ω² over the last 0.1 s (half-life) under its square, and its current speed under
+    /// twice it. Default 0.05.
     pub sleep_threshold: f32,
     /// Seconds an island must stay still before it sleeps (finite, >= 0). Default 0.5.
     pub time_to_sleep: f32,

@@ -239,7 +239,7 @@ pub struct Body {
     pub gravity_scale: f32,
     pub allow_sleep: bool,
     pub awake: bool,
-    /// Recency-weighted motion (v² + ω²), the seed's sleep measure.
+    /// Recency-weighted v² + ω² (half-life 0.1 s), the sleep measure (`dynamics/island.rs`).
     pub motion: f32,
     /// Seconds the motion has stayed below the sleep threshold.
     pub sleep_time: f32,
@@ -251,6 +251,9 @@ pub struct Body {
     pub awake_index: u32,
     /// The sleeping island this body belongs to while asleep.
     pub sleep_island: Handle,
+    /// The next body of its sleeping island (`NONE` after the last): islands are linked lists
+    /// through their bodies, so falling asleep and waking need no storage of their own.
+    pub island_next: u32,
     /// Index of this body's state in the solver for the current step.
     pub solver_index: u32,
     /// Kinematic target: reach this transform by the end of the next step.
@@ -331,6 +334,7 @@ impl Body {
             contacts: Vec::new(),
             awake_index: NONE,
             sleep_island: Handle::NULL,
+            island_next: NONE,
             solver_index: 0,
             kinematic_target: None,
             kinematic_stop: false,

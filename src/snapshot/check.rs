@@ -90,6 +90,16 @@ fn check_bodies(d: &Decoded) -> ReadResult<()> {
         if let Some(&i) = island.iter().find(|&&i| !live(d.bodies, i)) {
             return corrupt(format!("island {} names body {i} that is not there", h.index));
         }
+        // The world links an island through its bodies: each is in it once, and says so.
+        let mut sorted = island.clone();
+        sorted.sort_unstable();
+        sorted.dedup();
+        if island.is_empty()
+            || sorted.len() != island.len()
+            || island.iter().any(|&i| d.bodies.at(i).sleep_island.index != h.index)
+        {
+            return corrupt(format!("island {} does not list its bodies once each", h.index));
+        }
     }
     Ok(())
 }

@@ -146,7 +146,7 @@ fn decode(world: &mut World, plain: &[u8], spans: &[(usize, usize)]) -> Result<(
             candidates: Vec::new(),
         })
     })?;
-    let (awake_bodies, islands, counters): (Vec<u32>, _, _) = get_section(r, SLEEP, |r| {
+    let (awake_bodies, islands, counters): (Vec<u32>, crate::pool::Pool<Vec<u32>>, _) = get_section(r, SLEEP, |r| {
         Ok((
             r.within("awake", Snap::get)?,
             r.within("islands", Snap::get)?,
@@ -224,7 +224,15 @@ fn decode(world: &mut World, plain: &[u8], spans: &[(usize, usize)]) -> Result<(
     world.awake_contacts = awake_contacts;
     world.broad = broad;
     world.awake_bodies = awake_bodies;
-    world.islands = islands;
+    world.islands = islands.map(|m| m[0]);
+    for b in world.bodies.values_mut() {
+        b.island_next = crate::dynamics::body::NONE;
+    }
+    for (_, m) in islands.iter() {
+        for k in 1..m.len() {
+            world.bodies.at_mut(m[k - 1]).island_next = m[k];
+        }
+    }
     world.counters = counters;
     world.generators = generators;
     world.particles = particles;

@@ -107,6 +107,8 @@ snap_struct!(Body {
     // (`predicted.rs`).
     skip center,
     reported_xf,
+    // Rebuilt from the stored islands (`read.rs`).
+    island_next,
 });
 snap_struct!(Aabb { min, max });
 snap_struct!(ShapeDef {

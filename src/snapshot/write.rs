@@ -98,7 +98,19 @@ fn put_world(world: &World, w: &mut Writer) {
     put_section(w, BROAD_PHASE, |w| put_broad_phase(w, broad, shapes));
     put_section(w, SLEEP, |w| {
         w.within("awake", |w| awake_bodies.put(w));
-        w.within("islands", |w| islands.put(w));
+        // Stored as member lists (the world links them through `Body::island_next`).
+        let members = islands.map(|&first| {
+            let mut m = vec![first];
+            while let Some(&b) = m.last() {
+                let next = bodies.at(b).island_next;
+                if next == crate::dynamics::body::NONE {
+                    break;
+                }
+                m.push(next);
+            }
+            m
+        });
+        w.within("islands", |w| members.put(w));
         w.within("counters", |w| counters.put(w));
     });
     put_section(w, GENERATORS, |w| generators.put(w));

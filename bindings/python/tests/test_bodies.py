@@ -23,13 +23,19 @@ def test_a_falling_box_comes_to_rest_on_the_plane(world):
     assert box.position.y == pytest.approx(3.0 - 0.5 * g * t * t, abs=g * t * DT)
     assert box.linear_velocity.y == pytest.approx(-g * t, abs=1e-3)
 
-    for _ in range(180):
+    # Landed (at 0.71 s) and still awake: its contact with the plane touches.
+    for _ in range(30):
         world.step(DT)
-    # At rest with its bottom face on y = 0: the centre at the half extent.
+    assert world.counters.touching_contact_count == 1
+    for _ in range(150):
+        world.step(DT)
+    # At rest with its bottom face on y = 0: the centre at the half extent; asleep (at
+    # about 1.5 s) with its contact kept.
     assert box.position.y == pytest.approx(0.5, abs=5e-3)
     assert abs(box.position.x) < 1e-3 and abs(box.position.z) < 1e-3
     assert math.hypot(*box.linear_velocity) < 1e-2
-    assert world.counters.touching_contact_count == 1
+    assert not box.is_awake
+    assert world.counters.contact_count == 1
 
 
 def test_sleep_and_wake(world):
