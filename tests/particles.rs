@@ -596,10 +596,26 @@ fn particles_sleep_and_wake() {
     let mut w = world(true);
     scenes::ground_plane(&mut w);
     let p = particle(&mut w, Vec3::new(0.0, 0.5, 0.0), 1.0, 0.05);
-    // Recency-weighted motion (halving every second) below the threshold, then
-    // `time_to_sleep`: as for bodies.
-    run(&mut w, 6.0);
-    assert!(!w.particle_is_awake(p).unwrap(), "asleep on the ground");
+    // Recency-weighted motion (halving every tenth of a second) below the threshold, then
+    // `time_to_sleep`: as for bodies. It sleeps 0.5 to 0.85 s after it stopped (0.5 s of
+    // `time_to_sleep` after the average has decayed from its cap, at most 0.33 s).
+    let (mut stopped, mut slept) = (None, None);
+    for step in 1..=360 {
+        w.step(DT).unwrap();
+        let t = step as f32 * DT;
+        let moving = w.particle_velocity(p).unwrap().length() > 1e-3;
+        if moving {
+            stopped = None;
+        } else if stopped.is_none() {
+            stopped = Some(t);
+        }
+        if slept.is_none() && !w.particle_is_awake(p).unwrap() {
+            slept = Some(t);
+        }
+    }
+    let (stopped, slept) = (stopped.expect("at rest"), slept.expect("asleep on the ground"));
+    let after = slept - stopped;
+    assert!((0.5..=0.85).contains(&after), "slept {after} s after it stopped");
     let y = w.particle_position(p).unwrap().y;
     run(&mut w, 1.0);
     assert_eq!(w.particle_position(p).unwrap().y, y, "a sleeper does not move");

@@ -754,7 +754,9 @@ impl World {
         let p = &mut self.particles;
         let n = p.len();
         let eps = settings.sleep_threshold * settings.sleep_threshold;
-        let bias = 0.5f32.powf(dt);
+        // The bodies' motion average (`dynamics::island`): a particle sleeps about
+        // `time_to_sleep` after it stops, as a body does.
+        let bias = 0.5f32.powf(dt / crate::dynamics::island::MOTION_HALF_LIFE);
         for i in 0..n {
             p.force[i] = Vec3::ZERO;
             if p.flags[i] & AWAKE == 0 {
