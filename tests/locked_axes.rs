@@ -13,6 +13,7 @@ use hearth::dynamics::body::{
 use hearth::joints::{BallParams, HingeParams};
 use hearth::math::{Quat, Transform, Vec3};
 use hearth::{BodyDef, BodyHandle, BodyType, Geometry, JointDef, JointKind, LaneWidth, ShapeDef, World, WorldSettings};
+use scenes::{assert_locked, energy};
 
 const DT: f32 = 1.0 / 60.0;
 const ANGULAR: u8 = LOCK_ANGULAR_X | LOCK_ANGULAR_Y | LOCK_ANGULAR_Z;
@@ -42,35 +43,6 @@ fn cube(h: Vec3) -> Geometry {
         rotation: Quat::IDENTITY,
         half_extents: h,
     }
-}
-
-/// The components of `v` selected by three lock bits.
-fn locked(v: Vec3, bits: u8) -> [f32; 3] {
-    let pick = |k: u8, x: f32| if bits & k != 0 { x } else { 0.0 };
-    [pick(1, v.x), pick(2, v.y), pick(4, v.z)]
-}
-
-/// Every locked velocity component of `b` is exactly zero (bit pattern: -0.0 fails too).
-fn assert_locked(w: &World, b: BodyHandle, locks: u8, what: &str) {
-    let (v, om) = (w.linear_velocity(b).unwrap(), w.angular_velocity(b).unwrap());
-    for x in locked(v, locks).into_iter().chain(locked(om, locks >> 3)) {
-        assert_eq!(
-            x.to_bits(),
-            0,
-            "{what}: locked component {x} (v {v}, w {om}, locks {locks:#x})"
-        );
-    }
-}
-
-fn energy(w: &World, bodies: &[BodyHandle]) -> f64 {
-    let g = w.settings.gravity;
-    bodies
-        .iter()
-        .map(|&b| {
-            let body = w.body(b).unwrap();
-            body.kinetic_energy() as f64 - body.mass as f64 * g.dot(body.center) as f64
-        })
-        .sum()
 }
 
 fn planar_pile(w: &mut World) -> Vec<BodyHandle> {

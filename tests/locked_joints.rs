@@ -10,6 +10,7 @@ use hearth::dynamics::body::{LOCK_ANGULAR_X, LOCK_ANGULAR_Y, LOCK_LINEAR_Z};
 use hearth::joints::HingeParams;
 use hearth::math::{Quat, Transform, Vec3};
 use hearth::{BodyDef, BodyHandle, BodyType, Geometry, JointDef, JointKind, ShapeDef, World};
+use scenes::{assert_locked, energy};
 
 const DT: f32 = 1.0 / 60.0;
 /// The 2.5D lock: the XY plane, turning only about Z.
@@ -92,30 +93,6 @@ fn separation(w: &World, joints: &[Joint]) -> f32 {
             }
         })
         .fold(0.0, f32::max)
-}
-
-fn energy(w: &World, bodies: &[BodyHandle]) -> f64 {
-    let g = w.settings.gravity;
-    bodies
-        .iter()
-        .map(|&b| {
-            let body = w.body(b).unwrap();
-            body.kinetic_energy() as f64 - body.mass as f64 * g.dot(body.center) as f64
-        })
-        .sum()
-}
-
-/// Every locked velocity component of `b` is exactly zero (bit pattern: -0.0 fails too).
-fn assert_locked(w: &World, b: BodyHandle, locks: u8, what: &str) {
-    let (v, om) = (w.linear_velocity(b).unwrap(), w.angular_velocity(b).unwrap());
-    for k in 0..3 {
-        if locks & (1 << k) != 0 {
-            assert_eq!(v[k].to_bits(), 0, "{what}: v {v} locks {locks:#x}");
-        }
-        if locks & (8 << k) != 0 {
-            assert_eq!(om[k].to_bits(), 0, "{what}: w {om} locks {locks:#x}");
-        }
-    }
 }
 
 /// A chain of `n` hinged rods (0.6 × 0.2 × 0.2 m, 12 kg), horizontal along +X from a world

@@ -13,7 +13,7 @@ mod scenes;
 
 use hearth::math::{Quat, Transform, Vec3};
 use hearth::world::World;
-use hearth::{BodyDef, BodyHandle, BodyType, Geometry, ShapeDef};
+use hearth::{BodyDef, BodyHandle, Geometry, ShapeDef};
 
 const DT: f32 = 1.0 / 60.0;
 
@@ -63,18 +63,6 @@ fn mixed_drop_on_mesh_and_heightfield_ends_asleep() {
             }
         }
     }
-}
-
-fn dynamic(w: &mut World, p: Vec3, q: Quat, g: &Geometry) -> BodyHandle {
-    let b = w
-        .create_body(&BodyDef {
-            body_type: BodyType::Dynamic,
-            transform: Transform::new(p, q),
-            ..Default::default()
-        })
-        .unwrap();
-    w.create_shape(b, &ShapeDef::default(), g).unwrap();
-    b
 }
 
 /// Ground kinds for the rest tests.
@@ -179,7 +167,12 @@ fn sleep_step(kind: Ground, shape: usize, x: f32, angle: f32, f: &dyn Fn(f32) ->
     let n = Vec3::new(-angle.sin(), angle.cos(), 0.0);
     // z = 0.3: inside a cell, off the diagonals.
     let p = Vec3::new(x, f(x), 0.3) + n * (up + 0.002);
-    let b = dynamic(&mut w, p, Quat::from_rotation_z(angle), &g);
+    let b = scenes::dynamic_body(
+        &mut w,
+        Transform::new(p, Quat::from_rotation_z(angle)),
+        &ShapeDef::default(),
+        &g,
+    );
     (1..=1200).find(|_| {
         w.step(DT).unwrap();
         !w.is_awake(b).unwrap()
@@ -305,18 +298,11 @@ fn random_bodies_on_sloped_terrain_rest_and_stay_asleep() {
             rng.range(-3.2, 3.2),
         );
         let p = Vec3::new(x, 6.0 + rng.range(0.3, 3.0), z);
-        let b = w
-            .create_body(&BodyDef {
-                body_type: BodyType::Dynamic,
-                transform: Transform::new(p, q),
-                ..Default::default()
-            })
-            .unwrap();
         let def = ShapeDef {
             density: rng.range(100.0, 5000.0),
             ..ShapeDef::default()
         };
-        w.create_shape(b, &def, &g).unwrap();
+        let b = scenes::dynamic_body(&mut w, Transform::new(p, q), &def, &g);
         let mut slept = None;
         for step in 0..1800 {
             w.step(DT).unwrap();

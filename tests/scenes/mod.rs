@@ -599,3 +599,44 @@ pub fn soft_ball(world: &mut World) -> hearth::soft::SoftBodyHandle {
     };
     world.create_soft_body(&def, &mesh::icosphere(0.5, 2), None).unwrap()
 }
+
+// ---------------------------------------------------------------- checks shared by tests
+
+/// Kinetic plus gravitational potential energy of `bodies` (J).
+pub fn energy(w: &World, bodies: &[BodyHandle]) -> f64 {
+    let g = w.settings.gravity;
+    bodies
+        .iter()
+        .map(|&b| {
+            let body = w.body(b).unwrap();
+            body.kinetic_energy() as f64 - body.mass as f64 * g.dot(body.center) as f64
+        })
+        .sum()
+}
+
+/// Every locked velocity component of `b` (`locks`: `body::LOCK_*` bits) is exactly zero
+/// (bit pattern: -0.0 fails too).
+pub fn assert_locked(w: &World, b: BodyHandle, locks: u8, what: &str) {
+    let (v, om) = (w.linear_velocity(b).unwrap(), w.angular_velocity(b).unwrap());
+    for k in 0..3 {
+        if locks & (1 << k) != 0 {
+            assert_eq!(v[k].to_bits(), 0, "{what}: v {v} locks {locks:#x}");
+        }
+        if locks & (8 << k) != 0 {
+            assert_eq!(om[k].to_bits(), 0, "{what}: w {om} locks {locks:#x}");
+        }
+    }
+}
+
+/// A dynamic body at `xf` with one shape.
+pub fn dynamic_body(world: &mut World, xf: Transform, def: &ShapeDef, g: &Geometry) -> BodyHandle {
+    let b = world
+        .create_body(&BodyDef {
+            body_type: BodyType::Dynamic,
+            transform: xf,
+            ..Default::default()
+        })
+        .unwrap();
+    world.create_shape(b, def, g).unwrap();
+    b
+}
