@@ -181,6 +181,28 @@ fn min_separation(c: &crate::collision::contact::Contact) -> f32 {
     s
 }
 
+/// After contact `c`'s narrow phase, on the task that updated it: takes a sensor contact out
+/// of the solver (`touching` false) and says whether `World::contact_events_after_update`
+/// has anything to do for it — an overlap, begin or end to report, or a hit candidate. The
+/// same tests that function makes, so the merge after the narrow phase reads only the
+/// contacts that need it.
+pub(crate) fn events_pending(c: &mut crate::collision::contact::Contact, slop: f32) -> bool {
+    let flags = c.event_flags;
+    if flags & SENSOR != 0 {
+        c.touching = false;
+        return (min_separation(c) <= 0.0) != c.reported;
+    }
+    if flags & (CONTACT_EVENTS | HIT_EVENTS) == 0 {
+        return false;
+    }
+    let now = if c.reported {
+        c.touching
+    } else {
+        c.touching && min_separation(c) <= slop
+    };
+    now != c.reported || (flags & HIT_EVENTS != 0 && c.touching)
+}
+
 impl World {
     /// The last step's events (`Events`); valid until the next step.
     pub fn events(&self) -> &Events {
@@ -407,11 +429,17 @@ impl World {
             events,
             bodies,
             awake_bodies,
+            body_marks,
             ..
         } = self;
+        use crate::step::{MOVED, WOKEN};
         events.contact_end.append(&mut events.pending_contact_end);
         events.sensor_end.append(&mut events.pending_sensor_end);
         for &b in awake_bodies.iter() {
+            // `finish_bodies` marked the bodies to report; one woken since is checked here.
+            if body_marks.get(b as usize).is_some_and(|m| m & (MOVED | WOKEN) == 0) {
+                continue;
+            }
             let handle = bodies.handle_at(b).expect("live body");
             let body = bodies.at_mut(b);
             if !body.enable_move_events || body.is_static() || body.xf == body.reported_xf {

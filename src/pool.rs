@@ -272,6 +272,11 @@ impl<T> Pool<T> {
         self.len == 0
     }
 
+    /// Slots in use or free: every live object's index is below it.
+    pub(crate) fn slot_count(&self) -> usize {
+        self.slots.len()
+    }
+
     /// Direct slot access by index for hot loops that hold indices, not handles.
     #[inline]
     pub fn at(&self, index: u32) -> &T {

@@ -5,6 +5,7 @@ use crate::collision::broad_phase::{aabb_touches_plane, world_plane};
 use crate::collision::filter::should_collide;
 use crate::dynamics::body::NONE;
 use crate::world::{World, AABB_MARGIN};
+use std::sync::atomic::{AtomicU32, Ordering};
 
 /// Extra distance (m) within which contact points are kept before touching.
 pub const SPECULATIVE_DISTANCE: f32 = 0.02;
@@ -82,13 +83,15 @@ impl World {
         // 7c. Soft bodies: XPBD sub-steps, pressure, contacts with shapes (two-way with
         //     dynamic bodies), pins (soft/solver.rs).
         self.step_soft_bodies(dt);
-        //     The speed limit holds at the end of every step: restitution and the coupled
-        //     particle and soft-body stages change velocities after the sub-steps' caps.
-        self.cap_speeds();
-        // 8. Bounds: refit moved proxies, sweeping them along the coming motion.
-        self.update_bounds(dt);
+        // 8. Bounds and sleep timers, body by body in parallel (`finish_bodies`): the speed
+        //    limit (it holds at the end of every step: restitution and the coupled particle
+        //    and soft-body stages change velocities after the sub-steps' caps), tight boxes,
+        //    the motion average. Then on this thread the refit of moved proxies, sweeping
+        //    them along the coming motion.
+        let ready = self.finish_bodies(dt);
+        self.cap_particle_speeds();
+        self.refit_proxies(dt);
         // 9. Sleep.
-        let ready = crate::dynamics::island::update_motion(self, dt);
         crate::dynamics::island::sleep_islands(self, ready);
         self.counters.awake_bodies = self.awake_bodies.len();
         self.counters.contacts = self.contacts.len();
@@ -181,6 +184,7 @@ impl World {
         // and to their result slots. What changes the world's lists (destroyed contacts,
         // woken sleepers) is merged after, on this thread, in the serial order.
         let n = self.awake_contacts.len();
+        let slop = self.settings.linear_slop;
         self.narrow_results.clear();
         self.narrow_results.resize(n, 0);
         {
@@ -203,7 +207,7 @@ impl World {
                     // SAFETY: `awake_contacts` lists each contact once and `start + k` is this
                     // task's own index.
                     let (c, r) = unsafe { (contacts.at_mut(ci), results.at(start + k)) };
-                    *r = update_contact(c, shapes, bodies, geometry, dt);
+                    *r = update_contact(c, shapes, bodies, geometry, dt, slop);
                 }
             });
         }
@@ -220,6 +224,11 @@ impl World {
                 continue;
             }
             touching += (r & TOUCHING != 0) as usize;
+            if r & (EVENTS | WAKE_A | WAKE_B) == 0 {
+                // Nothing to merge: the contact itself is not read again (at 10,000 contacts
+                // this loop would otherwise cost a cache miss each on the stepping thread).
+                continue;
+            }
             let c = self.contacts.at(ci);
             if c.event_flags != 0 {
                 let (sa, sb) = (self.shapes.at(c.shape_a), self.shapes.at(c.shape_b));
@@ -243,53 +252,92 @@ impl World {
         self.scratch_wake = wake;
     }
 
-    /// Caps the speed of every awake dynamic body and every particle at `max_linear_speed`.
-    fn cap_speeds(&mut self) {
+    /// Caps the speed of every particle at `max_linear_speed` (bodies: `finish_bodies`).
+    fn cap_particle_speeds(&mut self) {
         let max = self.settings.max_linear_speed;
-        for k in 0..self.awake_bodies.len() {
-            let body = self.bodies.at_mut(self.awake_bodies[k]);
-            if body.is_dynamic() {
-                body.v = crate::world::cap_speed(body.v, max);
-            }
-        }
         for v in &mut self.particles.vel {
             *v = crate::world::cap_speed(*v, max);
         }
     }
 
-    /// Tight boxes in parallel (each awake body's shapes, which no other body owns), then on
-    /// the stepping thread, in awake order, the refit of every proxy whose swept box left its
-    /// fat box — exactly what `refresh_proxy` does shape by shape.
-    fn update_bounds(&mut self, dt: f32) {
+    /// Each awake body once, in parallel (a task writes only its own bodies, their shapes
+    /// and their marks): caps a dynamic body's speed, computes its shapes' tight boxes,
+    /// marks it in `body_marks` when a shape's swept box left its fat box (`REFIT`) or its
+    /// move should be reported (`MOVED`), and updates its motion average and sleep timer
+    /// (`island::update_motion`). Returns whether some body has been still for
+    /// `time_to_sleep`. The longest timer is a maximum, so the answer does not depend on how
+    /// the bodies were split.
+    fn finish_bodies(&mut self, dt: f32) -> bool {
+        let max = self.settings.max_linear_speed;
+        let rule = crate::dynamics::island::MotionRule::new(&self.settings, dt);
+        let slots = self.bodies.slot_count();
+        if self.body_marks.len() < slots {
+            self.body_marks.resize(slots, 0);
+        }
+        let longest = AtomicU32::new(0);
         let World {
             awake_bodies,
             bodies,
             shapes,
             geometry,
             tasks,
+            body_marks,
             ..
         } = self;
-        let (bodies_ref, geometry) = (&*bodies, &*geometry);
-        let shapes_mut = shapes.disjoint();
+        let geometry = &*geometry;
+        let (bodies, shapes, marks) = (
+            bodies.disjoint(),
+            shapes.disjoint(),
+            crate::parallel::Disjoint::new(&mut body_marks[..]),
+        );
+        let awake_bodies = &*awake_bodies;
         crate::parallel::run(
             &**tasks,
             awake_bodies.len() as u32,
             BOUNDS_MIN_RANGE,
             &|start, end, _| {
+                let mut still = 0.0f32;
                 for &bi in &awake_bodies[start as usize..end as usize] {
-                    let body = bodies_ref.at(bi);
+                    // SAFETY: each awake body is listed once, and a shape belongs to one body.
+                    let body = unsafe { bodies.at_mut(bi) };
+                    if body.is_dynamic() {
+                        body.v = crate::world::cap_speed(body.v, max);
+                    }
+                    let d = body.v * dt;
+                    let mut mark = 0;
                     for link in &body.shapes {
-                        // SAFETY: a shape belongs to one body, and each awake body is listed once.
-                        let shape = unsafe { shapes_mut.at_mut(link.index) };
+                        // SAFETY: as above.
+                        let shape = unsafe { shapes.at_mut(link.index) };
                         if shape.proxy != NONE {
                             shape.aabb = shape.geometry.aabb(geometry, &body.xf);
+                            if !shape.fat_aabb.contains(&shape.aabb.swept(d)) {
+                                mark |= REFIT;
+                            }
                         }
                     }
+                    if body.enable_move_events && !body.is_static() && body.xf != body.reported_xf {
+                        mark |= MOVED;
+                    }
+                    still = still.max(rule.update(body));
+                    // SAFETY: the body's own mark.
+                    unsafe { *marks.at(bi as usize) = mark };
                 }
+                // Sleep timers are never negative, so their bits order as the numbers do.
+                longest.fetch_max(still.to_bits(), Ordering::Relaxed);
             },
         );
+        f32::from_bits(longest.into_inner()) >= self.settings.time_to_sleep
+    }
+
+    /// On the stepping thread, in awake order, the refit of every proxy whose swept box left
+    /// its fat box (the bodies `finish_bodies` marked) — exactly what `refresh_proxy` does
+    /// shape by shape.
+    fn refit_proxies(&mut self, dt: f32) {
         for k in 0..self.awake_bodies.len() {
             let bi = self.awake_bodies[k];
+            if self.body_marks[bi as usize] & REFIT == 0 {
+                continue;
+            }
             let body = self.bodies.at(bi);
             let d = body.v * dt;
             for j in 0..body.shapes.len() {
@@ -313,24 +361,34 @@ impl World {
     }
 }
 
+/// `World::body_marks`: a shape of the body left its fat box; the body's move is to be
+/// reported; the body woke after `finish_bodies` (its move is checked in full).
+pub(crate) const REFIT: u8 = 1;
+pub(crate) const MOVED: u8 = 2;
+pub(crate) const WOKEN: u8 = 4;
+
 /// Awake bodies per bounds task, at least.
 const BOUNDS_MIN_RANGE: u32 = 64;
 
 /// Contacts per narrow-phase task, at least.
 const NARROW_MIN_RANGE: u32 = 16;
-/// Narrow-phase results: the pair's fat boxes parted, it touches, the sleeper to wake.
+/// Narrow-phase results: the pair's fat boxes parted, it touches, the sleeper to wake, it
+/// has events to report.
 const DESTROY: u8 = 1;
 const TOUCHING: u8 = 2;
 const WAKE_A: u8 = 4;
 const WAKE_B: u8 = 8;
+const EVENTS: u8 = 16;
 
-/// Updates one awake contact's manifold; returns its `DESTROY`, `TOUCHING` and `WAKE_*` bits.
+/// Updates one awake contact's manifold; returns its `DESTROY`, `TOUCHING`, `WAKE_*` and
+/// `EVENTS` bits.
 fn update_contact(
     c: &mut crate::collision::contact::Contact,
     shapes: &crate::pool::Pool<crate::collision::shape::Shape>,
     bodies: &crate::pool::Pool<crate::dynamics::body::Body>,
     geometry: &crate::collision::geometry_store::GeometryStore,
     dt: f32,
+    slop: f32,
 ) -> u8 {
     c.disabled = false;
     let (sa, sb) = (shapes.at(c.shape_a), shapes.at(c.shape_b));
@@ -361,12 +419,17 @@ fn update_contact(
     } else {
         c.update(geometry, sa, &ba.xf, sb, &bb.xf, speculative);
     }
+    let events = if c.event_flags != 0 && crate::events::events_pending(c, slop) {
+        EVENTS
+    } else {
+        0
+    };
     if c.event_flags & crate::events::SENSOR != 0 {
         // A sensor never touches for the solver and wakes nothing; its overlap is read from
         // the points in the merge (`contact_events_after_update`).
-        return 0;
+        return events;
     }
-    let mut r = if c.touching { TOUCHING } else { 0 };
+    let mut r = events | if c.touching { TOUCHING } else { 0 };
     if c.touching && (!ba.awake || !bb.awake) {
         let (sleeper, bit) = if ba.awake { (bb, WAKE_B) } else { (ba, WAKE_A) };
         if !sleeper.is_static() {

@@ -221,6 +221,9 @@ pub struct World {
     pub(crate) tasks: Box<dyn crate::parallel::TaskRunner>,
     /// The narrow phase's result per awake contact (`step.rs`, `collide`).
     pub(crate) narrow_results: Vec<u8>,
+    /// Per body slot, what `finish_bodies` found this step (`step::REFIT`, `MOVED`,
+    /// `WOKEN`); read by the proxy refit and the move events.
+    pub(crate) body_marks: Vec<u8>,
 }
 
 impl World {
@@ -268,6 +271,7 @@ impl World {
             events: Default::default(),
             tasks,
             narrow_results: Vec::new(),
+            body_marks: Vec::new(),
         })
     }
 
@@ -847,6 +851,10 @@ impl World {
             body.awake = true;
             body.awake_index = self.awake_bodies.len() as u32;
             self.awake_bodies.push(b);
+            // Woken after this step's `finish_bodies`, perhaps: its move is checked in full.
+            if let Some(mark) = self.body_marks.get_mut(b as usize) {
+                *mark = crate::step::WOKEN;
+            }
         }
     }
 

@@ -155,46 +155,86 @@ fn solver_index(bodies: &Pool<Body>, b: u32) -> u32 {
     }
 }
 
+/// Awake contacts per listing task; a fixed number, so the lists do not depend on workers.
+const PREPARE_CHUNK: usize = 512;
+
+/// The refs of one awake contact (none unless it touches, is enabled and moves a body),
+/// pushed to `out`; returns whether it bounces.
+#[inline]
+fn contact_refs(ci: u32, c: &Contact, bodies: &Pool<Body>, states: &[BodyState], out: &mut Vec<ContactRef>) -> bool {
+    if !c.touching || c.disabled {
+        return false;
+    }
+    let (a, b) = (solver_index(bodies, c.body_a), solver_index(bodies, c.body_b));
+    let (ma, mb) = (states[a as usize].inv_mass, states[b as usize].inv_mass);
+    if ma == 0.0 && mb == 0.0 {
+        return false;
+    }
+    let spins = c.rolling_resistance > 0.0 || c.torsional_friction > 0.0;
+    let shared = c.manifold_count() > 1;
+    for k in 0..c.manifold_count() {
+        let (m, impulses, _) = c.child(k);
+        let count = m.count;
+        if count == 0 {
+            continue;
+        }
+        let loaded = impulses[..count].iter().any(|p| p.normal > 0.0);
+        out.push(ContactRef::new(
+            ci, k as u16, a, b, ma, mb, count, spins, loaded, shared,
+        ));
+    }
+    c.restitution > 0.0
+}
+
 /// Lists every awake contact with manifold points and every generated contact that moves a
-/// body (`SolverScratch::refs`), and notes whether any of them bounces.
+/// body (`SolverScratch::refs`), and notes whether any of them bounces. The awake contacts
+/// are listed in fixed chunks in parallel, each into its own list, and the lists joined in
+/// chunk order: the same refs in the same order as one pass would give.
 pub fn prepare(world: &mut World) {
-    let scratch = &mut world.solver;
+    let World {
+        solver: scratch,
+        awake_contacts,
+        contacts,
+        bodies,
+        tasks,
+        generated_contacts,
+        ..
+    } = world;
+    let chunks = awake_contacts.len().div_ceil(PREPARE_CHUNK);
+    if scratch.ref_chunks.len() < chunks {
+        scratch.ref_chunks.resize_with(chunks, Vec::new);
+    }
+    let bounced = std::sync::atomic::AtomicBool::new(false);
+    {
+        let (states, lists) = (
+            &scratch.states[..],
+            crate::parallel::Disjoint::new(&mut scratch.ref_chunks[..chunks]),
+        );
+        let (awake_contacts, contacts, bodies) = (&*awake_contacts, &*contacts, &*bodies);
+        crate::parallel::run(&**tasks, chunks as u32, 1, &|start, end, _| {
+            let mut bounces = false;
+            for chunk in start as usize..end as usize {
+                // SAFETY: each chunk is one task's.
+                let out = unsafe { lists.at(chunk) };
+                out.clear();
+                let span = chunk * PREPARE_CHUNK..((chunk + 1) * PREPARE_CHUNK).min(awake_contacts.len());
+                for &ci in &awake_contacts[span] {
+                    bounces |= contact_refs(ci, contacts.at(ci), bodies, states, out);
+                }
+            }
+            if bounces {
+                bounced.store(true, std::sync::atomic::Ordering::Relaxed);
+            }
+        });
+    }
     let (refs, states) = (&mut scratch.refs, &scratch.states);
     refs.clear();
-    let mut bounces = false;
-    for &ci in &world.awake_contacts {
-        let c = world.contacts.at(ci);
-        if !c.touching || c.disabled {
-            continue;
-        }
-        let (a, b) = (
-            solver_index(&world.bodies, c.body_a),
-            solver_index(&world.bodies, c.body_b),
-        );
-        let (ma, mb) = (states[a as usize].inv_mass, states[b as usize].inv_mass);
-        if ma == 0.0 && mb == 0.0 {
-            continue;
-        }
-        bounces |= c.restitution > 0.0;
-        let spins = c.rolling_resistance > 0.0 || c.torsional_friction > 0.0;
-        let shared = c.manifold_count() > 1;
-        for k in 0..c.manifold_count() {
-            let (m, impulses, _) = c.child(k);
-            let count = m.count;
-            if count == 0 {
-                continue;
-            }
-            let loaded = impulses[..count].iter().any(|p| p.normal > 0.0);
-            refs.push(ContactRef::new(
-                ci, k as u16, a, b, ma, mb, count, spins, loaded, shared,
-            ));
-        }
+    for list in &scratch.ref_chunks[..chunks] {
+        refs.extend_from_slice(list);
     }
-    for (gi, g) in world.generated_contacts.iter().enumerate() {
-        let (a, b) = (
-            solver_index(&world.bodies, g.body_a),
-            solver_index(&world.bodies, g.body_b),
-        );
+    let mut bounces = bounced.into_inner();
+    for (gi, g) in generated_contacts.iter().enumerate() {
+        let (a, b) = (solver_index(bodies, g.body_a), solver_index(bodies, g.body_b));
         let (ma, mb) = (states[a as usize].inv_mass, states[b as usize].inv_mass);
         if ma == 0.0 && mb == 0.0 {
             continue;

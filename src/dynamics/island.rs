@@ -37,29 +37,44 @@ fn find(parent: &mut [u32], mut x: u32) -> u32 {
 /// Half-life of the recency-weighted motion (seconds).
 pub const MOTION_HALF_LIFE: f32 = 0.1;
 
-/// Updates each awake body's recency-weighted motion and sleep timer. Returns whether some
-/// body has been still for `time_to_sleep` (without one, no island can sleep).
-pub fn update_motion(world: &mut World, dt: f32) -> bool {
-    let t = world.settings.sleep_threshold;
-    let eps = t * t;
-    let bias = 0.5f32.powf(dt / MOTION_HALF_LIFE);
-    let mut longest = 0.0f32;
-    for &bi in &world.awake_bodies {
-        let b = world.bodies.at_mut(bi);
+/// The rule that updates a body's recency-weighted motion and sleep timer each step (run on
+/// every awake body by `World::finish_bodies`).
+#[derive(Clone, Copy, Debug)]
+pub struct MotionRule {
+    /// Squared sleep threshold.
+    eps: f32,
+    /// Weight of the old average after one step.
+    bias: f32,
+    dt: f32,
+}
+
+impl MotionRule {
+    pub fn new(settings: &crate::world::WorldSettings, dt: f32) -> Self {
+        let t = settings.sleep_threshold;
+        MotionRule {
+            eps: t * t,
+            bias: 0.5f32.powf(dt / MOTION_HALF_LIFE),
+            dt,
+        }
+    }
+
+    /// Updates one awake body; returns its sleep timer (0 when it moved).
+    #[inline]
+    pub fn update(&self, b: &mut crate::dynamics::body::Body) -> f32 {
+        let (eps, bias) = (self.eps, self.bias);
         let current = b.v.length_squared() + b.w.length_squared();
         b.motion = (bias * b.motion + (1.0 - bias) * current).min(10.0 * eps);
         if !b.allow_sleep || b.motion > eps || current > 4.0 * eps {
             b.sleep_time = 0.0;
         } else {
-            b.sleep_time += dt;
-            longest = longest.max(b.sleep_time);
+            b.sleep_time += self.dt;
         }
+        b.sleep_time
     }
-    longest >= world.settings.time_to_sleep
 }
 
 /// Puts to sleep every island that has been still long enough. `ready`: some body has been
-/// still long enough (`update_motion`); without one the islands are not built.
+/// still long enough (`MotionRule`); without one the islands are not built.
 pub fn sleep_islands(world: &mut World, ready: bool) {
     wake_joined_sleepers(world);
     if !world.settings.enable_sleep {

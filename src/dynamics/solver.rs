@@ -220,6 +220,8 @@ pub struct SolverScratch {
     pub paths: Paths,
     /// This step's contacts (`contact_solver::prepare`).
     pub refs: Vec<ContactRef>,
+    /// Per chunk of awake contacts, its refs (joined into `refs`; `contact_solver::prepare`).
+    pub ref_chunks: Vec<Vec<ContactRef>>,
     /// Some contact has restitution.
     pub bounces: bool,
     /// Solver indices of the bodies with locked axes this step.
@@ -441,15 +443,8 @@ pub fn prepare_bodies(world: &mut World, dt: f32, h: f32) {
     let gravity = world.settings.gravity;
     let (max_v, max_w) = (world.settings.max_linear_speed, world.settings.max_angular_speed);
     let scratch = &mut world.solver;
-    scratch.states.clear();
-    scratch.vel.clear();
-    scratch.sims.clear();
-    scratch.drives.clear();
-    scratch.locked.clear();
-    scratch.drives.push(Drive::FIXED);
-    scratch.states.push(BodyState::STATIC);
-    scratch.vel.push(Velocity::default());
-    scratch.sims.push(BodySim {
+    let n = world.awake_bodies.len();
+    let static_sim = BodySim {
         body: u32::MAX,
         lin_accel: Vec3::ZERO,
         torque: Vec3::ZERO,
@@ -465,15 +460,16 @@ pub fn prepare_bodies(world: &mut World, dt: f32, h: f32) {
         dynamic: false,
         rk4: false,
         arrive: false,
-    });
-    // One slot per awake body after the shared static one, filled in parallel: the task for
-    // awake body k writes only that body and slot k + 1.
-    let n = world.awake_bodies.len();
-    let (state0, vel0, sim0, drive0) = (scratch.states[0], scratch.vel[0], scratch.sims[0], scratch.drives[0]);
-    scratch.states.resize(n + 1, state0);
-    scratch.vel.resize(n + 1, vel0);
-    scratch.sims.resize(n + 1, sim0);
-    scratch.drives.resize(n + 1, drive0);
+    };
+    // Slot 0 is the static state every static body shares; slots 1..=n, one per awake body,
+    // are all written in parallel below. The arrays keep their length from step to step, so
+    // only slots new this step are filled first: no serial pass over every slot.
+    fit(&mut scratch.states, n + 1, BodyState::STATIC);
+    fit(&mut scratch.vel, n + 1, Velocity::default());
+    fit(&mut scratch.sims, n + 1, static_sim);
+    fit(&mut scratch.drives, n + 1, Drive::FIXED);
+    scratch.locked.clear();
+    let any_locked = std::sync::atomic::AtomicBool::new(false);
     let World {
         bodies,
         awake_bodies,
@@ -503,14 +499,25 @@ pub fn prepare_bodies(world: &mut World, dt: f32, h: f32) {
                 )
             };
             (*state, *vel, *sim, *drive) = prepare_body(body, bi, k as u32 + 1, gravity, dt, h, (max_v, max_w));
+            if state.locks != 0 {
+                any_locked.store(true, std::sync::atomic::Ordering::Relaxed);
+            }
         }
     });
     // The bodies with locked axes, in solver order (empty in a world without locks).
-    for (k, state) in scratch.states.iter().enumerate().skip(1) {
-        if state.locks != 0 {
-            scratch.locked.push(k as u32);
+    if any_locked.into_inner() {
+        for (k, state) in scratch.states.iter().enumerate().skip(1) {
+            if state.locks != 0 {
+                scratch.locked.push(k as u32);
+            }
         }
     }
+}
+
+/// `v` at length `len` (truncated, or grown with copies of `first`), with `first` in slot 0.
+fn fit<T: Clone>(v: &mut Vec<T>, len: usize, first: T) {
+    v.resize(len, first.clone());
+    v[0] = first;
 }
 
 /// Awake bodies per task, at least, in the per-body stages.

@@ -79,6 +79,7 @@ fn put_world(world: &World, w: &mut Writer) {
         // at every worker count); a restored world keeps its own.
         tasks: _,
         narrow_results: _,
+        body_marks: _,
     } = world;
     use section::*;
     put_section(w, SETTINGS, |w| settings.put(w));
