@@ -100,7 +100,9 @@ impl World {
     }
 
     /// Stage 3: lists the candidate pairs of proxies whose fat boxes moved (no contacts yet;
-    /// `collide_pairs` makes them, after a pair filter may have dropped some).
+    /// `collide_pairs` makes them, after a pair filter may have dropped some). The moved
+    /// proxies are queried in parallel in fixed chunks, each into its own list, and the
+    /// lists joined in chunk order: the candidates of one pass, in its order.
     pub fn find_pairs(&mut self) {
         let World {
             broad,
@@ -108,58 +110,37 @@ impl World {
             bodies,
             counters,
             joints,
+            tasks,
             ..
         } = self;
         broad.candidates.clear();
         counters.proxies_moved = broad.move_buffer.len();
-        for &s in &broad.move_buffer {
-            let shape = shapes.at(s);
-            let body = bodies.at(shape.body);
-            let fat = shape.fat_aabb;
-            let candidates = &mut broad.candidates;
-            let tested = &mut counters.pairs_tested;
-            broad.tree.query(&fat, |_, t| {
-                *tested += 1;
-                if t == s {
-                    return true;
-                }
-                let other = shapes.at(t);
-                if other.body == shape.body || (other.in_move_buffer && t < s) {
-                    return true;
-                }
-                let other_body = bodies.at(other.body);
-                // A sensor sees bodies of every type (not two static ones); two sensors
-                // never pair (events.rs).
-                let bodies_pair = match (shape.def.is_sensor, other.def.is_sensor) {
-                    (false, false) => body.is_dynamic() || other_body.is_dynamic(),
-                    (true, true) => false,
-                    _ => !body.is_static() || !other_body.is_static(),
-                };
-                if bodies_pair
-                    // Joints with collide_connected off (issue 5) filter their body pair.
-                    && joints.should_collide(shape.body, other.body)
-                    && should_collide(&shape.def.filter, &other.def.filter)
-                {
-                    candidates.push((s, t));
-                }
-                true
-            });
-            // Planes (static, outside the tree, never sensors) pair with dynamic bodies' shapes
-            // and with kinematic bodies' sensors: a sensor sees bodies of every type, as in the
-            // tree query above (a kinematic sensor used to miss every plane).
-            let kinematic_sensor = shape.def.is_sensor && !body.is_dynamic() && !body.is_static();
-            if body.is_dynamic() || kinematic_sensor {
-                for &p in &broad.planes {
-                    let plane = shapes.at(p);
-                    let (n, d) = world_plane(&plane.geometry, &bodies.at(plane.body).xf);
-                    if aabb_touches_plane(&fat, n, d)
-                        && joints.should_collide(shape.body, plane.body)
-                        && should_collide(&shape.def.filter, &plane.def.filter)
-                    {
-                        candidates.push((s, p));
+        let chunks = broad.move_buffer.len().div_ceil(PAIR_CHUNK);
+        if broad.chunk_candidates.len() < chunks {
+            broad.chunk_candidates.resize_with(chunks, Vec::new);
+        }
+        let tested = std::sync::atomic::AtomicUsize::new(0);
+        {
+            let (tree, moved, planes) = (&broad.tree, &broad.move_buffer[..], &broad.planes[..]);
+            let lists = crate::parallel::Disjoint::new(&mut broad.chunk_candidates[..chunks]);
+            let (shapes, bodies, joints) = (&*shapes, &*bodies, &*joints);
+            crate::parallel::run(&**tasks, chunks as u32, 1, &|start, end, _| {
+                let mut count = 0;
+                for chunk in start as usize..end as usize {
+                    // SAFETY: each chunk is one task's.
+                    let out = unsafe { lists.at(chunk) };
+                    out.clear();
+                    let span = chunk * PAIR_CHUNK..((chunk + 1) * PAIR_CHUNK).min(moved.len());
+                    for &s in &moved[span] {
+                        count += proxy_pairs(s, tree, planes, shapes, bodies, joints, out);
                     }
                 }
-            }
+                tested.fetch_add(count, Ordering::Relaxed);
+            });
+        }
+        counters.pairs_tested += tested.into_inner();
+        for list in &broad.chunk_candidates[..chunks] {
+            broad.candidates.extend_from_slice(list);
         }
         for &s in &broad.move_buffer {
             shapes.at_mut(s).in_move_buffer = false;
@@ -366,6 +347,70 @@ impl World {
 pub(crate) const REFIT: u8 = 1;
 pub(crate) const MOVED: u8 = 2;
 pub(crate) const WOKEN: u8 = 4;
+
+/// Moved proxies per pair-finding chunk: a fixed number, so the candidates do not depend on
+/// the workers.
+const PAIR_CHUNK: usize = 64;
+
+/// The candidate pairs of moved shape `s`: the tree's proxies its fat box overlaps and the
+/// planes it touches, pushed to `out`. Returns the number of tree proxies tested.
+fn proxy_pairs(
+    s: u32,
+    tree: &crate::collision::dynamic_tree::DynamicTree,
+    planes: &[u32],
+    shapes: &crate::pool::Pool<crate::collision::shape::Shape>,
+    bodies: &crate::pool::Pool<crate::dynamics::body::Body>,
+    joints: &crate::dynamics::joints::Joints,
+    out: &mut Vec<(u32, u32)>,
+) -> usize {
+    let shape = shapes.at(s);
+    let body = bodies.at(shape.body);
+    let fat = shape.fat_aabb;
+    let mut tested = 0;
+    tree.query(&fat, |_, t| {
+        tested += 1;
+        if t == s {
+            return true;
+        }
+        let other = shapes.at(t);
+        if other.body == shape.body || (other.in_move_buffer && t < s) {
+            return true;
+        }
+        let other_body = bodies.at(other.body);
+        // A sensor sees bodies of every type (not two static ones); two sensors never pair
+        // (events.rs).
+        let bodies_pair = match (shape.def.is_sensor, other.def.is_sensor) {
+            (false, false) => body.is_dynamic() || other_body.is_dynamic(),
+            (true, true) => false,
+            _ => !body.is_static() || !other_body.is_static(),
+        };
+        if bodies_pair
+            // Joints with collide_connected off (issue 5) filter their body pair.
+            && joints.should_collide(shape.body, other.body)
+            && should_collide(&shape.def.filter, &other.def.filter)
+        {
+            out.push((s, t));
+        }
+        true
+    });
+    // Planes (static, outside the tree, never sensors) pair with dynamic bodies' shapes and
+    // with kinematic bodies' sensors: a sensor sees bodies of every type, as in the tree query
+    // above (a kinematic sensor used to miss every plane).
+    let kinematic_sensor = shape.def.is_sensor && !body.is_dynamic() && !body.is_static();
+    if body.is_dynamic() || kinematic_sensor {
+        for &p in planes {
+            let plane = shapes.at(p);
+            let (n, d) = world_plane(&plane.geometry, &bodies.at(plane.body).xf);
+            if aabb_touches_plane(&fat, n, d)
+                && joints.should_collide(shape.body, plane.body)
+                && should_collide(&shape.def.filter, &plane.def.filter)
+            {
+                out.push((s, p));
+            }
+        }
+    }
+    tested
+}
 
 /// Awake bodies per bounds task, at least.
 const BOUNDS_MIN_RANGE: u32 = 64;

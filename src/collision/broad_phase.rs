@@ -43,4 +43,6 @@ pub struct BroadPhase {
     pub pairs: IntMap<u64, u32>,
     /// Candidate pairs found this step (reused storage).
     pub candidates: Vec<(u32, u32)>,
+    /// Per chunk of moved proxies, its candidates (joined into `candidates`; `find_pairs`).
+    pub chunk_candidates: Vec<Vec<(u32, u32)>>,
 }

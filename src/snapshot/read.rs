@@ -144,6 +144,7 @@ fn decode(world: &mut World, plain: &[u8], spans: &[(usize, usize)]) -> Result<(
             planes: r.within("planes", Snap::get)?,
             pairs: r.within("pairs", Snap::get)?,
             candidates: Vec::new(),
+            chunk_candidates: Vec::new(),
         })
     })?;
     let (awake_bodies, islands, counters): (Vec<u32>, crate::pool::Pool<Vec<u32>>, _) = get_section(r, SLEEP, |r| {

@@ -135,6 +135,7 @@ fn put_broad_phase(w: &mut Writer, broad: &BroadPhase, shapes: &Pool<Shape>) {
         planes,
         pairs,
         candidates: _,
+        chunk_candidates: _,
     } = broad;
     w.within("tree", |w| tree.put_snapshot(w, |s| leaf_box(shapes, s)));
     w.within("move_buffer", |w| move_buffer.put(w));
