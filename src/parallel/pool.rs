@@ -1,11 +1,18 @@
 //! Hearth's own workers, for hosts that bring no job system: `worker_count − 1` threads
 //! started with the world and parked on a condition variable between stages (no thread is
 //! created per step), plus the stepping thread itself as worker 0.
+//!
+//! Stages of a step follow each other within microseconds, and waking a parked thread takes
+//! about as long as a small stage: so an idle worker first spins for up to [`SPIN`] watching
+//! for the next stage, and `run` spins as long for the last range before it parks; a
+//! condition variable is signalled only when somebody sleeps on it.
 
 use std::any::Any;
 use std::panic::{catch_unwind, resume_unwind, AssertUnwindSafe};
+use std::sync::atomic::{AtomicU32, AtomicU64, Ordering};
 use std::sync::{Arc, Condvar, Mutex, MutexGuard};
 use std::thread::JoinHandle;
+use std::time::{Duration, Instant};
 
 use super::{Task, TaskRunner, MAX_WORKERS};
 
@@ -32,6 +39,9 @@ struct State {
     finished: u32,
     panic: Option<Box<dyn Any + Send>>,
     exit: bool,
+    /// Workers parked on `work`, and whether `run` is parked on `done`.
+    sleepers: u32,
+    caller_sleeps: bool,
 }
 
 struct Shared {
@@ -40,6 +50,29 @@ struct Shared {
     work: Condvar,
     /// `run` waits here for the last range.
     done: Condvar,
+    /// `State::generation` and `State::finished`, readable without the lock by the threads
+    /// that spin before they park (written under it).
+    posted: AtomicU64,
+    finished: AtomicU32,
+}
+
+/// How long an idle worker, or `run` waiting for the last range, spins before it parks.
+pub const SPIN: Duration = Duration::from_micros(50);
+
+/// Spins until `ready` or `SPIN` has passed; returns `ready()`.
+fn spin_until(ready: impl Fn() -> bool) -> bool {
+    let start = Instant::now();
+    loop {
+        for _ in 0..64 {
+            if ready() {
+                return true;
+            }
+            std::hint::spin_loop();
+        }
+        if start.elapsed() >= SPIN {
+            return ready();
+        }
+    }
 }
 
 impl Shared {
@@ -69,6 +102,8 @@ impl ThreadPool {
             state: Mutex::new(State::default()),
             work: Condvar::new(),
             done: Condvar::new(),
+            posted: AtomicU64::new(0),
+            finished: AtomicU32::new(0),
         });
         let mut threads = Vec::with_capacity(workers as usize - 1);
         for index in 1..workers {
@@ -140,7 +175,8 @@ fn drain<'a>(
             state.panic.get_or_insert(p);
         }
         state.finished += 1;
-        if state.finished == job.pieces {
+        shared.finished.store(state.finished, Ordering::Release);
+        if state.finished == job.pieces && state.caller_sleeps {
             shared.done.notify_all();
         }
     }
@@ -148,19 +184,22 @@ fn drain<'a>(
 }
 
 fn worker(shared: &Shared, index: u32) {
-    let mut state = shared.lock();
     // Generation 0 has no job: a thread that starts after the first stage was posted still
     // joins it (the solver's stages need every worker, `concurrent`).
     let mut seen = 0;
     loop {
+        spin_until(|| shared.posted.load(Ordering::Acquire) != seen);
+        let mut state = shared.lock();
         while state.generation == seen && !state.exit {
+            state.sleepers += 1;
             state = shared.work.wait(state).unwrap_or_else(|e| e.into_inner());
+            state.sleepers -= 1;
         }
         if state.exit {
             return;
         }
         seen = state.generation;
-        state = drain(shared, state, seen, index);
+        drop(drain(shared, state, seen, index));
     }
 }
 
@@ -201,11 +240,23 @@ impl TaskRunner for ThreadPool {
         });
         state.next = 0;
         state.finished = 0;
+        self.shared.finished.store(0, Ordering::Relaxed);
+        self.shared.posted.store(generation, Ordering::Release);
+        let wake = state.sleepers > 0;
         drop(state);
-        self.shared.work.notify_all();
+        if wake {
+            self.shared.work.notify_all();
+        }
         let mut state = drain(&self.shared, self.shared.lock(), generation, 0);
-        while state.finished < pieces {
-            state = self.shared.done.wait(state).unwrap_or_else(|e| e.into_inner());
+        if state.finished < pieces {
+            drop(state);
+            spin_until(|| self.shared.finished.load(Ordering::Acquire) >= pieces);
+            state = self.shared.lock();
+            while state.finished < pieces {
+                state.caller_sleeps = true;
+                state = self.shared.done.wait(state).unwrap_or_else(|e| e.into_inner());
+                state.caller_sleeps = false;
+            }
         }
         state.job = None;
         let panic = state.panic.take();
