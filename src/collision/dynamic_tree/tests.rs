@@ -671,3 +671,48 @@ fn clipped_rays_walk_front_to_back() {
     // Measured: 0.62 of the unclipped walk's tests.
     assert!(clipped_tests * 4 < full_tests * 3, "{clipped_tests} {full_tests}");
 }
+
+#[test]
+fn a_move_inside_the_parent_box_only_replaces_the_leaf_box() {
+    let mut rng = Rng::new(31);
+    let mut tree = DynamicTree::new();
+    let mut mirror = Mirror::default();
+    for i in 0..500 {
+        let b = random_box(&mut rng);
+        let id = tree.create_proxy(b, i);
+        mirror.insert(id, b, i);
+    }
+    let mut inside = 0;
+    for _ in 0..2000 {
+        let id = mirror.ids[rng.below(mirror.ids.len())];
+        let (old, ud) = mirror.live[id as usize].unwrap();
+        let parent = tree.nodes[id as usize].parent;
+        // Half the moves shrink the box towards a random point of its parent's box (so they
+        // stay inside it), half move it anywhere.
+        let b = if parent != NULL_NODE && rng.below(2) == 0 {
+            let p = tree.nodes[parent as usize].aabb;
+            let t = rng.range(0.0, 1.0);
+            let c = p.min + (p.max - p.min) * t;
+            Aabb::new(c.min(old.min.max(p.min)), c.max(old.max.min(p.max)))
+        } else {
+            let d = rng.vec3(-3.0, 3.0);
+            Aabb::new(old.min + d, old.max + d)
+        };
+        let before = (tree.node_count(), tree.height(), tree.nodes[id as usize].parent);
+        let contained = parent != NULL_NODE && tree.nodes[parent as usize].aabb.contains(&b);
+        tree.move_proxy(id, b);
+        mirror.live[id as usize] = Some((b, ud));
+        if contained {
+            inside += 1;
+            // Same place in the same tree: nodes, height and parent unchanged.
+            assert_eq!(
+                before,
+                (tree.node_count(), tree.height(), tree.nodes[id as usize].parent)
+            );
+        }
+        assert_eq!(tree.fat_aabb(id), b);
+    }
+    assert!(inside > 500, "only {inside} moves stayed inside their parent");
+    tree.validate();
+    check_against_brute_force(&tree, &mirror, &mut rng);
+}
