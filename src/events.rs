@@ -147,6 +147,8 @@ pub struct Events {
     pub(crate) fell_asleep: Vec<u32>,
     /// Touching awake contacts offered to the pre-solve callback this step.
     pub(crate) pre_solve: Vec<u32>,
+    /// Per chunk of awake bodies, its move events (joined into `body_moves`).
+    pub(crate) move_chunks: Vec<Vec<MoveEvent>>,
 }
 
 impl Events {
@@ -202,6 +204,9 @@ pub(crate) fn events_pending(c: &mut crate::collision::contact::Contact, slop: f
     };
     now != c.reported || (flags & HIT_EVENTS != 0 && c.touching)
 }
+
+/// Awake bodies per move-event chunk: a fixed number, so the events do not depend on workers.
+const MOVE_CHUNK: usize = 256;
 
 impl World {
     /// The last step's events (`Events`); valid until the next step.
@@ -430,28 +435,51 @@ impl World {
             bodies,
             awake_bodies,
             body_marks,
+            tasks,
             ..
         } = self;
         use crate::step::{MOVED, WOKEN};
         events.contact_end.append(&mut events.pending_contact_end);
         events.sensor_end.append(&mut events.pending_sensor_end);
-        for &b in awake_bodies.iter() {
-            // `finish_bodies` marked the bodies to report; one woken since is checked here.
-            if body_marks.get(b as usize).is_some_and(|m| m & (MOVED | WOKEN) == 0) {
-                continue;
-            }
-            let handle = bodies.handle_at(b).expect("live body");
-            let body = bodies.at_mut(b);
-            if !body.enable_move_events || body.is_static() || body.xf == body.reported_xf {
-                continue;
-            }
-            body.reported_xf = body.xf;
-            events.body_moves.push(MoveEvent {
-                body: handle,
-                transform: body.xf,
-                user_data: body.user_data,
-                fell_asleep: false,
+        // Move events of the awake bodies in fixed chunks in parallel (a task writes only its
+        // own bodies' reported transforms and its chunk's list), joined in awake order.
+        let chunks = awake_bodies.len().div_ceil(MOVE_CHUNK);
+        if events.move_chunks.len() < chunks {
+            events.move_chunks.resize_with(chunks, Vec::new);
+        }
+        {
+            let lists = crate::parallel::Disjoint::new(&mut events.move_chunks[..chunks]);
+            let (slots, awake_bodies, marks) = (bodies.disjoint(), &awake_bodies[..], &body_marks[..]);
+            crate::parallel::run(&**tasks, chunks as u32, 1, &|start, end, _| {
+                for chunk in start as usize..end as usize {
+                    // SAFETY: each chunk is one task's, and each awake body is in one chunk.
+                    let out = unsafe { lists.at(chunk) };
+                    out.clear();
+                    let span = chunk * MOVE_CHUNK..((chunk + 1) * MOVE_CHUNK).min(awake_bodies.len());
+                    for &b in &awake_bodies[span] {
+                        // `finish_bodies` marked the bodies to report; one woken since is
+                        // checked here.
+                        if marks.get(b as usize).is_some_and(|m| m & (MOVED | WOKEN) == 0) {
+                            continue;
+                        }
+                        // SAFETY: as above.
+                        let (handle, body) = unsafe { slots.handle_and_mut(b) };
+                        if !body.enable_move_events || body.is_static() || body.xf == body.reported_xf {
+                            continue;
+                        }
+                        body.reported_xf = body.xf;
+                        out.push(MoveEvent {
+                            body: handle,
+                            transform: body.xf,
+                            user_data: body.user_data,
+                            fell_asleep: false,
+                        });
+                    }
+                }
             });
+        }
+        for list in &events.move_chunks[..chunks] {
+            events.body_moves.extend_from_slice(list);
         }
         for &b in events.fell_asleep.iter() {
             let handle = bodies.handle_at(b).expect("live body");

@@ -286,7 +286,7 @@ impl<T> Pool<T> {
     /// The pool's slots for tasks on several threads, each reaching objects by slot index
     /// that no other running task reaches (`parallel::Disjoint`).
     pub(crate) fn disjoint(&mut self) -> DisjointPool<'_, T> {
-        DisjointPool(crate::parallel::Disjoint::new(&mut self.slots))
+        DisjointPool(crate::parallel::Disjoint::new(&mut self.slots), self.tag)
     }
 
     #[inline]
@@ -409,7 +409,7 @@ impl<T: crate::snapshot::Snap> crate::snapshot::Snap for Pool<T> {
 }
 
 /// A pool's live objects by slot index, for tasks that each own distinct slots.
-pub(crate) struct DisjointPool<'a, T>(crate::parallel::Disjoint<'a, Slot<T>>);
+pub(crate) struct DisjointPool<'a, T>(crate::parallel::Disjoint<'a, Slot<T>>, u32);
 
 impl<T> DisjointPool<'_, T> {
     /// The live object in slot `index`.
@@ -420,6 +420,20 @@ impl<T> DisjointPool<'_, T> {
     #[inline]
     pub(crate) unsafe fn at_mut(&self, index: u32) -> &mut T {
         self.0.at(index as usize).value.as_mut().expect("live slot")
+    }
+
+    /// The handle of the live object in slot `index`, and the object.
+    ///
+    /// # Safety
+    /// As `at_mut`.
+    #[inline]
+    pub(crate) unsafe fn handle_and_mut(&self, index: u32) -> (Handle, &mut T) {
+        let slot = self.0.at(index as usize);
+        let handle = Handle {
+            index,
+            generation: (self.1 << COUNTER_BITS) | slot.counter,
+        };
+        (handle, slot.value.as_mut().expect("live slot"))
     }
 }
 

@@ -245,8 +245,16 @@ const FIGURES: &[(&str, &str, Backing)] = &[
     ),
     (R, "40 %", Bench),
     // The own pool's spin before a worker parks (parallel/pool.rs, SPIN).
-    (R, "50 µs", Setting("the own pool's spin before parking (parallel/pool.rs SPIN)")),
-    (A, "50 µs", Setting("the own pool's spin before parking (parallel/pool.rs SPIN)")),
+    (
+        R,
+        "50 µs",
+        Setting("the own pool's spin before parking (parallel/pool.rs SPIN)"),
+    ),
+    (
+        A,
+        "50 µs",
+        Setting("the own pool's spin before parking (parallel/pool.rs SPIN)"),
+    ),
     // README: threads, perf shares of the parallel stages, their Amdahl bounds and the
     // measured ratios.
     (R, "90 %", Bench),
