@@ -427,6 +427,7 @@ impl<T> DisjointPool<'_, T> {
     /// # Safety
     /// As `at_mut`.
     #[inline]
+    #[allow(clippy::mut_from_ref)]
     pub(crate) unsafe fn handle_and_mut(&self, index: u32) -> (Handle, &mut T) {
         let slot = self.0.at(index as usize);
         let handle = Handle {
