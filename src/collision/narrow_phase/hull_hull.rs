@@ -7,7 +7,11 @@
 //!    of B or an edge pair) is tried first; if it still separates the shapes by more than
 //!    the speculative distance, there is no contact and nothing else is computed.
 //! 2. **Face axes** of A (B's least projection on each plane, four vertices at a time:
-//!    `ConvexHull::min_dot`) and of B.
+//!    `ConvexHull::min_dot`) and of B, unless the **face hold** decides: after a face
+//!    decision the cache keeps the pose and the margins by which that face beat the other
+//!    faces (`FaceHold`); a face's separation moves by at most `|ΔR|·reach + |Δt|` with
+//!    the pose, so while that bound is under the margins the loops would pick the same
+//!    face and are skipped (same result bit for bit).
 //! 3. **GJK bound.** GJK's distance (or its overlap verdict) bounds every axis's
 //!    separation from above; when it leaves no room for an edge axis to end the test or
 //!    to beat the best face by the edge slack, the edge loop below is skipped (same result,
@@ -36,17 +40,42 @@
 use super::hull::{feature_id, one_point, Candidate, Candidates, InA, Own, Poly, Relative};
 use super::Manifold;
 use crate::collision::gjk;
-use crate::math::Vec3;
+use crate::math::{Mat3, Vec3};
 
 /// The feature that decided the last test of a pair (see the module doc).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub enum SatCache {
+pub enum SatFeature {
     #[default]
     None,
     FaceA(u16),
     FaceB(u16),
     /// Entries of the two hulls' `edges`.
     Edges(u16, u16),
+}
+
+/// What a pair keeps between tests (kept in its contact; see the module doc): the
+/// deciding feature and, after a face decision, the hold that can skip the next searches.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct SatCache {
+    pub feature: SatFeature,
+    pub hold: FaceHold,
+}
+
+/// A face decision and its margins, at B's pose in A's frame when the face loops took it.
+/// Every face's separation moves by at most `pose_change` from there, so while the
+/// margins exceed that change the face loops would pick the same face again and are
+/// skipped (`holds`); GJK and the edge pairs run as after the loops.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct FaceHold {
+    /// The last full test decided on `feature`, a face, and stored the rest.
+    pub valid: bool,
+    /// B's rotation and position in A's frame then.
+    pub r: Mat3,
+    pub t: Vec3,
+    /// The largest separation of the chosen hull's other faces then.
+    pub same: f32,
+    /// The largest separation of the other hull's faces then.
+    pub other: f32,
 }
 
 /// Face B replaces face A only when better by this relative and absolute slack.
@@ -58,6 +87,9 @@ const EDGE_ABS_TOL: f32 = 0.002;
 /// Separated cores: GJK's distance replaces the best axis when larger by this slack.
 const GJK_REL_TOL: f32 = 0.02;
 const GJK_ABS_TOL: f32 = 0.001;
+/// Slack of the face hold for rounding (relative to the shapes' reach, m).
+const HOLD_ROUNDING: f32 = 1.0e-5;
+
 /// What GJK's overlap verdict leaves as a possible separation (its termination tolerance is
 /// 1e-7 m; this is far above it and far below `EDGE_ABS_TOL`).
 const GJK_OVERLAP_BOUND: f32 = 1.0e-5;
@@ -120,55 +152,110 @@ fn support_separation(a: &Poly, b: &Poly, rel: &Relative, axis: Vec3) -> f32 {
 }
 
 /// Separation of the cached feature, if it still exists.
-fn cached_separation(a: &Poly, b: &Poly, rel: &Relative, cache: SatCache) -> Option<f32> {
-    match cache {
-        SatCache::None => None,
-        SatCache::FaceA(f) if (f as usize) < a.hull.planes.len() => Some(face_a_separation(a, b, rel, f as usize)),
-        SatCache::FaceB(f) if (f as usize) < b.hull.planes.len() => Some(face_b_separation(a, b, rel, f as usize)),
-        SatCache::Edges(ea, eb) if (ea as usize) < a.hull.edges.len() && (eb as usize) < b.hull.edges.len() => {
+fn cached_separation(a: &Poly, b: &Poly, rel: &Relative, feature: SatFeature) -> Option<f32> {
+    match feature {
+        SatFeature::None => None,
+        SatFeature::FaceA(f) if (f as usize) < a.hull.planes.len() => Some(face_a_separation(a, b, rel, f as usize)),
+        SatFeature::FaceB(f) if (f as usize) < b.hull.planes.len() => Some(face_b_separation(a, b, rel, f as usize)),
+        SatFeature::Edges(ea, eb) if (ea as usize) < a.hull.edges.len() && (eb as usize) < b.hull.edges.len() => {
             edge_pair(a, b, rel, ea as usize, eb as usize).map(|(axis, _)| support_separation(a, b, rel, axis))
         }
         _ => None,
     }
 }
 
+/// How far any face's separation (and the cores' distance) can have moved since the
+/// hold's pose: B's vertices move in A's frame by at most `|ΔR|·reach(B) + |Δt|`, A's in
+/// B's frame by `|ΔR|·reach(A) + |Δ(Rᵀt)|` (the Frobenius norm bounds the rotation's),
+/// plus rounding slack.
+fn pose_change(a: &Poly, b: &Poly, rel: &Relative, hold: &FaceHold) -> f32 {
+    let dr = rel.r - hold.r;
+    let dr = (dr.x_axis.length_squared() + dr.y_axis.length_squared() + dr.z_axis.length_squared()).sqrt();
+    let (reach_a, reach_b) = (a.reach(), b.reach());
+    let move_b = dr * reach_b + (rel.t - hold.t).length();
+    let move_a = dr * reach_a + (rel.rt * rel.t - hold.r.transpose() * hold.t).length();
+    move_a.max(move_b) + HOLD_ROUNDING * (1.0 + reach_a + reach_b + rel.t.length())
+}
+
+/// The face hold decides (see `FaceHold`): the held face, at separation `s` now (computed
+/// as the full test would), still beats its hull's other faces (each at most `same +
+/// delta` now) and the other hull's (with the face bias; `other + delta`), and no face
+/// separates the shapes beyond `limit`: the face loops' comparisons, each with its bound,
+/// so they would pick this face.
+fn holds(hold: &FaceHold, on_b: bool, s: f32, delta: f32, limit: f32) -> bool {
+    let bias = |x: f32| x + FACE_REL_TOL * x.abs() + FACE_ABS_TOL;
+    let (same, other) = (hold.same + delta, hold.other + delta);
+    let beats_other = if on_b { s > bias(other) } else { other <= bias(s) };
+    hold.valid && s <= limit && same < s && beats_other && same <= limit && other <= limit
+}
+
 /// Hull A against hull B (either may be a box); `cache` carries the deciding feature
-/// between calls for the same pair.
+/// (and the face hold) between calls for the same pair.
 pub(crate) fn hull_hull(a: &Poly, b: &Poly, speculative: f32, cache: &mut SatCache) -> Manifold {
     let rel = Relative::new(a, b);
     let r = a.radius + b.radius;
     let limit = speculative + r;
-    if let Some(s) = cached_separation(a, b, &rel, *cache) {
+    let mut held = None;
+    if let Some(s) = cached_separation(a, b, &rel, cache.feature) {
         if s > limit {
             return Manifold::EMPTY;
         }
-    }
-    // Faces of A.
-    let (mut sep_a, mut face_a) = (f32::MIN, 0usize);
-    for f in 0..a.hull.planes.len() {
-        let s = face_a_separation(a, b, &rel, f);
-        if s > limit {
-            *cache = SatCache::FaceA(f as u16);
-            return Manifold::EMPTY;
-        }
-        if s > sep_a {
-            sep_a = s;
-            face_a = f;
+        if cache.hold.valid {
+            let delta = pose_change(a, b, &rel, &cache.hold);
+            held = match cache.feature {
+                SatFeature::FaceA(f) if holds(&cache.hold, false, s, delta, limit) => Some((false, f as usize, s)),
+                SatFeature::FaceB(f) if holds(&cache.hold, true, s, delta, limit) => Some((true, f as usize, s)),
+                _ => None,
+            };
         }
     }
-    // Faces of B.
-    let (mut sep_b, mut face_b) = (f32::MIN, 0usize);
-    for f in 0..b.hull.planes.len() {
-        let s = face_b_separation(a, b, &rel, f);
-        if s > limit {
-            *cache = SatCache::FaceB(f as u16);
-            return Manifold::EMPTY;
+    // The hold comes back only when a face decides again.
+    let hold = cache.hold;
+    cache.hold.valid = false;
+    // The best face of A and of B, and which decides (with the margins for a new hold):
+    // from the hold, or searched.
+    let (use_b, face_a, face_b, best_face, margins) = if let Some((on_b, f, s)) = held {
+        (on_b, f, f, s, None)
+    } else {
+        // Faces of A (with the runner-up, for the face hold).
+        let (mut sep_a, mut face_a, mut second_a) = (f32::MIN, 0usize, f32::MIN);
+        for f in 0..a.hull.planes.len() {
+            let s = face_a_separation(a, b, &rel, f);
+            if s > limit {
+                cache.feature = SatFeature::FaceA(f as u16);
+                return Manifold::EMPTY;
+            }
+            if s > sep_a {
+                second_a = sep_a;
+                sep_a = s;
+                face_a = f;
+            } else if s > second_a {
+                second_a = s;
+            }
         }
-        if s > sep_b {
-            sep_b = s;
-            face_b = f;
+        // Faces of B.
+        let (mut sep_b, mut face_b, mut second_b) = (f32::MIN, 0usize, f32::MIN);
+        for f in 0..b.hull.planes.len() {
+            let s = face_b_separation(a, b, &rel, f);
+            if s > limit {
+                cache.feature = SatFeature::FaceB(f as u16);
+                return Manifold::EMPTY;
+            }
+            if s > sep_b {
+                second_b = sep_b;
+                sep_b = s;
+                face_b = f;
+            } else if s > second_b {
+                second_b = s;
+            }
         }
-    }
+        let use_b = sep_b > sep_a + FACE_REL_TOL * sep_a.abs() + FACE_ABS_TOL;
+        if use_b {
+            (true, face_a, face_b, sep_b, Some((second_b, sep_a)))
+        } else {
+            (false, face_a, face_b, sep_a, Some((second_a, sep_b)))
+        }
+    };
     // GJK from the best face's normal bounds every axis's separation from above: the
     // distance it returns is that of a point of the Minkowski difference (never less than
     // the true distance), and on overlap every axis separates by at most rounding. When
@@ -177,8 +264,6 @@ pub(crate) fn hull_hull(a: &Poly, b: &Poly, speculative: f32, cache: &mut SatCac
     // edge loop (the cost of the test, |edges A| × |edges B|) is skipped with the same
     // result: resting contacts with shallow overlap and separated pairs whose closest
     // features are faces.
-    let use_b = sep_b > sep_a + FACE_REL_TOL * sep_a.abs() + FACE_ABS_TOL;
-    let best_face = if use_b { sep_b } else { sep_a };
     let face_start = if use_b {
         -(rel.r * b.plane(face_b).normal)
     } else {
@@ -247,7 +332,7 @@ pub(crate) fn hull_hull(a: &Poly, b: &Poly, speculative: f32, cache: &mut SatCac
                 // decide is measured again by the support functions (rarely: only new maxima).
                 let s = s.min(support_separation(a, b, &rel, axis));
                 if s > limit {
-                    *cache = SatCache::Edges(ka as u16, kb as u16);
+                    cache.feature = SatFeature::Edges(ka as u16, kb as u16);
                     return Manifold::EMPTY;
                 }
                 if s > sep_e {
@@ -261,13 +346,13 @@ pub(crate) fn hull_hull(a: &Poly, b: &Poly, speculative: f32, cache: &mut SatCac
 
     let mut best = best_face;
     let use_edge = edges.0 != usize::MAX && sep_e > edge_margin;
-    *cache = if use_edge {
+    cache.feature = if use_edge {
         best = sep_e;
-        SatCache::Edges(edges.0 as u16, edges.1 as u16)
+        SatFeature::Edges(edges.0 as u16, edges.1 as u16)
     } else if use_b {
-        SatCache::FaceB(face_b as u16)
+        SatFeature::FaceB(face_b as u16)
     } else {
-        SatCache::FaceA(face_a as u16)
+        SatFeature::FaceA(face_a as u16)
     };
 
     if best > 0.0 {
@@ -310,6 +395,18 @@ pub(crate) fn hull_hull(a: &Poly, b: &Poly, speculative: f32, cache: &mut SatCac
             speculative,
         );
     }
+    // A face decided (over the edge pairs and GJK's point): hold it, with the margins of
+    // this search, or keep the hold it came from.
+    cache.hold = match margins {
+        Some((same, other)) => FaceHold {
+            valid: true,
+            r: rel.r,
+            t: rel.t,
+            same,
+            other,
+        },
+        None => hold,
+    };
     if use_b {
         face_contact(b, a, &Relative::new(b, a), face_b, speculative, true)
     } else {
@@ -482,6 +579,92 @@ mod tests {
                 assert_eq!(cba * cba, 0.0, "padding lane {k} crosses an arc");
             }
         }
+    }
+
+    /// The face hold changes nothing: pairs of random hulls (and a box against a hull,
+    /// non-uniformly scaled) moved in small random steps from resting contact, tested with
+    /// the pair's cache kept from step to step and with a fresh cache each time, give the
+    /// same manifolds bit for bit (normal, points, separations, ids), while the hold skips
+    /// the face loops in many of the steps.
+    #[test]
+    fn face_hold_matches_the_full_search() {
+        let mut s = 0x0dd1_b1a5_e5e5_7a11u64;
+        let mut rnd = move || {
+            s ^= s << 13;
+            s ^= s >> 7;
+            s ^= s << 17;
+            (s >> 40) as f32 / (1u64 << 24) as f32
+        };
+        let cloud = |rnd: &mut dyn FnMut() -> f32| -> Vec<Vec3> {
+            let n = 12 + (rnd() * 13.0) as usize;
+            let axes = Vec3::new(0.25 + 0.25 * rnd(), 0.25 + 0.25 * rnd(), 0.25 + 0.25 * rnd());
+            (0..n)
+                .map(|_| Vec3::new(rnd() - 0.5, rnd() - 0.5, rnd() - 0.5) * 2.0 * axes)
+                .collect()
+        };
+        let (mut steps, mut held, mut touching) = (0, 0, 0);
+        for trial in 0..200 {
+            let ha = build(&cloud(&mut rnd), &HullSettings::default()).unwrap();
+            let hb = build(&cloud(&mut rnd), &HullSettings::default()).unwrap();
+            let quat = |rnd: &mut dyn FnMut() -> f32| {
+                Quat::from_xyzw(rnd() - 0.5, rnd() - 0.5, rnd() - 0.5, rnd() - 0.5).normalize()
+            };
+            let xa = Transform::new(Vec3::ZERO, quat(&mut rnd));
+            let (qb, half) = (quat(&mut rnd), Vec3::new(0.2 + rnd(), 0.1 + rnd(), 0.3 + rnd()) * 0.5);
+            // B placed above A along a random direction, then lowered to about touching.
+            let dir = Vec3::new(rnd() - 0.5, rnd() - 0.5, rnd() - 0.5).normalize();
+            let mut xb = Transform::new(dir * 2.0, qb);
+            let place = |xb: &Transform| {
+                let a = if trial % 4 == 0 {
+                    Poly::boxed(Vec3::ZERO, Quat::IDENTITY, half, &xa)
+                } else {
+                    Poly::hull(&ha, &Transform::IDENTITY, 1.0, &xa)
+                };
+                (a, Poly::hull(&hb, &Transform::IDENTITY, 1.0, xb))
+            };
+            for _ in 0..40 {
+                let (a, b) = place(&xb);
+                let g = gjk::distance(
+                    &Own(&a),
+                    &InA {
+                        poly: &b,
+                        rel: Relative::new(&a, &b),
+                    },
+                );
+                if g.overlap || g.distance < 0.002 {
+                    break;
+                }
+                xb.p -= dir * (g.distance - 0.001 * rnd());
+            }
+            let mut cache = SatCache::default();
+            for _ in 0..60 {
+                // Millimetres and fractions of a degree per step, now and then more.
+                let big = if rnd() < 0.1 { 10.0 } else { 1.0 };
+                let dp = Vec3::new(rnd() - 0.5, rnd() - 0.5, rnd() - 0.5) * 0.004 * big;
+                let axis = Vec3::new(rnd() - 0.5, rnd() - 0.5, rnd() - 0.5).normalize();
+                xb.p += dp - dir * 0.0005 * (rnd() - 0.4);
+                xb.q = (Quat::from_axis_angle(axis, 0.01 * big * (rnd() - 0.5)) * xb.q).normalize();
+                let (a, b) = place(&xb);
+                let rel = Relative::new(&a, &b);
+                if cache.hold.valid {
+                    let limit = 0.02 + a.radius + b.radius;
+                    if let Some(sep) = cached_separation(&a, &b, &rel, cache.feature) {
+                        let delta = pose_change(&a, &b, &rel, &cache.hold);
+                        let on_b = matches!(cache.feature, SatFeature::FaceB(_));
+                        held += (sep <= limit && holds(&cache.hold, on_b, sep, delta, limit)) as usize;
+                    }
+                }
+                let kept = hull_hull(&a, &b, 0.02, &mut cache);
+                let fresh = hull_hull(&a, &b, 0.02, &mut SatCache::default());
+                assert_eq!(format!("{kept:?}"), format!("{fresh:?}"), "trial {trial}");
+                steps += 1;
+                touching += (kept.count > 0) as usize;
+            }
+        }
+        assert!(
+            touching > steps / 2 && held > steps / 4,
+            "{steps} steps, {touching} touching, {held} held"
+        );
     }
 
     /// The bound that lets `hull_hull` skip its edge loop: for random hull pairs, from
