@@ -19,7 +19,9 @@
 //! 4. **Edge pairs** only where the two edges' arcs on the Gauss map cross (the pair
 //!    builds a face of the Minkowski difference — four dot products reject the rest): the
 //!    axis is the cross product, oriented out of A, and the separation is measured between
-//!    the two edges.
+//!    the two edges. When the cores overlap, only edges that reach near the other hull
+//!    across the best face's plane can make the deciding pair (the pair of the deepest
+//!    axis crosses within the penetration depth); the others are left out.
 //!
 //! Every axis whose separation exceeds the speculative distance (plus the radii) ends the
 //! test early. The least separated axis, biased toward faces (and toward A's faces over
@@ -89,6 +91,10 @@ const GJK_REL_TOL: f32 = 0.02;
 const GJK_ABS_TOL: f32 = 0.001;
 /// Slack of the face hold for rounding (relative to the shapes' reach, m).
 const HOLD_ROUNDING: f32 = 1.0e-5;
+/// Slack of the edge pairs' pruning under overlap (m, and relative to the shapes' reach).
+const EDGE_PRUNE_SLACK: f32 = 1.0e-4;
+/// Blocks of four edges of the largest hull (`3 V − 6` edges for `V` vertices).
+const MAX_EDGE_BLOCKS: usize = (3 * crate::collision::hull::MAX_HULL_VERTICES - 6).div_ceil(4);
 
 /// What GJK's overlap verdict leaves as a possible separation (its termination tolerance is
 /// 1e-7 m; this is far above it and far below `EDGE_ABS_TOL`).
@@ -192,6 +198,11 @@ fn holds(hold: &FaceHold, on_b: bool, s: f32, delta: f32, limit: f32) -> bool {
 /// Hull A against hull B (either may be a box); `cache` carries the deciding feature
 /// (and the face hold) between calls for the same pair.
 pub(crate) fn hull_hull(a: &Poly, b: &Poly, speculative: f32, cache: &mut SatCache) -> Manifold {
+    hull_hull_with(a, b, speculative, cache, true)
+}
+
+/// `hull_hull`, with the edge pairs' pruning under overlap on or off (tests compare).
+fn hull_hull_with(a: &Poly, b: &Poly, speculative: f32, cache: &mut SatCache, prune_edges: bool) -> Manifold {
     let rel = Relative::new(a, b);
     let r = a.radius + b.radius;
     let limit = speculative + r;
@@ -288,18 +299,65 @@ pub(crate) fn hull_hull(a: &Poly, b: &Poly, speculative: f32, cache: &mut SatCac
     let upper = if g.overlap { GJK_OVERLAP_BOUND } else { g.distance };
     let edges_can_matter = upper > edge_margin || upper > limit;
     // Edge pairs that build a Minkowski face.
+    //
+    // When the cores overlap, an edge pair decides only as the face of the Minkowski
+    // difference nearest the origin (the deepest axis; its separation −D must beat
+    // `edge_margin`, so D < `reach`), and the origin then projects into that face: its
+    // two edges cross, seen along its axis, at points D apart, so each edge comes within D
+    // of the other hull. The decided face's plane (`pn`, `po`, out of its hull) bounds
+    // where that can be: the reference hull's edges must reach down to `po + best_face −
+    // reach` (the other hull lies above `po + best_face`), the other hull's up to `po +
+    // reach`. The rest are left out: the same pair decides, in a fraction of the pairs.
+    let prune = prune_edges
+        && edges_can_matter
+        && g.overlap
+        && limit > EDGE_PRUNE_SLACK
+        && a.hull.edge_lanes.len() <= MAX_EDGE_BLOCKS;
+    let reach = -edge_margin + EDGE_PRUNE_SLACK * (1.0 + a.reach() + b.reach());
+    let (pn, po) = if use_b {
+        let pl = b.plane(face_b);
+        let n = rel.r * pl.normal;
+        (n, pl.offset + n.dot(rel.t))
+    } else {
+        let pl = a.plane(face_a);
+        (pl.normal, pl.offset)
+    };
+    let keep = |p0: Vec3, p1: Vec3, reference: bool| {
+        let (h0, h1) = (pn.dot(p0), pn.dot(p1));
+        if reference {
+            h0.max(h1) >= po + best_face - reach
+        } else {
+            h0.min(h1) <= po + reach
+        }
+    };
+    // A's edges left in, four lanes per block as `edge_lanes` (bit k: lane k).
+    let mut a_lanes = [0x0fu8; MAX_EDGE_BLOCKS];
+    if prune {
+        for (ka, ga) in a.hull.edge_gauss.iter().enumerate() {
+            if !keep(a.vertex(ga.v0 as usize), a.vertex(ga.v1 as usize), !use_b) {
+                a_lanes[ka / 4] &= !(1u8 << (ka % 4));
+            }
+        }
+    }
     let (mut sep_e, mut edges, mut edge_dir) = (f32::MIN, (usize::MAX, usize::MAX), Vec3::ZERO);
     let b_edges = if edges_can_matter { &b.hull.edge_gauss[..] } else { &[] };
     for (kb, gb) in b_edges.iter().enumerate() {
+        let pb0 = rel.r * b.vertex(gb.v0 as usize) + rel.t;
+        let pb1 = rel.r * b.vertex(gb.v1 as usize) + rel.t;
+        if prune && !keep(pb0, pb1, use_b) {
+            continue;
+        }
         // B's arc, negated (Minkowski difference A − B), in A's frame.
         let c = -(rel.r * gb.n1);
         let d = -(rel.r * gb.n2);
         let d_x_c = rel.r * gb.n2_x_n1;
-        let pb0 = rel.r * b.vertex(gb.v0 as usize) + rel.t;
-        let pb1 = rel.r * b.vertex(gb.v1 as usize) + rel.t;
         // Four of A's edges at a time (`EdgeLanes`): the arc test's dot products lane by
         // lane, in the scalar form's order of operations, so the same pairs pass.
         for (block, l) in a.hull.edge_lanes.iter().enumerate() {
+            let lanes = a_lanes.get(block).copied().unwrap_or(0x0f);
+            if lanes == 0 {
+                continue;
+            }
             let dot = |v: Vec3, n: &[[f32; 4]; 3]| -> [f32; 4] {
                 let mut out = [0.0f32; 4];
                 for (k, o) in out.iter_mut().enumerate() {
@@ -311,7 +369,8 @@ pub(crate) fn hull_hull(a: &Poly, b: &Poly, speculative: f32, cache: &mut SatCac
             let (adc, bdc) = (dot(d_x_c, &l.n1), dot(d_x_c, &l.n2));
             let mut pass = [false; 4];
             for (k, p) in pass.iter_mut().enumerate() {
-                *p = (cba[k] * dba[k] < 0.0) & (adc[k] * bdc[k] < 0.0) & (cba[k] * bdc[k] > 0.0);
+                *p =
+                    (lanes >> k & 1 != 0) & (cba[k] * dba[k] < 0.0) & (adc[k] * bdc[k] < 0.0) & (cba[k] * bdc[k] > 0.0);
             }
             if pass == [false; 4] {
                 continue;
@@ -664,6 +723,78 @@ mod tests {
         assert!(
             touching > steps / 2 && held > steps / 4,
             "{steps} steps, {touching} touching, {held} held"
+        );
+    }
+
+    /// The edge pairs' pruning under overlap changes nothing: random hull pairs (and
+    /// boxes against hulls) overlapping by up to 6 cm, at random poses, give the same
+    /// manifold bit for bit with and without it, edge contacts among them.
+    #[test]
+    fn edge_pruning_keeps_the_deciding_pair() {
+        let mut s = 0x7a3d_91c4_05e2_b86fu64;
+        let mut rnd = move || {
+            s ^= s << 13;
+            s ^= s >> 7;
+            s ^= s << 17;
+            (s >> 40) as f32 / (1u64 << 24) as f32
+        };
+        let cloud = |rnd: &mut dyn FnMut() -> f32| -> Vec<Vec3> {
+            let n = 8 + (rnd() * 30.0) as usize;
+            let axes = Vec3::new(0.2 + 0.3 * rnd(), 0.2 + 0.3 * rnd(), 0.2 + 0.3 * rnd());
+            (0..n)
+                .map(|_| Vec3::new(rnd() - 0.5, rnd() - 0.5, rnd() - 0.5) * 2.0 * axes)
+                .collect()
+        };
+        let quat = |rnd: &mut dyn FnMut() -> f32| {
+            Quat::from_xyzw(rnd() - 0.5, rnd() - 0.5, rnd() - 0.5, rnd() - 0.5).normalize()
+        };
+        let (mut overlapping, mut edge_contacts) = (0, 0);
+        for trial in 0..3000 {
+            let ha = build(&cloud(&mut rnd), &HullSettings::default()).unwrap();
+            let hb = build(&cloud(&mut rnd), &HullSettings::default()).unwrap();
+            let xa = Transform::new(Vec3::ZERO, quat(&mut rnd));
+            let half = Vec3::new(0.1 + 0.4 * rnd(), 0.1 + 0.4 * rnd(), 0.1 + 0.4 * rnd());
+            let a = if trial % 5 == 0 {
+                Poly::boxed(Vec3::ZERO, Quat::IDENTITY, half, &xa)
+            } else {
+                Poly::hull(&ha, &Transform::IDENTITY, 1.0, &xa)
+            };
+            // B moved in from far along a random direction until it touches, then pushed
+            // in by up to 6 cm.
+            let dir = Vec3::new(rnd() - 0.5, rnd() - 0.5, rnd() - 0.5).normalize();
+            let mut xb = Transform::new(dir * 3.0, quat(&mut rnd));
+            for _ in 0..40 {
+                let b = Poly::hull(&hb, &Transform::IDENTITY, 1.0, &xb);
+                let g = gjk::distance(
+                    &Own(&a),
+                    &InA {
+                        poly: &b,
+                        rel: Relative::new(&a, &b),
+                    },
+                );
+                if g.overlap || g.distance < 1.0e-4 {
+                    break;
+                }
+                xb.p -= dir * g.distance;
+            }
+            xb.p -= dir * 0.06 * rnd();
+            let b = Poly::hull(&hb, &Transform::IDENTITY, 1.0, &xb);
+            let pruned = hull_hull_with(&a, &b, 0.02, &mut SatCache::default(), true);
+            let full = hull_hull_with(&a, &b, 0.02, &mut SatCache::default(), false);
+            assert_eq!(format!("{pruned:?}"), format!("{full:?}"), "trial {trial}");
+            let g = gjk::distance(
+                &Own(&a),
+                &InA {
+                    poly: &b,
+                    rel: Relative::new(&a, &b),
+                },
+            );
+            overlapping += g.overlap as usize;
+            edge_contacts += (g.overlap && full.count == 1) as usize;
+        }
+        assert!(
+            overlapping > 2000 && edge_contacts > 300,
+            "{overlapping} overlapping, {edge_contacts} edge contacts"
         );
     }
 
