@@ -846,7 +846,7 @@ fn hulls_on_a_large_box_match_their_lowest_vertex() {
         let gap = rng.range(-0.03, 0.03);
         let p = Vec3::new(rng.range(-9.0, 9.0), gap - low, rng.range(-9.0, 9.0));
         let xf = Transform::new(p, q);
-        let mut cache = hearth::collision::narrow_phase::SatCache::None;
+        let mut cache = hearth::collision::narrow_phase::SatCache::default();
         for pass in 0..2 {
             let m = hearth::collision::narrow_phase::collide_cached(
                 &w.geometry,

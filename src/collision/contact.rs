@@ -69,7 +69,8 @@ pub struct Contact {
     pub multi: bool,
     /// Manifolds after the first (`multi` only; the storage is kept between steps).
     pub more: Vec<ChildManifold>,
-    /// The separating-axis feature that decided the last hull test (hull pairs only).
+    /// The separating-axis feature that decided the last hull test and its face hold (hull
+    /// pairs only).
     pub sat: SatCache,
     /// Event flags of the pair (`events.rs`: `CONTACT_EVENTS`, `HIT_EVENTS`, `SENSOR`,
     /// `SENSOR_EVENTS`), set at creation.
@@ -308,7 +309,7 @@ impl Contact {
             // Room for every manifold up front: a pair that first touches along a second
             // normal mid-game must not allocate in the step.
             more: Vec::with_capacity(if multi { MAX_MESH_MANIFOLDS - 1 } else { 0 }),
-            sat: SatCache::None,
+            sat: SatCache::default(),
             event_flags: 0,
             reported: false,
             disabled: false,

@@ -10,7 +10,7 @@ use crate::collision::contact::{Contact, FrictionImpulse, PointImpulse};
 use crate::collision::filter::Filter;
 use crate::collision::hull::{ConvexHull, EdgeGauss, EdgeLanes, Face, HalfEdge, Plane, VertexLanes};
 use crate::collision::mesh::bvh::Node as BvhNode;
-use crate::collision::narrow_phase::{Manifold, ManifoldPoint, SatCache};
+use crate::collision::narrow_phase::{FaceHold, Manifold, ManifoldPoint, SatCache, SatFeature};
 use crate::collision::shape::{Geometry, MassProperties, Shape, ShapeDef};
 use crate::dynamics::body::{Body, BodyType};
 use crate::dynamics::joints::{
@@ -546,19 +546,19 @@ impl Snap for Geometry {
     }
 }
 
-impl Snap for SatCache {
+impl Snap for SatFeature {
     fn put(&self, w: &mut Writer) {
         match *self {
-            SatCache::None => w.put_tag(0),
-            SatCache::FaceA(f) => {
+            SatFeature::None => w.put_tag(0),
+            SatFeature::FaceA(f) => {
                 w.put_tag(1);
                 f.put(w)
             }
-            SatCache::FaceB(f) => {
+            SatFeature::FaceB(f) => {
                 w.put_tag(2);
                 f.put(w)
             }
-            SatCache::Edges(a, b) => {
+            SatFeature::Edges(a, b) => {
                 w.put_tag(3);
                 a.put(w);
                 b.put(w)
@@ -566,14 +566,23 @@ impl Snap for SatCache {
         }
     }
     fn get(r: &mut Reader) -> ReadResult<Self> {
-        Ok(match r.tag("SAT cache", 4)? {
-            0 => SatCache::None,
-            1 => SatCache::FaceA(Snap::get(r)?),
-            2 => SatCache::FaceB(Snap::get(r)?),
-            _ => SatCache::Edges(Snap::get(r)?, Snap::get(r)?),
+        Ok(match r.tag("SAT feature", 4)? {
+            0 => SatFeature::None,
+            1 => SatFeature::FaceA(Snap::get(r)?),
+            2 => SatFeature::FaceB(Snap::get(r)?),
+            _ => SatFeature::Edges(Snap::get(r)?, Snap::get(r)?),
         })
     }
 }
+
+snap_struct!(FaceHold {
+    valid,
+    r,
+    t,
+    same,
+    other
+});
+snap_struct!(SatCache { feature, hold });
 
 impl Snap for JointKind {
     fn put(&self, w: &mut Writer) {

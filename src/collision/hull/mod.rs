@@ -352,19 +352,39 @@ impl ConvexHull {
         }
     }
 
-    /// Index of the vertex furthest along `d` (the core's support point).
+    /// Index of the vertex furthest along `d` (the core's support point): the first vertex
+    /// (lowest index) of largest `v · d`.
+    ///
+    /// The vertices are taken four at a time (`lanes`), each lane keeping its first
+    /// largest value and its index, then the lanes are merged by value with ties to the
+    /// lower index: the same vertex as one vertex at a time in index order, with the same
+    /// products (`x·dx + y·dy + z·dz`, no FMA). The last block's padding lanes copy the
+    /// last vertex, so they tie with it and lose to its lower index.
     #[inline]
     pub fn support_index(&self, d: Vec3) -> usize {
-        let mut best = 0;
-        let mut best_d = f32::MIN;
-        for (i, v) in self.vertices.iter().enumerate() {
-            let x = v.dot(d);
-            if x > best_d {
-                best_d = x;
-                best = i;
+        let mut m = [f32::MIN; 4];
+        let mut at = [0u32, 1, 2, 3];
+        for (i, b) in self.lanes.iter().enumerate() {
+            let base = 4 * i as u32;
+            for k in 0..4 {
+                let x = d.x * b.x[k] + d.y * b.y[k] + d.z * b.z[k];
+                let more = x > m[k];
+                m[k] = if more { x } else { m[k] };
+                at[k] = if more { base + k as u32 } else { at[k] };
             }
         }
-        best
+        let pick = |(ma, ia): (f32, u32), (mb, ib): (f32, u32)| {
+            if mb > ma || (mb == ma && ib < ia) {
+                (mb, ib)
+            } else {
+                (ma, ia)
+            }
+        };
+        let lo = pick((m[0], at[0]), (m[1], at[1]));
+        let hi = pick((m[2], at[2]), (m[3], at[3]));
+        // A lane that saw nothing above `f32::MIN` (NaN products) keeps its own number,
+        // and such lanes tie: all-NaN gives 0, as one at a time.
+        pick(lo, hi).1 as usize
     }
 
     /// Smallest `d · v` over the vertices: the support distance along `−d`, negated. The
@@ -397,5 +417,80 @@ impl ConvexHull {
     /// Bounds of the core in the hull's frame.
     pub fn local_bounds(&self) -> (Vec3, Vec3) {
         (self.min, self.max)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::builder::{build, HullSettings};
+    use super::*;
+
+    /// One vertex at a time in index order: the first vertex of largest `v · d`.
+    fn support_index_scalar(h: &ConvexHull, d: Vec3) -> usize {
+        let mut best = 0;
+        let mut best_d = f32::MIN;
+        for (i, v) in h.vertices.iter().enumerate() {
+            let x = v.dot(d);
+            if x > best_d {
+                best_d = x;
+                best = i;
+            }
+        }
+        best
+    }
+
+    /// The four-lane `support_index` picks the vertex one at a time does: random clouds
+    /// of 4 to 40 points (every padding of the last block) along random directions, the
+    /// axes and diagonals (ties on a cube and on hulls of grid points), zero and NaN.
+    #[test]
+    fn support_index_matches_one_at_a_time() {
+        let mut s = 0x1234_5678_9abc_def1u64;
+        let mut rnd = move || {
+            s ^= s << 13;
+            s ^= s >> 7;
+            s ^= s << 17;
+            (s >> 40) as f32 / (1u64 << 24) as f32 - 0.5
+        };
+        let mut dirs: Vec<Vec3> = vec![Vec3::ZERO, Vec3::splat(f32::NAN), Vec3::new(f32::NAN, 1.0, 0.0)];
+        for x in -1..=1 {
+            for y in -1..=1 {
+                for z in -1..=1 {
+                    dirs.push(Vec3::new(x as f32, y as f32, z as f32));
+                }
+            }
+        }
+        let mut hulls = Vec::new();
+        for n in 4..=40 {
+            let pts: Vec<Vec3> = (0..n).map(|_| Vec3::new(rnd(), rnd(), rnd())).collect();
+            hulls.push(build(&pts, &HullSettings::default()).unwrap());
+            // Points on a coarse grid: many equal projections along the axes.
+            let grid: Vec<Vec3> = (0..n)
+                .map(|_| Vec3::new(rnd(), rnd(), rnd()).map(|c| (c * 4.0).round() * 0.25))
+                .collect();
+            if let Ok(h) = build(&grid, &HullSettings::default()) {
+                hulls.push(h);
+            }
+        }
+        let mut padded = 0;
+        for h in &hulls {
+            padded += (h.vertices.len() % 4 != 0) as usize;
+            for d in dirs
+                .iter()
+                .copied()
+                .chain((0..64).map(|_| Vec3::new(rnd(), rnd(), rnd())))
+            {
+                assert_eq!(
+                    h.support_index(d),
+                    support_index_scalar(h, d),
+                    "{} vertices along {d}",
+                    h.vertices.len()
+                );
+            }
+        }
+        assert!(
+            hulls.len() > 60 && padded > 20,
+            "{} hulls, {padded} padded",
+            hulls.len()
+        );
     }
 }

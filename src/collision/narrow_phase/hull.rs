@@ -120,6 +120,14 @@ impl<'a> Poly<'a> {
         self.rot * p + self.pos
     }
 
+    /// A bound of the core's vertices' distance from its own origin (m): the bounding
+    /// sphere about the centre of mass, moved out by the centre's distance, scaled by the
+    /// largest scale (a box's unit-hull corners scale per axis).
+    #[inline]
+    pub fn reach(&self) -> f32 {
+        self.scale.max_element() * (self.hull.unit_mass.center.length() + self.hull.bound_radius)
+    }
+
     /// Centre of the core in its own frame.
     #[inline]
     pub fn center(&self) -> Vec3 {

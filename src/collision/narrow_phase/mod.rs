@@ -30,7 +30,7 @@ pub mod triangle;
 
 pub use mesh::{collide_triangles, MeshManifolds, MAX_MESH_MANIFOLDS};
 
-pub use hull_hull::SatCache;
+pub use hull_hull::{FaceHold, SatCache, SatFeature};
 
 use crate::collision::geometry_store::GeometryStore;
 use crate::collision::shape::Geometry;
@@ -93,7 +93,7 @@ pub fn collide(
     xf_b: &Transform,
     speculative: f32,
 ) -> Manifold {
-    collide_cached(store, a, xf_a, b, xf_b, speculative, &mut SatCache::None)
+    collide_cached(store, a, xf_a, b, xf_b, speculative, &mut SatCache::default())
 }
 
 /// [`collide`] with the pair's separating-axis cache (`SatCache`), kept by the caller
