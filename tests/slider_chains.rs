@@ -17,7 +17,7 @@
 #[path = "scenes/mod.rs"]
 #[allow(dead_code)]
 mod scenes;
-use hearth::joints::{HingeParams, SliderParams};
+use hearth::joints::{BallParams, HingeParams, SliderParams};
 use hearth::math::{Quat, Transform, Vec3};
 use hearth::{BodyDef, BodyHandle, BodyType, Geometry, JointDef, JointKind, ShapeDef, World};
 use scenes::energy;
@@ -107,14 +107,31 @@ fn free_slider() -> JointKind {
     JointKind::Slider(SliderParams::default())
 }
 
-/// What a seeded chain did: the worst joint error (m), energy rise (of the scale), speed
-/// (m/s), and the farthest a body got from where it started (m).
+/// What a seeded chain did: the worst joint error (m), energy rise (of the scale), energy
+/// rise beyond [`INTEGRATION_ERROR`] of the kinetic energy then (of the scale), speed (m/s),
+/// and the farthest a body got from where it started (m).
 #[derive(Debug, Default)]
 struct Run {
     gap: f32,
     rise: f64,
+    excess: f64,
     speed: f32,
     travel: f32,
+}
+
+/// The sub-steps' first-order integration error in energy, as a fraction of the kinetic
+/// energy: a body falling freely for `t` seconds at sub-step `h` is `g h t / 2` ahead of the
+/// exact fall (`g h² n(n+1)/2` against `g (n h)² / 2`), which over 10 s at 360 Hz is 0.14 m,
+/// against 490 m of fall: 3e-4 of the energy it gained. Chains falling hundreds of metres
+/// along rails change their energy by that order either way; 1e-3 of the kinetic energy is
+/// allowed for it.
+const INTEGRATION_ERROR: f64 = 1.0e-3;
+
+/// Free fall along a rail for the whole 10 s after a push of up to 3 m/s (m/s).
+const FREE_FALL: f32 = 9.81 * 10.0 + 10.0;
+
+fn kinetic_energy(w: &World, bodies: &[BodyHandle]) -> f64 {
+    bodies.iter().map(|&b| w.body(b).unwrap().kinetic_energy() as f64).sum()
 }
 
 /// A chain of 0.6 m links (0.6 × 0.2 × 0.2 m boxes, densities 100–1,000 kg/m³: mass ratios
@@ -169,20 +186,24 @@ fn chain(kinds: &[JointKind], seed: u64, steps: usize) -> Run {
         for j in &joints {
             run.gap = run.gap.max(joint_error(&w, j));
         }
-        run.rise = run.rise.max((energy(&w, &bodies) - e0) / scale);
+        let (e, kinetic) = (energy(&w, &bodies), kinetic_energy(&w, &bodies));
+        run.rise = run.rise.max((e - e0) / scale);
+        run.excess = run.excess.max((e - e0 - INTEGRATION_ERROR * kinetic) / scale);
     }
     run
 }
 
-/// Checks a set of runs against the bounds; returns the worst of each measure.
-fn check(runs: &[(String, Run)], max_rise: f64, max_gap: f32) -> Run {
+/// Checks a set of runs against the bounds (`max_rise` on `Run::rise`, or with `beyond`
+/// on `Run::excess`); returns the worst of each measure.
+fn check(runs: &[(String, Run)], max_rise: f64, beyond: bool, max_gap: f32, max_speed: f32) -> Run {
     let mut worst = Run::default();
     for (what, r) in runs {
-        assert!(r.rise < max_rise, "{what}: energy rose {} of the scale", r.rise);
+        let rise = if beyond { r.excess } else { r.rise };
+        assert!(rise < max_rise, "{what}: energy rose {rise} of the scale");
         assert!(r.gap < max_gap, "{what}: joint error {} m", r.gap);
-        // Free fall along a rail for the whole 10 s after a 3 m/s push.
-        assert!(r.speed < 9.81 * 10.0 + 10.0, "{what}: {} m/s", r.speed);
+        assert!(r.speed < max_speed, "{what}: {} m/s", r.speed);
         worst.rise = worst.rise.max(r.rise);
+        worst.excess = worst.excess.max(r.excess);
         worst.gap = worst.gap.max(r.gap);
         worst.speed = worst.speed.max(r.speed);
         worst.travel = worst.travel.max(r.travel);
@@ -204,7 +225,7 @@ fn hinge_then_unlimited_slider_holds_the_child_far_along_its_rail() {
         .map(|seed| (format!("hinge → slider, seed {seed}"), chain(&kinds, seed, 600)))
         .collect();
     let far = runs.iter().filter(|(_, r)| r.travel > 100.0).count();
-    let worst = check(&runs, 0.01, 0.005);
+    let worst = check(&runs, 0.01, false, 0.005, FREE_FALL);
     println!(
         "hinge → slider: {far} of 60 slid past 100 m (farthest {:.0} m); worst energy rise {:.2e} of the scale, joint error {:.2} mm, speed {:.1} m/s",
         worst.travel,
@@ -297,4 +318,67 @@ fn bead_on_a_spinning_rod_keeps_angular_momentum_and_energy() {
     assert!(dl < 2e-3, "angular momentum drifted by {dl}");
     assert!(de < 5e-4, "energy drifted by {de}");
     assert!(err < 2e-3, "joint error {err}");
+}
+
+/// Seeded random chains of two to four links with an unlimited slider between dynamic bodies
+/// and random kinds around it (120 chains, 10 s each, the same random links, frames, masses
+/// and pushes as above): the first joint to the world a hinge, ball or unlimited slider;
+/// then an unlimited slider; then up to two more of hinge, ball, fixed or unlimited slider.
+/// Before trees with sliders responded rigidly, 60 of them blew up (slider → slider as well
+/// as hinge → slider), energy up to ×6,700 of the scale.
+///
+/// The energy never rises by more than 1 % of the scale beyond [`INTEGRATION_ERROR`] of the
+/// kinetic energy then (measured worst 9.4e-4 of the scale; without that allowance the worst
+/// is 0.13 of the scale, hinge → slider → slider seed 26, two links 250 and 390 m down their
+/// rails).
+/// The state stays finite, and no body passes 1.5 times free fall for 10 s after the push
+/// (162 m/s; measured 109 m/s: with two sliders a heavy link falling along its rail can
+/// drive a light one along its own faster than free fall). The joint error (`joint_error`) stays under 2.5 cm: measured worst 1.8 cm (0.018 rad of
+/// the anchors' direction off the axis) in ball → slider → fixed → ball seed 115, whose links
+/// spin about the rail at 7 rad/s 390 m apart (the rotation lock lags by 8e-4 rad at that
+/// spin, and the anchor drifts across the axis beyond it; as large before the change); and
+/// 1.6 cm in ball → slider → hinge → ball seed 112; every chain not hanging from a ball joint
+/// under 6 mm.
+#[test]
+fn seeded_random_chains_with_unlimited_sliders_gain_no_energy() {
+    let mut runs = Vec::new();
+    for seed in 0..120u64 {
+        let mut pick = scenes::Rng(0xc4a1_0000 + seed * 104_729);
+        let first = match pick.next_u32() % 3 {
+            0 => JointKind::Hinge(HingeParams::default()),
+            1 => JointKind::Ball(BallParams::default()),
+            _ => free_slider(),
+        };
+        let mut kinds = vec![first, free_slider()];
+        for _ in 0..pick.next_u32() % 3 {
+            kinds.push(match pick.next_u32() % 4 {
+                0 => JointKind::Hinge(HingeParams::default()),
+                1 => JointKind::Ball(BallParams::default()),
+                2 => JointKind::Fixed,
+                _ => free_slider(),
+            });
+        }
+        let names: Vec<&str> = kinds
+            .iter()
+            .map(|k| match k {
+                JointKind::Hinge(_) => "hinge",
+                JointKind::Ball(_) => "ball",
+                JointKind::Fixed => "fixed",
+                _ => "slider",
+            })
+            .collect();
+        runs.push((
+            format!("{} seed {seed}", names.join(" → ")),
+            chain(&kinds, 1000 + seed, 600),
+        ));
+    }
+    let worst = check(&runs, 0.01, true, 0.025, 1.5 * FREE_FALL);
+    println!(
+        "random slider chains: worst energy rise {:.2e} of the scale ({:.2e} beyond the integration error), joint error {:.2} mm, speed {:.1} m/s, travel {:.0} m",
+        worst.rise,
+        worst.excess,
+        worst.gap * 1e3,
+        worst.speed,
+        worst.travel
+    );
 }
