@@ -502,10 +502,10 @@ fn random_chain(locks: u8, first: u32, seed: u64, steps: usize) -> RandomRun {
 /// under 6 cm (measured worst 4.0 cm: random frames make many chains over-constrained under
 /// their locks, solved by Gauss–Seidel outside the forest).
 ///
-/// Mask 0 seed 0 (hinge to the world, limited slider, ball, ball) used to whip apart, joint
-/// error 0.74 m and 173 m/s: the soft response of the forest's slider tree
-/// (`tree.rs`, trees with a slider respond rigidly in the biased sweep now; see
-/// `tests/slider_chains.rs`).
+/// Mask 0 seed 0 (a hinge to the world, a slider without limits further down) used to whip
+/// apart, joint error 0.74 m and 173 m/s: the soft response of the forest's slider tree
+/// (`tree.rs`: trees with a slider without limits or motor respond rigidly in the biased
+/// sweep now; see `tests/slider_chains.rs`).
 #[test]
 fn seeded_random_locked_chains_of_every_joint_kind() {
     let mut worst: Vec<RandomRun> = Vec::new();
