@@ -16,10 +16,11 @@
 //! Baumgarte bias was tried first and a 20-link chain hanging at rest went unstable with any
 //! bias (the warm-started impulses pump the chain's axial mode); the soft row's leak damps it.
 //! The price is a sag of `load / (effective mass · ω²)`, tiny where the forest's exact
-//! effective mass applies. Limits are one-sided rows that act speculatively (a gap may close
-//! within the sub-step, no more). Motors are velocity rows clamped by their largest force or
-//! torque times the sub-step. Springs are soft rows ([`Softness`]) with the spring's own
-//! frequency and damping.
+//! effective mass applies. A forest tree with a slider without limits or motor responds
+//! rigidly with the same bias in the biased sweep too (`Forest::solve`). Limits are one-sided
+//! rows that act speculatively (a gap may close within the sub-step, no more). Motors are
+//! velocity rows clamped by their largest force or torque times the sub-step. Springs are
+//! soft rows ([`Softness`]) with the spring's own frequency and damping.
 
 use super::rows::Eq;
 use super::tree::Forest;

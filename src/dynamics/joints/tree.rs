@@ -61,6 +61,9 @@ struct Node {
     /// Number of rows of the parent joint and their first index in the per-row arrays.
     k: u32,
     off: u32,
+    /// The node's tree has a slider without limits or motor: its rows respond rigidly (with
+    /// the position bias) in the biased sweep too (`Forest::solve`).
+    rigid: bool,
 }
 
 /// The spanning forest and its factorisation (buffers reused across steps). Per-row data is
@@ -220,6 +223,21 @@ impl Forest {
                 c.slider_point = if node.child_is_a { 0.0 } else { 1.0 };
             }
         }
+        // Trees with a slider without limits or motor: see `Forest::solve`. A tree is a run of
+        // nodes from a root.
+        let mut start = 0;
+        for end in 1..=self.nodes.len() {
+            if end < self.nodes.len() && self.nodes[end].parent != NONE {
+                continue;
+            }
+            let slider = self.nodes[start..end]
+                .iter()
+                .any(|n| n.joint != NONE && matches!(constraints[n.joint as usize].kind, super::JointKind::Slider(p) if !super::slider::has_axial_rows(&p)));
+            for n in &mut self.nodes[start..end] {
+                n.rigid = slider;
+            }
+            start = end;
+        }
         let rows = self.nodes.last().map_or(0, |n| (n.off + n.k) as usize);
         self.dinv.resize(self.nodes.len(), [0.0; 21]);
         for v in [&mut self.jc, &mut self.jp, &mut self.y, &mut self.sinv] {
@@ -256,6 +274,7 @@ impl Forest {
                 child_is_a,
                 k,
                 off,
+                rigid: false,
             });
             for k in (self.head[body as usize]..self.head[body as usize + 1]).rev() {
                 let (to, ci) = self.adj[k as usize];
@@ -366,6 +385,22 @@ impl Forest {
     /// Solves the tree joints' equality rows exactly against the current velocities, rigid
     /// (relax sweep) or as Box2D's stiff soft constraint (biased sweep, `ctx`), and applies the
     /// impulses. Refactors first when the positions moved (`positions_moved`) or the step is new.
+    ///
+    /// A tree with a slider without limits or motor responds rigidly in the biased sweep too,
+    /// with the same position bias (a Baumgarte feedback; the exact solve leaves no
+    /// Gauss–Seidel mode for it to pump). A slider's rows act at a point that moves along one of its bodies as it slides,
+    /// so the impulses kept from the last sub-step no longer balance on that body: a link of
+    /// 0.6 m hinged to the world holding a child slid 60 m along it balances the hinge's torque
+    /// against the child's weight at a 60 m lever, and re-applied at the moved lever (or leaked
+    /// in proportion, as the soft response does) they left the light link a velocity error of
+    /// rad/s. The soft response takes only its mass scale (95 %) of it; the rest turned the
+    /// link, which moved the rail at the child by the whole lever, which the next correction
+    /// answered with a larger impulse. The loop's gain grows with the lever and the sliding
+    /// speed: past some 50 m at 20 m/s it gained, and 32 of 60 random hinge → slider chains
+    /// blew up (`tests/slider_chains.rs`). Rigid, the error is answered in full each sweep.
+    /// Not with a slider's limit or motor: those rows are solved before the tree against the
+    /// two bodies alone, and against a rigid tree a 20-link chain with a 100× end mass hanging
+    /// on a limited slider bounced between the limits at 30 m/s; it keeps the soft response.
     pub fn solve(
         &mut self,
         constraints: &mut [JointConstraint],
@@ -438,7 +473,11 @@ impl Forest {
                 // applied joint by joint through the rows.
                 let (mut b, _) = load(c, vel, states);
                 for r in off..off + k {
-                    let d = ctx.respond(self.z[r] as f32, self.slot[r].get(&c.imp));
+                    let d = if node.rigid {
+                        self.z[r] as f32
+                    } else {
+                        ctx.respond(self.z[r] as f32, self.slot[r].get(&c.imp))
+                    };
                     self.slot[r].add(&mut c.imp, d);
                     b.apply_row(&self.row(&node, r), d);
                 }
