@@ -10,70 +10,11 @@ use hearth::dynamics::body::{LOCK_ANGULAR_X, LOCK_ANGULAR_Y, LOCK_LINEAR_Z};
 use hearth::joints::HingeParams;
 use hearth::math::{Quat, Transform, Vec3};
 use hearth::{BodyDef, BodyHandle, BodyType, Geometry, JointDef, JointKind, ShapeDef, World};
-use scenes::{assert_locked, energy};
+use scenes::{assert_locked, chain_link as link, energy, join, ChainJoint as Joint};
 
 const DT: f32 = 1.0 / 60.0;
 /// The 2.5D lock: the XY plane, turning only about Z.
 const PLANAR: u8 = LOCK_LINEAR_Z | LOCK_ANGULAR_X | LOCK_ANGULAR_Y;
-
-/// A dynamic box with locks; `collide` false puts it in a group that never collides.
-fn link(w: &mut World, xf: Transform, locks: u8, h: Vec3, density: f32, collide: bool) -> BodyHandle {
-    let b = w
-        .create_body(&BodyDef {
-            body_type: BodyType::Dynamic,
-            transform: xf,
-            locked_axes: locks,
-            ..Default::default()
-        })
-        .unwrap();
-    let mut def = ShapeDef {
-        density,
-        ..Default::default()
-    };
-    if !collide {
-        def.filter.group_index = -1;
-    }
-    let g = Geometry::Box {
-        center: Vec3::ZERO,
-        rotation: Quat::IDENTITY,
-        half_extents: h,
-    };
-    w.create_shape(b, &def, &g).unwrap();
-    b
-}
-
-/// One joint of a chain: the child, its parent (None: the world) and the joint frames on
-/// each (the parent's in world space for the world).
-struct Joint {
-    handle: hearth::joints::JointHandle,
-    child: BodyHandle,
-    parent: Option<BodyHandle>,
-    on_child: Transform,
-    on_parent: Transform,
-}
-
-/// Joins `child` to `parent` (or the world) with a joint of `kind` whose frame is `frame`
-/// (world space) on both.
-fn join(w: &mut World, kind: JointKind, child: BodyHandle, parent: Option<BodyHandle>, frame: Transform) -> Joint {
-    let mut def = JointDef::new(kind);
-    def.body_a = child;
-    def.frame_a = w.transform(child).unwrap().inv_mul(&frame);
-    def.frame_b = match parent {
-        Some(p) => {
-            def.body_b = p;
-            w.transform(p).unwrap().inv_mul(&frame)
-        }
-        None => frame,
-    };
-    let handle = w.create_joint(&def).unwrap();
-    Joint {
-        handle,
-        child,
-        parent,
-        on_child: def.frame_a,
-        on_parent: def.frame_b,
-    }
-}
 
 /// Largest error of the joints: the distance between the anchors (less the length of a
 /// distance joint; sliders left out).

@@ -19,63 +19,14 @@
 mod scenes;
 use hearth::joints::{BallParams, HingeParams, SliderParams};
 use hearth::math::{Quat, Transform, Vec3};
-use hearth::{BodyDef, BodyHandle, BodyType, Geometry, JointDef, JointKind, ShapeDef, World};
-use scenes::energy;
+use hearth::{BodyHandle, JointKind, World};
+use scenes::{chain_link, energy, join, ChainJoint as Joint};
 
 const DT: f32 = 1.0 / 60.0;
 
 /// A dynamic box that collides with nothing (its own group).
 fn link(w: &mut World, xf: Transform, h: Vec3, density: f32) -> BodyHandle {
-    let b = w
-        .create_body(&BodyDef {
-            body_type: BodyType::Dynamic,
-            transform: xf,
-            ..Default::default()
-        })
-        .unwrap();
-    let mut def = ShapeDef {
-        density,
-        ..Default::default()
-    };
-    def.filter.group_index = -1;
-    let g = Geometry::Box {
-        center: Vec3::ZERO,
-        rotation: Quat::IDENTITY,
-        half_extents: h,
-    };
-    w.create_shape(b, &def, &g).unwrap();
-    b
-}
-
-/// One joint of a chain: the child (body A), its parent (B, None: the world) and the frames.
-struct Joint {
-    handle: hearth::joints::JointHandle,
-    child: BodyHandle,
-    parent: Option<BodyHandle>,
-    on_child: Transform,
-    on_parent: Transform,
-}
-
-/// Joins `child` to `parent` (or the world) with a joint of `kind` whose frame is `frame`
-/// (world space) on both.
-fn join(w: &mut World, kind: JointKind, child: BodyHandle, parent: Option<BodyHandle>, frame: Transform) -> Joint {
-    let mut def = JointDef::new(kind);
-    def.body_a = child;
-    def.frame_a = w.transform(child).unwrap().inv_mul(&frame);
-    def.frame_b = match parent {
-        Some(p) => {
-            def.body_b = p;
-            w.transform(p).unwrap().inv_mul(&frame)
-        }
-        None => frame,
-    };
-    Joint {
-        handle: w.create_joint(&def).unwrap(),
-        child,
-        parent,
-        on_child: def.frame_a,
-        on_parent: def.frame_b,
-    }
+    chain_link(w, xf, 0, h, density, false)
 }
 
 /// A joint's error (m): for the others the anchors' distance, or for a hinge its axes'

@@ -640,3 +640,70 @@ pub fn dynamic_body(world: &mut World, xf: Transform, def: &ShapeDef, g: &Geomet
     world.create_shape(b, def, g).unwrap();
     b
 }
+
+// ---------------------------------------------------------------- joint chains
+
+/// A dynamic box link of a chain with `locks`; `collide` false puts it in a group that never
+/// collides.
+pub fn chain_link(w: &mut World, xf: Transform, locks: u8, h: Vec3, density: f32, collide: bool) -> BodyHandle {
+    let b = w
+        .create_body(&BodyDef {
+            body_type: BodyType::Dynamic,
+            transform: xf,
+            locked_axes: locks,
+            ..Default::default()
+        })
+        .unwrap();
+    let mut def = ShapeDef {
+        density,
+        ..Default::default()
+    };
+    if !collide {
+        def.filter.group_index = -1;
+    }
+    let g = Geometry::Box {
+        center: Vec3::ZERO,
+        rotation: Quat::IDENTITY,
+        half_extents: h,
+    };
+    w.create_shape(b, &def, &g).unwrap();
+    b
+}
+
+/// One joint of a chain: the child (body A), its parent (B, None: the world) and the joint
+/// frames on each (the parent's in world space for the world).
+pub struct ChainJoint {
+    pub handle: hearth::joints::JointHandle,
+    pub child: BodyHandle,
+    pub parent: Option<BodyHandle>,
+    pub on_child: Transform,
+    pub on_parent: Transform,
+}
+
+/// Joins `child` to `parent` (or the world) with a joint of `kind` whose frame is `frame`
+/// (world space) on both.
+pub fn join(
+    w: &mut World,
+    kind: hearth::JointKind,
+    child: BodyHandle,
+    parent: Option<BodyHandle>,
+    frame: Transform,
+) -> ChainJoint {
+    let mut def = hearth::JointDef::new(kind);
+    def.body_a = child;
+    def.frame_a = w.transform(child).unwrap().inv_mul(&frame);
+    def.frame_b = match parent {
+        Some(p) => {
+            def.body_b = p;
+            w.transform(p).unwrap().inv_mul(&frame)
+        }
+        None => frame,
+    };
+    ChainJoint {
+        handle: w.create_joint(&def).unwrap(),
+        child,
+        parent,
+        on_child: def.frame_a,
+        on_parent: def.frame_b,
+    }
+}

@@ -607,20 +607,57 @@ mod tests {
     use crate::collision::hull::builder::{build, HullSettings};
     use crate::math::{Quat, Transform};
 
+    /// xorshift64 randomness for the tests: floats in [0, 1).
+    struct Rnd(u64);
+
+    impl Rnd {
+        fn f(&mut self) -> f32 {
+            self.0 ^= self.0 << 13;
+            self.0 ^= self.0 >> 7;
+            self.0 ^= self.0 << 17;
+            (self.0 >> 40) as f32 / (1u64 << 24) as f32
+        }
+
+        /// A point of the box `scale` centred on the origin.
+        fn point(&mut self, scale: Vec3) -> Vec3 {
+            Vec3::new(self.f() - 0.5, self.f() - 0.5, self.f() - 0.5) * scale
+        }
+
+        fn quat(&mut self) -> Quat {
+            Quat::from_xyzw(self.f() - 0.5, self.f() - 0.5, self.f() - 0.5, self.f() - 0.5).normalize()
+        }
+
+        /// `min` to `min + span` points in a box whose half-sizes are `base + extra · f()`.
+        fn cloud(&mut self, min: usize, span: f32, base: f32, extra: f32) -> Vec<Vec3> {
+            let n = min + (self.f() * span) as usize;
+            let axes = Vec3::new(
+                base + extra * self.f(),
+                base + extra * self.f(),
+                base + extra * self.f(),
+            );
+            (0..n).map(|_| self.point(2.0 * axes)).collect()
+        }
+    }
+
+    /// GJK between two polytopes, B seen from A.
+    fn gjk_of(a: &Poly, b: &Poly) -> gjk::DistanceOutput {
+        gjk::distance(
+            &Own(a),
+            &InA {
+                poly: b,
+                rel: Relative::new(a, b),
+            },
+        )
+    }
+
     /// `edge_lanes` holds `edge_gauss`'s arcs lane for lane, and its padding lanes (zero
     /// normals) fail the arc test against any arc, so the four-at-a-time loop visits the
     /// same pairs as one edge at a time.
     #[test]
     fn edge_lanes_hold_the_arcs() {
-        let mut s = 0x9e37_79b9u64;
-        let mut rnd = move || {
-            s ^= s << 13;
-            s ^= s >> 7;
-            s ^= s << 17;
-            (s >> 40) as f32 / (1u64 << 24) as f32 - 0.5
-        };
+        let mut rnd = Rnd(0x9e37_79b9);
         for n in 4..40 {
-            let pts: Vec<Vec3> = (0..n).map(|_| Vec3::new(rnd(), rnd(), rnd())).collect();
+            let pts: Vec<Vec3> = (0..n).map(|_| rnd.point(Vec3::ONE)).collect();
             let h = build(&pts, &HullSettings::default()).unwrap();
             assert_eq!(h.edge_lanes.len(), h.edge_gauss.len().div_ceil(4));
             for (ka, g) in h.edge_gauss.iter().enumerate() {
@@ -633,7 +670,7 @@ mod tests {
             }
             for k in h.edge_gauss.len()..4 * h.edge_lanes.len() {
                 let l = &h.edge_lanes[k / 4];
-                let c = Vec3::new(rnd(), rnd(), rnd());
+                let c = rnd.point(Vec3::ONE);
                 let cba = c.x * l.n2_x_n1[0][k % 4] + c.y * l.n2_x_n1[1][k % 4] + c.z * l.n2_x_n1[2][k % 4];
                 assert_eq!(cba * cba, 0.0, "padding lane {k} crosses an arc");
             }
@@ -647,31 +684,16 @@ mod tests {
     /// the face loops in many of the steps.
     #[test]
     fn face_hold_matches_the_full_search() {
-        let mut s = 0x0dd1_b1a5_e5e5_7a11u64;
-        let mut rnd = move || {
-            s ^= s << 13;
-            s ^= s >> 7;
-            s ^= s << 17;
-            (s >> 40) as f32 / (1u64 << 24) as f32
-        };
-        let cloud = |rnd: &mut dyn FnMut() -> f32| -> Vec<Vec3> {
-            let n = 12 + (rnd() * 13.0) as usize;
-            let axes = Vec3::new(0.25 + 0.25 * rnd(), 0.25 + 0.25 * rnd(), 0.25 + 0.25 * rnd());
-            (0..n)
-                .map(|_| Vec3::new(rnd() - 0.5, rnd() - 0.5, rnd() - 0.5) * 2.0 * axes)
-                .collect()
-        };
+        let mut rnd = Rnd(0x0dd1_b1a5_e5e5_7a11);
+        let cloud = |rnd: &mut Rnd| rnd.cloud(12, 13.0, 0.25, 0.25);
         let (mut steps, mut held, mut touching) = (0, 0, 0);
         for trial in 0..200 {
             let ha = build(&cloud(&mut rnd), &HullSettings::default()).unwrap();
             let hb = build(&cloud(&mut rnd), &HullSettings::default()).unwrap();
-            let quat = |rnd: &mut dyn FnMut() -> f32| {
-                Quat::from_xyzw(rnd() - 0.5, rnd() - 0.5, rnd() - 0.5, rnd() - 0.5).normalize()
-            };
-            let xa = Transform::new(Vec3::ZERO, quat(&mut rnd));
-            let (qb, half) = (quat(&mut rnd), Vec3::new(0.2 + rnd(), 0.1 + rnd(), 0.3 + rnd()) * 0.5);
+            let xa = Transform::new(Vec3::ZERO, rnd.quat());
+            let (qb, half) = (rnd.quat(), Vec3::new(0.2 + rnd.f(), 0.1 + rnd.f(), 0.3 + rnd.f()) * 0.5);
             // B placed above A along a random direction, then lowered to about touching.
-            let dir = Vec3::new(rnd() - 0.5, rnd() - 0.5, rnd() - 0.5).normalize();
+            let dir = Vec3::new(rnd.f() - 0.5, rnd.f() - 0.5, rnd.f() - 0.5).normalize();
             let mut xb = Transform::new(dir * 2.0, qb);
             let place = |xb: &Transform| {
                 let a = if trial % 4 == 0 {
@@ -683,26 +705,20 @@ mod tests {
             };
             for _ in 0..40 {
                 let (a, b) = place(&xb);
-                let g = gjk::distance(
-                    &Own(&a),
-                    &InA {
-                        poly: &b,
-                        rel: Relative::new(&a, &b),
-                    },
-                );
+                let g = gjk_of(&a, &b);
                 if g.overlap || g.distance < 0.002 {
                     break;
                 }
-                xb.p -= dir * (g.distance - 0.001 * rnd());
+                xb.p -= dir * (g.distance - 0.001 * rnd.f());
             }
             let mut cache = SatCache::default();
             for _ in 0..60 {
                 // Millimetres and fractions of a degree per step, now and then more.
-                let big = if rnd() < 0.1 { 10.0 } else { 1.0 };
-                let dp = Vec3::new(rnd() - 0.5, rnd() - 0.5, rnd() - 0.5) * 0.004 * big;
-                let axis = Vec3::new(rnd() - 0.5, rnd() - 0.5, rnd() - 0.5).normalize();
-                xb.p += dp - dir * 0.0005 * (rnd() - 0.4);
-                xb.q = (Quat::from_axis_angle(axis, 0.01 * big * (rnd() - 0.5)) * xb.q).normalize();
+                let big = if rnd.f() < 0.1 { 10.0 } else { 1.0 };
+                let dp = Vec3::new(rnd.f() - 0.5, rnd.f() - 0.5, rnd.f() - 0.5) * 0.004 * big;
+                let axis = Vec3::new(rnd.f() - 0.5, rnd.f() - 0.5, rnd.f() - 0.5).normalize();
+                xb.p += dp - dir * 0.0005 * (rnd.f() - 0.4);
+                xb.q = (Quat::from_axis_angle(axis, 0.01 * big * (rnd.f() - 0.5)) * xb.q).normalize();
                 let (a, b) = place(&xb);
                 let rel = Relative::new(&a, &b);
                 if cache.hold.valid {
@@ -731,29 +747,14 @@ mod tests {
     /// manifold bit for bit with and without it, edge contacts among them.
     #[test]
     fn edge_pruning_keeps_the_deciding_pair() {
-        let mut s = 0x7a3d_91c4_05e2_b86fu64;
-        let mut rnd = move || {
-            s ^= s << 13;
-            s ^= s >> 7;
-            s ^= s << 17;
-            (s >> 40) as f32 / (1u64 << 24) as f32
-        };
-        let cloud = |rnd: &mut dyn FnMut() -> f32| -> Vec<Vec3> {
-            let n = 8 + (rnd() * 30.0) as usize;
-            let axes = Vec3::new(0.2 + 0.3 * rnd(), 0.2 + 0.3 * rnd(), 0.2 + 0.3 * rnd());
-            (0..n)
-                .map(|_| Vec3::new(rnd() - 0.5, rnd() - 0.5, rnd() - 0.5) * 2.0 * axes)
-                .collect()
-        };
-        let quat = |rnd: &mut dyn FnMut() -> f32| {
-            Quat::from_xyzw(rnd() - 0.5, rnd() - 0.5, rnd() - 0.5, rnd() - 0.5).normalize()
-        };
+        let mut rnd = Rnd(0x7a3d_91c4_05e2_b86f);
+        let cloud = |rnd: &mut Rnd| rnd.cloud(8, 30.0, 0.2, 0.3);
         let (mut overlapping, mut edge_contacts) = (0, 0);
         for trial in 0..3000 {
             let ha = build(&cloud(&mut rnd), &HullSettings::default()).unwrap();
             let hb = build(&cloud(&mut rnd), &HullSettings::default()).unwrap();
-            let xa = Transform::new(Vec3::ZERO, quat(&mut rnd));
-            let half = Vec3::new(0.1 + 0.4 * rnd(), 0.1 + 0.4 * rnd(), 0.1 + 0.4 * rnd());
+            let xa = Transform::new(Vec3::ZERO, rnd.quat());
+            let half = Vec3::new(0.1 + 0.4 * rnd.f(), 0.1 + 0.4 * rnd.f(), 0.1 + 0.4 * rnd.f());
             let a = if trial % 5 == 0 {
                 Poly::boxed(Vec3::ZERO, Quat::IDENTITY, half, &xa)
             } else {
@@ -761,34 +762,22 @@ mod tests {
             };
             // B moved in from far along a random direction until it touches, then pushed
             // in by up to 6 cm.
-            let dir = Vec3::new(rnd() - 0.5, rnd() - 0.5, rnd() - 0.5).normalize();
-            let mut xb = Transform::new(dir * 3.0, quat(&mut rnd));
+            let dir = Vec3::new(rnd.f() - 0.5, rnd.f() - 0.5, rnd.f() - 0.5).normalize();
+            let mut xb = Transform::new(dir * 3.0, rnd.quat());
             for _ in 0..40 {
                 let b = Poly::hull(&hb, &Transform::IDENTITY, 1.0, &xb);
-                let g = gjk::distance(
-                    &Own(&a),
-                    &InA {
-                        poly: &b,
-                        rel: Relative::new(&a, &b),
-                    },
-                );
+                let g = gjk_of(&a, &b);
                 if g.overlap || g.distance < 1.0e-4 {
                     break;
                 }
                 xb.p -= dir * g.distance;
             }
-            xb.p -= dir * 0.06 * rnd();
+            xb.p -= dir * 0.06 * rnd.f();
             let b = Poly::hull(&hb, &Transform::IDENTITY, 1.0, &xb);
             let pruned = hull_hull_with(&a, &b, 0.02, &mut SatCache::default(), true);
             let full = hull_hull_with(&a, &b, 0.02, &mut SatCache::default(), false);
             assert_eq!(format!("{pruned:?}"), format!("{full:?}"), "trial {trial}");
-            let g = gjk::distance(
-                &Own(&a),
-                &InA {
-                    poly: &b,
-                    rel: Relative::new(&a, &b),
-                },
-            );
+            let g = gjk_of(&a, &b);
             overlapping += g.overlap as usize;
             edge_contacts += (g.overlap && full.count == 1) as usize;
         }
@@ -803,29 +792,18 @@ mod tests {
     /// directions — separates the cores by more than GJK's distance (or its overlap bound).
     #[test]
     fn gjk_bounds_every_axis_separation() {
-        let mut s = 0x2545_f491_4f6c_dd1du64;
-        let mut rnd = move || {
-            s ^= s << 13;
-            s ^= s >> 7;
-            s ^= s << 17;
-            (s >> 40) as f32 / (1u64 << 24) as f32
-        };
-        let cloud = |rnd: &mut dyn FnMut() -> f32| -> Vec<Vec3> {
-            let n = 8 + (rnd() * 16.0) as usize;
-            (0..n)
-                .map(|_| Vec3::new(rnd() - 0.5, rnd() - 0.5, rnd() - 0.5) * Vec3::new(0.8, 0.6, 0.7))
-                .collect()
+        let mut rnd = Rnd(0x2545_f491_4f6c_dd1d);
+        let cloud = |rnd: &mut Rnd| {
+            let n = 8 + (rnd.f() * 16.0) as usize;
+            (0..n).map(|_| rnd.point(Vec3::new(0.8, 0.6, 0.7))).collect::<Vec<_>>()
         };
         let mut checked = 0;
         for _ in 0..300 {
             let ha = build(&cloud(&mut rnd), &HullSettings::default()).unwrap();
             let hb = build(&cloud(&mut rnd), &HullSettings::default()).unwrap();
-            let quat = |rnd: &mut dyn FnMut() -> f32| {
-                Quat::from_xyzw(rnd() - 0.5, rnd() - 0.5, rnd() - 0.5, rnd() - 0.5).normalize()
-            };
-            let xa = Transform::new(Vec3::ZERO, quat(&mut rnd));
-            let dir = Vec3::new(rnd() - 0.5, rnd() - 0.5, rnd() - 0.5).normalize();
-            let xb = Transform::new(dir * (0.3 + 0.5 * rnd()), quat(&mut rnd));
+            let xa = Transform::new(Vec3::ZERO, rnd.quat());
+            let dir = Vec3::new(rnd.f() - 0.5, rnd.f() - 0.5, rnd.f() - 0.5).normalize();
+            let xb = Transform::new(dir * (0.3 + 0.5 * rnd.f()), rnd.quat());
             let a = Poly::hull(&ha, &Transform::IDENTITY, 1.0, &xa);
             let b = Poly::hull(&hb, &Transform::IDENTITY, 1.0, &xb);
             let rel = Relative::new(&a, &b);
@@ -844,7 +822,7 @@ mod tests {
                 }
             }
             for _ in 0..64 {
-                let axis = Vec3::new(rnd() - 0.5, rnd() - 0.5, rnd() - 0.5).normalize();
+                let axis = Vec3::new(rnd.f() - 0.5, rnd.f() - 0.5, rnd.f() - 0.5).normalize();
                 worst = worst.max(support_separation(&a, &b, &rel, axis));
             }
             for f in 0..ha.planes.len() {
