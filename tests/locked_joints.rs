@@ -10,7 +10,7 @@ use hearth::dynamics::body::{LOCK_ANGULAR_X, LOCK_ANGULAR_Y, LOCK_LINEAR_Z};
 use hearth::joints::HingeParams;
 use hearth::math::{Quat, Transform, Vec3};
 use hearth::{BodyDef, BodyHandle, BodyType, Geometry, JointDef, JointKind, ShapeDef, World};
-use scenes::{assert_locked, chain_link as link, energy, join, ChainJoint as Joint};
+use scenes::{assert_locked, chain_link as link, energy, join, kick_chain, ChainJoint as Joint};
 
 const DT: f32 = 1.0 / 60.0;
 /// The 2.5D lock: the XY plane, turning only about Z.
@@ -395,23 +395,7 @@ fn random_chain(locks: u8, first: u32, seed: u64, steps: usize) -> RandomRun {
         bodies.push(b);
         anchor = p + 0.4 * dir;
     }
-    // Kicks: up to 3 m/s on the last link, up to 3 rad/s-ish of spin on a random one.
-    let last = *bodies.last().unwrap();
-    let kick = rng.vec(3.0) * w.body(last).unwrap().mass;
-    w.apply_linear_impulse(last, kick, true).unwrap();
-    let spun = bodies[(rng.next_u32() as usize) % n];
-    let turn = rng.vec(3.0) * (w.body(spun).unwrap().mass * 0.03);
-    w.apply_angular_impulse(spun, turn, true).unwrap();
-    w.step(DT).unwrap();
-    let e0 = energy(&w, &bodies);
-    // The energy scale: the chain's weight times a metre plus its kinetic energy now.
-    let scale: f64 = bodies
-        .iter()
-        .map(|&b| {
-            let body = w.body(b).unwrap();
-            body.mass as f64 * 9.81 + body.kinetic_energy() as f64
-        })
-        .sum();
+    let (e0, scale) = kick_chain(&mut w, &bodies, &mut rng, DT);
     for _ in 0..steps {
         w.step(DT).unwrap();
         for &b in &bodies {

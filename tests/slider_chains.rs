@@ -20,7 +20,7 @@ mod scenes;
 use hearth::joints::{BallParams, HingeParams, SliderParams};
 use hearth::math::{Quat, Transform, Vec3};
 use hearth::{BodyHandle, JointKind, World};
-use scenes::{chain_link, energy, join, ChainJoint as Joint};
+use scenes::{chain_link, energy, join, kick_chain, ChainJoint as Joint};
 
 const DT: f32 = 1.0 / 60.0;
 
@@ -105,22 +105,7 @@ fn chain(kinds: &[JointKind], seed: u64, steps: usize) -> Run {
         bodies.push(b);
         anchor = p + 0.4 * dir;
     }
-    let last = *bodies.last().unwrap();
-    let kick = rng.vec(3.0) * w.body(last).unwrap().mass;
-    w.apply_linear_impulse(last, kick, true).unwrap();
-    let spun = bodies[(rng.next_u32() as usize) % bodies.len()];
-    let turn = rng.vec(3.0) * (w.body(spun).unwrap().mass * 0.03);
-    w.apply_angular_impulse(spun, turn, true).unwrap();
-    w.step(DT).unwrap();
-    let e0 = energy(&w, &bodies);
-    // The chain's weight times a metre plus its kinetic energy now.
-    let scale: f64 = bodies
-        .iter()
-        .map(|&b| {
-            let body = w.body(b).unwrap();
-            body.mass as f64 * 9.81 + body.kinetic_energy() as f64
-        })
-        .sum();
+    let (e0, scale) = kick_chain(&mut w, &bodies, &mut rng, DT);
     let start: Vec<Vec3> = bodies.iter().map(|&b| w.body(b).unwrap().center).collect();
     let mut run = Run::default();
     for _ in 0..steps {

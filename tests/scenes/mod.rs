@@ -614,6 +614,27 @@ pub fn energy(w: &World, bodies: &[BodyHandle]) -> f64 {
         .sum()
 }
 
+/// Kicks a chain — up to 3 m/s on its last link, up to about 3 rad/s of spin on a random
+/// one — and steps once. Returns the chain's energy then (`energy`) and its energy scale: its
+/// weight times a metre plus its kinetic energy.
+pub fn kick_chain(w: &mut World, bodies: &[BodyHandle], rng: &mut Rng, dt: f32) -> (f64, f64) {
+    let last = *bodies.last().unwrap();
+    let kick = rng.vec(3.0) * w.body(last).unwrap().mass;
+    w.apply_linear_impulse(last, kick, true).unwrap();
+    let spun = bodies[(rng.next_u32() as usize) % bodies.len()];
+    let turn = rng.vec(3.0) * (w.body(spun).unwrap().mass * 0.03);
+    w.apply_angular_impulse(spun, turn, true).unwrap();
+    w.step(dt).unwrap();
+    let scale = bodies
+        .iter()
+        .map(|&b| {
+            let body = w.body(b).unwrap();
+            body.mass as f64 * 9.81 + body.kinetic_energy() as f64
+        })
+        .sum();
+    (energy(w, bodies), scale)
+}
+
 /// Every locked velocity component of `b` (`locks`: `body::LOCK_*` bits) is exactly zero
 /// (bit pattern: -0.0 fails too).
 pub fn assert_locked(w: &World, b: BodyHandle, locks: u8, what: &str) {
