@@ -228,38 +228,23 @@ fn hull_hull_with(a: &Poly, b: &Poly, speculative: f32, cache: &mut SatCache, pr
     let (use_b, face_a, face_b, best_face, margins) = if let Some((on_b, f, s)) = held {
         (on_b, f, f, s, None)
     } else {
-        // Faces of A (with the runner-up, for the face hold).
-        let (mut sep_a, mut face_a, mut second_a) = (f32::MIN, 0usize, f32::MIN);
-        for f in 0..a.hull.planes.len() {
-            let s = face_a_separation(a, b, &rel, f);
-            if s > limit {
-                cache.feature = SatFeature::FaceA(f as u16);
-                return Manifold::EMPTY;
-            }
-            if s > sep_a {
-                second_a = sep_a;
-                sep_a = s;
-                face_a = f;
-            } else if s > second_a {
-                second_a = s;
-            }
-        }
-        // Faces of B.
-        let (mut sep_b, mut face_b, mut second_b) = (f32::MIN, 0usize, f32::MIN);
-        for f in 0..b.hull.planes.len() {
-            let s = face_b_separation(a, b, &rel, f);
-            if s > limit {
-                cache.feature = SatFeature::FaceB(f as u16);
-                return Manifold::EMPTY;
-            }
-            if s > sep_b {
-                second_b = sep_b;
-                sep_b = s;
-                face_b = f;
-            } else if s > second_b {
-                second_b = s;
-            }
-        }
+        // Faces of A (with the runner-up, for the face hold), then of B.
+        let (sep_a, face_a, second_a) =
+            match best_face(a.hull.planes.len(), limit, |f| face_a_separation(a, b, &rel, f)) {
+                Ok(best) => best,
+                Err(f) => {
+                    cache.feature = SatFeature::FaceA(f as u16);
+                    return Manifold::EMPTY;
+                }
+            };
+        let (sep_b, face_b, second_b) =
+            match best_face(b.hull.planes.len(), limit, |f| face_b_separation(a, b, &rel, f)) {
+                Ok(best) => best,
+                Err(f) => {
+                    cache.feature = SatFeature::FaceB(f as u16);
+                    return Manifold::EMPTY;
+                }
+            };
         let use_b = sep_b > sep_a + FACE_REL_TOL * sep_a.abs() + FACE_ABS_TOL;
         if use_b {
             (true, face_a, face_b, sep_b, Some((second_b, sep_a)))
@@ -599,6 +584,27 @@ fn face_contact(refp: &Poly, inc: &Poly, rel: &Relative, face: usize, speculativ
     }
     let normal = refp.rot * if flipped { -n } else { n };
     cands.finish(normal, |x| refp.world_point(x))
+}
+
+/// The face of a hull with the largest `separation`, that separation and the runner-up's;
+/// `Err(face)` at the first face that separates by more than `limit`.
+#[inline(always)]
+fn best_face(count: usize, limit: f32, separation: impl Fn(usize) -> f32) -> Result<(f32, usize, f32), usize> {
+    let (mut best, mut face, mut second) = (f32::MIN, 0usize, f32::MIN);
+    for f in 0..count {
+        let s = separation(f);
+        if s > limit {
+            return Err(f);
+        }
+        if s > best {
+            second = best;
+            best = s;
+            face = f;
+        } else if s > second {
+            second = s;
+        }
+    }
+    Ok((best, face, second))
 }
 
 #[cfg(test)]
