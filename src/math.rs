@@ -123,6 +123,43 @@ pub fn integrate_rotation(q: Quat, w: Vec3, h: f32) -> Quat {
     r.normalize()
 }
 
+/// xorshift64 randomness for unit tests: floats in [0, 1), points, rotations, clouds.
+#[cfg(test)]
+pub(crate) mod test_rnd {
+    use super::{Quat, Vec3};
+
+    pub(crate) struct Rnd(pub(crate) u64);
+
+    impl Rnd {
+        pub(crate) fn f(&mut self) -> f32 {
+            self.0 ^= self.0 << 13;
+            self.0 ^= self.0 >> 7;
+            self.0 ^= self.0 << 17;
+            (self.0 >> 40) as f32 / (1u64 << 24) as f32
+        }
+
+        /// A point of the box `scale` centred on the origin.
+        pub(crate) fn point(&mut self, scale: Vec3) -> Vec3 {
+            Vec3::new(self.f() - 0.5, self.f() - 0.5, self.f() - 0.5) * scale
+        }
+
+        pub(crate) fn quat(&mut self) -> Quat {
+            Quat::from_xyzw(self.f() - 0.5, self.f() - 0.5, self.f() - 0.5, self.f() - 0.5).normalize()
+        }
+
+        /// `min` to `min + span` points in a box whose half-sizes are `base + extra · f()`.
+        pub(crate) fn cloud(&mut self, min: usize, span: f32, base: f32, extra: f32) -> Vec<Vec3> {
+            let n = min + (self.f() * span) as usize;
+            let axes = Vec3::new(
+                base + extra * self.f(),
+                base + extra * self.f(),
+                base + extra * self.f(),
+            );
+            (0..n).map(|_| self.point(2.0 * axes)).collect()
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -398,13 +398,8 @@ mod tests {
     /// none to 0.5 m.
     #[test]
     fn distance_until_bounds_or_matches() {
-        let mut s = 0x5eed_1234_abcd_0001u64;
-        let mut rnd = move || {
-            s ^= s << 13;
-            s ^= s >> 7;
-            s ^= s << 17;
-            (s >> 40) as f32 / (1u64 << 24) as f32 - 0.5
-        };
+        let mut r = crate::math::test_rnd::Rnd(0x5eed_1234_abcd_0001);
+        let mut rnd = move || r.f() - 0.5;
         let (mut stopped, mut ran) = (0, 0);
         for _ in 0..2000 {
             let a: Vec<Vec3> = (0..10).map(|_| Vec3::new(rnd(), rnd(), rnd())).collect();

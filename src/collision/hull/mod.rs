@@ -444,13 +444,8 @@ mod tests {
     /// axes and diagonals (ties on a cube and on hulls of grid points), zero and NaN.
     #[test]
     fn support_index_matches_one_at_a_time() {
-        let mut s = 0x1234_5678_9abc_def1u64;
-        let mut rnd = move || {
-            s ^= s << 13;
-            s ^= s >> 7;
-            s ^= s << 17;
-            (s >> 40) as f32 / (1u64 << 24) as f32 - 0.5
-        };
+        let mut r = crate::math::test_rnd::Rnd(0x1234_5678_9abc_def1);
+        let mut rnd = move || r.f() - 0.5;
         let mut dirs: Vec<Vec3> = vec![Vec3::ZERO, Vec3::splat(f32::NAN), Vec3::new(f32::NAN, 1.0, 0.0)];
         for x in -1..=1 {
             for y in -1..=1 {

@@ -611,39 +611,8 @@ fn best_face(count: usize, limit: f32, separation: impl Fn(usize) -> f32) -> Res
 mod tests {
     use super::*;
     use crate::collision::hull::builder::{build, HullSettings};
+    use crate::math::test_rnd::Rnd;
     use crate::math::{Quat, Transform};
-
-    /// xorshift64 randomness for the tests: floats in [0, 1).
-    struct Rnd(u64);
-
-    impl Rnd {
-        fn f(&mut self) -> f32 {
-            self.0 ^= self.0 << 13;
-            self.0 ^= self.0 >> 7;
-            self.0 ^= self.0 << 17;
-            (self.0 >> 40) as f32 / (1u64 << 24) as f32
-        }
-
-        /// A point of the box `scale` centred on the origin.
-        fn point(&mut self, scale: Vec3) -> Vec3 {
-            Vec3::new(self.f() - 0.5, self.f() - 0.5, self.f() - 0.5) * scale
-        }
-
-        fn quat(&mut self) -> Quat {
-            Quat::from_xyzw(self.f() - 0.5, self.f() - 0.5, self.f() - 0.5, self.f() - 0.5).normalize()
-        }
-
-        /// `min` to `min + span` points in a box whose half-sizes are `base + extra · f()`.
-        fn cloud(&mut self, min: usize, span: f32, base: f32, extra: f32) -> Vec<Vec3> {
-            let n = min + (self.f() * span) as usize;
-            let axes = Vec3::new(
-                base + extra * self.f(),
-                base + extra * self.f(),
-                base + extra * self.f(),
-            );
-            (0..n).map(|_| self.point(2.0 * axes)).collect()
-        }
-    }
 
     /// GJK between two polytopes, B seen from A.
     fn gjk_of(a: &Poly, b: &Poly) -> gjk::DistanceOutput {
