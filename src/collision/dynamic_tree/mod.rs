@@ -274,13 +274,6 @@ impl DynamicTree {
     /// Replaces the box of a proxy: removes the leaf and reinserts it.
     pub fn move_proxy(&mut self, proxy: u32, aabb: Aabb) {
         self.check_proxy(proxy);
-        // Still inside its parent's box: the tree stays valid with the leaf's box replaced,
-        // and no box above it grows (Box2D v3's enlarge stops at such a parent too).
-        let parent = self.nodes[proxy as usize].parent;
-        if parent != NULL_NODE && self.nodes[parent as usize].aabb.contains(&aabb) {
-            self.nodes[proxy as usize].aabb = aabb;
-            return;
-        }
         self.remove_leaf(proxy);
         self.nodes[proxy as usize].aabb = aabb;
         self.insert_leaf(proxy);
