@@ -259,7 +259,9 @@ const FIGURES: &[(&str, &str, Backing)] = &[
     // measured ratios.
     (R, "95 %", Bench),
     (R, "92 %", Bench),
-    (R, "84 %", Bench),
+    (R, "81 %", Bench),
+    (R, "1.35 ×", Bench),
+    (R, "1.86 ×", Bench),
     (R, "1.9 ×", Bench),
     (R, "1.85 ×", Bench),
     (R, "1.7 ×", Bench),
