@@ -455,25 +455,12 @@ pub fn cube_points(h: f32) -> Vec<Vec3> {
 
 /// A dynamic body with one hull shape.
 pub fn dynamic_hull(world: &mut World, hull: hearth::ConvexHullHandle, xf: Transform, def: &ShapeDef) -> BodyHandle {
-    let b = world
-        .create_body(&BodyDef {
-            body_type: BodyType::Dynamic,
-            transform: xf,
-            ..Default::default()
-        })
-        .unwrap();
-    world
-        .create_shape(
-            b,
-            def,
-            &Geometry::Hull {
-                hull,
-                local: Transform::IDENTITY,
-                scale: 1.0,
-            },
-        )
-        .unwrap();
-    b
+    let g = Geometry::Hull {
+        hull,
+        local: Transform::IDENTITY,
+        scale: 1.0,
+    };
+    dynamic_body(world, xf, def, &g)
 }
 
 /// The box tower of `tower` with every box a hull cube (one shared hull).
