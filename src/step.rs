@@ -367,6 +367,7 @@ fn proxy_pairs(
     let body = bodies.at(shape.body);
     let fat = shape.fat_aabb;
     let mut tested = 0;
+    let first = out.len();
     tree.query(&fat, |_, t| {
         tested += 1;
         if t == s {
@@ -393,6 +394,10 @@ fn proxy_pairs(
         }
         true
     });
+    // In shape order, not the tree's: the contacts are made in this order, so the results
+    // do not depend on the tree's shape (the in-place enlargement and its rebuilds, a
+    // broad-phase rebuild the host asks for).
+    out[first..].sort_unstable_by_key(|&(_, t)| t);
     // Planes (static, outside the tree, never sensors) pair with dynamic bodies' shapes and
     // with kinematic bodies' sensors: a sensor sees bodies of every type, as in the tree query
     // above (a kinematic sensor used to miss every plane).
