@@ -164,6 +164,10 @@ impl World {
         // Every awake contact is updated in parallel: a task writes only to its own contacts
         // and to their result slots. What changes the world's lists (destroyed contacts,
         // woken sleepers) is merged after, on this thread, in the serial order.
+        //    Beside it, as item 0 of the same run, the broad-phase tree is rebuilt above the
+        //    proxies the last step enlarged in place (`refit_proxies`): the tree is not used
+        //    again until the next step's pair search, and the rebuild's result does not
+        //    depend on when or where it runs.
         let n = self.awake_contacts.len();
         let slop = self.settings.linear_slop;
         self.narrow_results.clear();
@@ -177,13 +181,23 @@ impl World {
                 awake_contacts,
                 narrow_results,
                 tasks,
+                broad,
                 ..
             } = self;
+            let rebuild = broad.tree.has_enlarged() as usize;
+            let tree = crate::parallel::SharedMut::new(&mut broad.tree);
             let (contacts, results) = (contacts.disjoint(), crate::parallel::Disjoint::new(narrow_results));
             let awake_contacts = &*awake_contacts;
             let (shapes, bodies, geometry) = (&*shapes, &*bodies, &*geometry);
-            crate::parallel::run(&**tasks, n as u32, NARROW_MIN_RANGE, &|start, end, _| {
-                let (start, end) = (start as usize, end as usize);
+            crate::parallel::run(&**tasks, (n + rebuild) as u32, NARROW_MIN_RANGE, &|start, end, _| {
+                let (mut start, end) = (start as usize, end as usize);
+                if start < rebuild {
+                    // SAFETY: item 0 is in exactly one range, and nothing else in this run
+                    // touches the tree.
+                    unsafe { tree.get() }.rebuild_enlarged();
+                    start = rebuild;
+                }
+                let (start, end) = (start - rebuild, end - rebuild);
                 for (k, &ci) in awake_contacts[start..end].iter().enumerate() {
                     // SAFETY: `awake_contacts` lists each contact once and `start + k` is this
                     // task's own index.
@@ -334,7 +348,9 @@ impl World {
                     let fat = bb.swept(d).expanded(AABB_MARGIN);
                     let proxy = shape.proxy;
                     self.shapes.at_mut(s).fat_aabb = fat;
-                    self.broad.tree.move_proxy(proxy, fat);
+                    // In place: the tree above it is rebuilt beside the next narrow phase
+                    // (`collide`).
+                    self.broad.tree.enlarge_proxy(proxy, fat);
                     self.push_moved(s);
                 }
             }

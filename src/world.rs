@@ -989,9 +989,10 @@ impl World {
     /// Rebuilds the broad-phase tree top-down with a binned surface-area heuristic (the
     /// incremental inserts of a level load leave it deeper and looser than that). Proxy
     /// ids, fat boxes and contacts are unchanged; later queries and pair searches visit
-    /// fewer boxes, and since pairs are found in tree order, later steps differ from those
-    /// of a world that did not rebuild (deterministically: the same calls give the same
-    /// tree). Allocates scratch; meant for loading time, not every step.
+    /// fewer boxes. New contacts are made in shape order (`step.rs`, `proxy_pairs`), so
+    /// bodies move as they would have without it; particles meet shapes in tree order, so
+    /// they may not. Allocates scratch; meant for loading time (each step rebuilds the
+    /// part above the proxies it moved, `DynamicTree::rebuild_enlarged`).
     pub fn rebuild_broadphase(&mut self) {
         self.broad.tree.rebuild();
     }

@@ -212,7 +212,10 @@ const FIGURES: &[(&str, &str, Backing)] = &[
     (
         R,
         "5 %",
-        Measured(&["rigid_dynamics::bounce_height_is_restitution_squared"]),
+        Measured(&[
+            "rigid_dynamics::bounce_height_is_restitution_squared",
+            "queries::stepping_keeps_the_tree_within_five_percent_of_a_full_rebuild",
+        ]),
     ),
     (
         R,

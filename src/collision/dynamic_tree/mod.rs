@@ -30,6 +30,10 @@ struct Node {
     user_data: u32,
     /// 0 for a leaf, -1 for a free node.
     height: i32,
+    /// An internal node whose box was enlarged in place (`enlarge_proxy`) or that lies
+    /// above such a node: `rebuild_enlarged` rebuilds it. Every ancestor of an enlarged
+    /// node is enlarged too (`refit` keeps this). Never set on leaves.
+    enlarged: bool,
 }
 
 impl Node {
@@ -40,6 +44,7 @@ impl Node {
         child2: NULL_NODE,
         user_data: 0,
         height: -1,
+        enlarged: false,
     };
 
     #[inline]
@@ -58,6 +63,8 @@ pub struct DynamicTree {
     /// Allocated nodes (leaves and internal).
     node_count: u32,
     proxy_count: u32,
+    /// Scratch of the rebuilds, kept so that a partial rebuild per step allocates nothing.
+    scratch: rebuild::Scratch,
 }
 
 impl Default for DynamicTree {
@@ -203,6 +210,7 @@ impl DynamicTree {
             free_list: NULL_NODE,
             node_count: 0,
             proxy_count: 0,
+            scratch: Default::default(),
         }
     }
 
@@ -269,6 +277,41 @@ impl DynamicTree {
         self.remove_leaf(proxy);
         self.free_node(proxy);
         self.proxy_count -= 1;
+    }
+
+    /// Replaces the box of a proxy in place, without moving the leaf: its ancestors' boxes
+    /// grow to hold the new box (and stay as large) and are marked enlarged, up to the
+    /// root, for `rebuild_enlarged` to rebuild that part of the tree. Far cheaper than
+    /// `move_proxy`, and the tree stays valid for queries in between (Box2D v3's
+    /// `b2DynamicTree_EnlargeProxy`).
+    pub fn enlarge_proxy(&mut self, proxy: u32, aabb: Aabb) {
+        self.check_proxy(proxy);
+        self.nodes[proxy as usize].aabb = aabb;
+        let mut i = self.nodes[proxy as usize].parent;
+        // Grow the boxes while they change...
+        while i != NULL_NODE {
+            let n = &mut self.nodes[i as usize];
+            let grown = n.aabb.union(&aabb);
+            let changed = !same_box(&grown, &n.aabb);
+            n.aabb = grown;
+            n.enlarged = true;
+            i = n.parent;
+            if !changed {
+                break;
+            }
+        }
+        // ...then mark the rest of the way up, up to the first node already marked (whose
+        // ancestors are all marked).
+        while i != NULL_NODE && !self.nodes[i as usize].enlarged {
+            self.nodes[i as usize].enlarged = true;
+            i = self.nodes[i as usize].parent;
+        }
+    }
+
+    /// Whether `rebuild_enlarged` has anything to do.
+    #[inline]
+    pub fn has_enlarged(&self) -> bool {
+        self.root != NULL_NODE && self.nodes[self.root as usize].enlarged
     }
 
     /// Replaces the box of a proxy: removes the leaf and reinserts it.
@@ -595,9 +638,13 @@ impl DynamicTree {
         let b = &self.nodes[n.child2 as usize];
         let aabb = a.aabb.union(&b.aabb);
         let height = 1 + a.height.max(b.height);
+        let enlarged = a.enlarged || b.enlarged;
         let n = &mut self.nodes[i as usize];
         n.aabb = aabb;
         n.height = height;
+        // Keep "an enlarged node's ancestors are enlarged" through inserts, removals and
+        // rotations, which refit every node up to the root.
+        n.enlarged |= enlarged;
     }
 
     /// Tree rotation at internal node `a` with children `b`, `c`: swaps a child with a
@@ -706,14 +753,17 @@ impl DynamicTree {
                 }
                 if nd.is_leaf() {
                     leaves += 1;
-                    if nd.child1 != NULL_NODE || nd.child2 != NULL_NODE {
-                        return Err(format!("tree leaf {i} has children"));
+                    if nd.child1 != NULL_NODE || nd.child2 != NULL_NODE || nd.enlarged {
+                        return Err(format!("tree leaf {i} has children or an enlarged mark"));
                     }
                     continue;
                 }
                 let (a, b) = (node(nd.child1, "child")?, node(nd.child2, "child")?);
                 if a.parent != i || b.parent != i || nd.height != 1 + a.height.max(b.height) {
                     return Err(format!("tree node {i}: children's links or height disagree"));
+                }
+                if (a.enlarged || b.enlarged) && !nd.enlarged {
+                    return Err(format!("tree node {i} is not marked enlarged but a child is"));
                 }
                 stack.push(nd.child1);
                 stack.push(nd.child2);
@@ -754,6 +804,7 @@ impl DynamicTree {
                 if n.is_leaf() {
                     leaves += 1;
                     assert!(n.child1 == NULL_NODE && n.child2 == NULL_NODE, "leaf {i} has children");
+                    assert!(!n.enlarged, "leaf {i} marked enlarged");
                     continue;
                 }
                 let (c1, c2) = (n.child1, n.child2);
@@ -764,6 +815,7 @@ impl DynamicTree {
                 assert_eq!(b.parent, i, "child {c2} parent link");
                 assert_eq!(n.height, 1 + a.height.max(b.height), "node {i} height");
                 assert!(n.aabb.contains(&a.aabb) && n.aabb.contains(&b.aabb), "node {i} box");
+                assert!(n.enlarged || !(a.enlarged || b.enlarged), "node {i} enlarged mark");
                 stack.push(c1);
                 stack.push(c2);
             }
@@ -800,6 +852,9 @@ fn same_box(a: &Aabb, b: &Aabb) -> bool {
 const SNAP_BOX: u8 = 1;
 /// A node's parent is stored (not the predicted one).
 const SNAP_PARENT: u8 = 2;
+/// An internal node is marked enlarged (its part of the tree is rebuilt at the next
+/// step's narrow phase, so the mark decides the tree's future shape).
+const SNAP_ENLARGED: u8 = 4;
 
 impl DynamicTree {
     /// The parent each node would have from the child links alone: the internal node that
@@ -831,6 +886,7 @@ impl DynamicTree {
             free_list,
             node_count,
             proxy_count,
+            scratch: _,
         } = self;
         let parents = Self::predicted_parents(nodes);
         w.put_len(nodes.len());
@@ -842,6 +898,7 @@ impl DynamicTree {
                 child2,
                 user_data,
                 height,
+                enlarged,
             } = n;
             let predicted = match *height {
                 h if h < 0 => Some(Aabb::EMPTY),
@@ -853,7 +910,8 @@ impl DynamicTree {
             };
             let store_box = !predicted.is_some_and(|p| same_box(&p, aabb));
             let store_parent = parents[i] != *parent;
-            let flags = (store_box as u8 * SNAP_BOX) | (store_parent as u8 * SNAP_PARENT);
+            let flags =
+                (store_box as u8 * SNAP_BOX) | (store_parent as u8 * SNAP_PARENT) | (*enlarged as u8 * SNAP_ENLARGED);
             w.within("flags", |w| flags.put(w));
             w.within("height", |w| height.put(w));
             if *height > 0 {
@@ -889,11 +947,17 @@ impl DynamicTree {
         let mut given = Vec::with_capacity(n);
         for _ in 0..n {
             let flags = r.within("flags", u8::get)?;
-            if flags & !(SNAP_BOX | SNAP_PARENT) != 0 {
+            if flags & !(SNAP_BOX | SNAP_PARENT | SNAP_ENLARGED) != 0 {
                 return bad(format!("snapshot corrupted: tree node flags {flags}"));
             }
             let mut node = Node::FREE;
             node.height = r.within("height", i32::get)?;
+            node.enlarged = flags & SNAP_ENLARGED != 0;
+            if node.enlarged && node.height <= 0 {
+                return bad(format!(
+                    "snapshot corrupted: tree node flags {flags} on a leaf or free node"
+                ));
+            }
             if node.height > 0 {
                 node.child1 = r.within("child1", u32::get)?;
                 node.child2 = r.within("child2", u32::get)?;
@@ -943,6 +1007,7 @@ impl DynamicTree {
             free_list: r.within("free_list", u32::get)?,
             node_count: r.within("node_count", u32::get)?,
             proxy_count: r.within("proxy_count", u32::get)?,
+            scratch: Default::default(),
         })
     }
 }

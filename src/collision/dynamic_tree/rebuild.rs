@@ -1,4 +1,6 @@
-//! Top-down binned SAH rebuild of a [`DynamicTree`].
+//! Top-down binned SAH rebuilds of a [`DynamicTree`]: of the whole hierarchy
+//! (`rebuild`), or of the part above the proxies enlarged in place since the last one
+//! (`rebuild_enlarged`, Box2D v3's partial `b2DynamicTree_Rebuild`).
 
 use super::{DynamicTree, Stack, NULL_NODE};
 use crate::collision::aabb::Aabb;
@@ -7,44 +9,77 @@ use crate::math::Vec3;
 /// Number of bins per axis of the SAH rebuild.
 const BIN_COUNT: usize = 16;
 
+/// Storage of the rebuilds, reused from one to the next.
+#[derive(Clone, Debug, Default)]
+pub(super) struct Scratch {
+    /// The subtrees the build arranges (leaves, or internal nodes kept whole).
+    units: Vec<u32>,
+    centers: Vec<Vec3>,
+    order: Vec<u32>,
+    created: Vec<u32>,
+    /// Work items: (start, end, parent, is first child).
+    work: Vec<(usize, usize, u32, bool)>,
+}
+
 impl DynamicTree {
     /// Rebuilds the whole hierarchy top-down with a binned surface-area heuristic. Proxy
-    /// ids, boxes and user data are unchanged. Allocates scratch memory.
+    /// ids, boxes and user data are unchanged.
     pub fn rebuild(&mut self) {
+        self.rebuild_from_units(true);
+    }
+
+    /// Rebuilds, top-down with the same binned SAH, every internal node marked enlarged
+    /// (`enlarge_proxy`): the subtrees below them that hold no enlarged proxy are kept
+    /// whole and arranged anew. Leaves only the unmarked tree. Allocates nothing once its
+    /// scratch has grown. Deterministic: the same tree gives the same result.
+    pub fn rebuild_enlarged(&mut self) {
+        if self.has_enlarged() {
+            self.rebuild_from_units(false);
+        }
+    }
+
+    /// Frees the internal nodes to rebuild (all, or the enlarged ones) and builds a new
+    /// hierarchy over what lies below them.
+    fn rebuild_from_units(&mut self, full: bool) {
         if self.root == NULL_NODE {
             return;
         }
-        // Collect leaves in a deterministic (depth-first) order, free internal nodes.
-        let mut leaves: Vec<u32> = Vec::with_capacity(self.proxy_count as usize);
+        let mut s = std::mem::take(&mut self.scratch);
+        // Collect the units in a deterministic (depth-first) order, free the nodes above.
+        s.units.clear();
         let mut stack = Stack::new();
         stack.push(self.root);
         while let Some(i) = stack.pop() {
             let n = self.nodes[i as usize];
-            if n.is_leaf() {
-                leaves.push(i);
+            if n.is_leaf() || !(full || n.enlarged) {
+                s.units.push(i);
             } else {
                 stack.push(n.child2);
                 stack.push(n.child1);
                 self.free_node(i);
             }
         }
-        let centers: Vec<Vec3> = leaves.iter().map(|&l| self.nodes[l as usize].aabb.center()).collect();
-        let mut order: Vec<u32> = (0..leaves.len() as u32).collect();
+        s.centers.clear();
+        s.centers
+            .extend(s.units.iter().map(|&l| self.nodes[l as usize].aabb.center()));
+        s.order.clear();
+        s.order.extend(0..s.units.len() as u32);
 
-        // Work items: (start, end, parent, is first child). Internal nodes are created
-        // parent-first; refitting them in reverse creation order is bottom-up.
-        let mut created: Vec<u32> = Vec::with_capacity(leaves.len());
-        let mut work: Vec<(usize, usize, u32, bool)> = vec![(0, leaves.len(), NULL_NODE, true)];
-        while let Some((start, end, parent, first)) = work.pop() {
+        // Internal nodes are created parent-first; refitting them in reverse creation order
+        // is bottom-up.
+        s.created.clear();
+        s.work.clear();
+        s.work.push((0, s.units.len(), NULL_NODE, true));
+        while let Some((start, end, parent, first)) = s.work.pop() {
             let node = if end - start == 1 {
-                leaves[order[start] as usize]
+                s.units[s.order[start] as usize]
             } else {
-                let mid = self.partition(&mut order[start..end], &leaves, &centers) + start;
+                let mid = self.partition(&mut s.order[start..end], &s.units, &s.centers) + start;
                 let i = self.allocate_node();
                 self.nodes[i as usize].height = 1;
-                created.push(i);
-                work.push((mid, end, i, false));
-                work.push((start, mid, i, true));
+                s.created.push(i);
+                s.work.push((mid, end, i, false));
+                s.work.push((start, mid, i, true));
                 i
             };
             self.nodes[node as usize].parent = parent;
@@ -56,14 +91,15 @@ impl DynamicTree {
                 self.nodes[parent as usize].child2 = node;
             }
         }
-        for &i in created.iter().rev() {
+        for &i in s.created.iter().rev() {
             self.refit(i);
         }
+        self.scratch = s;
     }
 
-    /// Splits `order` (indices into `leaves`) by the best binned SAH plane over the three
+    /// Splits `order` (indices into `units`) by the best binned SAH plane over the three
     /// axes; returns the size of the first part (always in `1..len`).
-    fn partition(&self, order: &mut [u32], leaves: &[u32], centers: &[Vec3]) -> usize {
+    fn partition(&self, order: &mut [u32], units: &[u32], centers: &[Vec3]) -> usize {
         let n = order.len();
         let mut cmin = Vec3::splat(f32::MAX);
         let mut cmax = Vec3::splat(-f32::MAX);
@@ -83,7 +119,7 @@ impl DynamicTree {
             let mut counts = [0usize; BIN_COUNT];
             for &k in order.iter() {
                 let b = bin_of(centers[k as usize][axis], cmin[axis], scale);
-                boxes[b] = boxes[b].union(&self.nodes[leaves[k as usize] as usize].aabb);
+                boxes[b] = boxes[b].union(&self.nodes[units[k as usize] as usize].aabb);
                 counts[b] += 1;
             }
             // Sweep from the right to get suffix areas, then from the left.
