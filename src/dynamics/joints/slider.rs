@@ -2,7 +2,8 @@
 //! the line through A's anchor along A's Z axis (two linear rows across the axis); all five
 //! are equality rows (`rows.rs`). Along the axis, in solve order: motor (target speed,
 //! force-clamped), lower and upper translation limits (one-sided, speculative), coupled with
-//! the equality rows so they see the bodies' masses with the rotation locked. The rows along
+//! the equality rows so they see the bodies' masses with the rotation locked (a forest
+//! slider's with its whole tree's response, `tree.rs`). The rows along
 //! and across the axis act at the centre of one body and measure their errors as if its
 //! rotation were already right (`SliderRows`): exact at any misalignment and well
 //! conditioned however far apart the anchors are.
@@ -26,7 +27,9 @@ pub fn has_axial_rows(p: &SliderParams) -> bool {
     p.enable_limit || p.enable_motor
 }
 
-/// The rows along the axis (the equality rows are solved by the caller).
+/// The rows along the axis of a slider outside the forest (the equality rows are solved by
+/// the caller; a forest slider's rows along the axis are solved by the forest with its tree,
+/// `Forest::solve_axial`).
 pub fn solve(p: &SliderParams, imp: &mut Impulses, f: &Frames, b: &mut Bodies, ctx: &Ctx, eq: &Eq, k: Option<&Spd>) {
     if !has_axial_rows(p) {
         return;

@@ -8,7 +8,8 @@
 //! Each sweep solves, joint by joint, the limits, motors and springs (coupled with the joint's
 //! equality rows, `rows.rs`) and the equality rows of joints outside the forest as one block
 //! each (joints on bodies with locked axes [`LOCKED_ITERATIONS`] times); then the equality
-//! rows of the spanning forest exactly (`tree.rs`).
+//! rows of the spanning forest exactly, and the limits and motor of the forest's sliders with
+//! their tree's response (`tree.rs`).
 //!
 //! Rows are fully rigid in the relax sweep. In the biased sweep they are Box2D v3's stiff
 //! soft constraint ([`JOINT_STIFFNESS`] of the sub-step rate, damping ratio
@@ -16,8 +17,8 @@
 //! Baumgarte bias was tried first and a 20-link chain hanging at rest went unstable with any
 //! bias (the warm-started impulses pump the chain's axial mode); the soft row's leak damps it.
 //! The price is a sag of `load / (effective mass · ω²)`, tiny where the forest's exact
-//! effective mass applies. A forest tree with a slider without limits or motor responds
-//! rigidly with the same bias in the biased sweep too (`Forest::solve`). Limits are one-sided
+//! effective mass applies. A forest tree with a slider responds rigidly with the same bias in
+//! the biased sweep too (`Forest::solve`). Limits are one-sided
 //! rows that act speculatively (a gap may close within the sub-step, no more). Motors are
 //! velocity rows clamped by their largest force or torque times the sub-step. Springs are
 //! soft rows ([`Softness`]) with the spring's own frequency and damping.
@@ -613,7 +614,7 @@ pub fn warm_start(set: &JointSet, vel: &mut [Velocity], states: &[BodyState], li
 /// One sweep over the joints: with position bias (`use_bias`, the biased sweep) or without
 /// (the relax sweep, which follows a position update). Limits, motors and springs first, and
 /// the equality rows of joints outside the forest as one block each; then the forest's
-/// equality rows by the direct solve.
+/// equality rows by the direct solve, and its sliders' limits and motors.
 pub fn solve(set: &mut JointSet, vel: &mut [Velocity], states: &[BodyState], h: f32, use_bias: bool) {
     let ctx = Ctx::new(h, use_bias);
     for iteration in 0..JOINT_ITERATIONS {
@@ -654,10 +655,12 @@ fn is_locked(c: &JointConstraint, states: &[BodyState]) -> bool {
 }
 
 /// Solves one joint outside the forest (its equality rows as a block) or the scalar rows of
-/// a forest joint; returns whether either body has locked axes.
+/// a forest joint other than a slider (the forest solves those); returns whether either body
+/// has locked axes.
 fn solve_one(c: &mut JointConstraint, vel: &mut [Velocity], states: &[BodyState], ctx: &Ctx) -> bool {
     let scalars = has_scalar_rows(&c.kind);
-    if c.tree && !scalars {
+    // A tree slider's limits and motor are solved by the forest with its tree's response.
+    if c.tree && (!scalars || matches!(c.kind, JointKind::Slider(_))) {
         return false;
     }
     let (mut b, f) = load(c, vel, states);

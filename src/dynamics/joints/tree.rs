@@ -15,7 +15,9 @@
 //! ground joint. A joint that would close a loop (a second anchor of a bridge, the second
 //! string of a cradle ball, the grid's cross links), a joint touching a body without full
 //! inertia, and every limit, motor and spring row stay in the iterative path (`solver.rs`),
-//! solved before the tree in each sweep; contacts follow. Each tree body is a node whose
+//! solved before the tree in each sweep; contacts follow. The exception: a tree slider's
+//! limits and motor are solved here, after the equality rows, with the whole tree's response
+//! (`Forest::solve_axial`). Each tree body is a node whose
 //! parent joint joins it to its parent body or to the ground; nodes are kept in depth-first
 //! pre-order, so walking the list backwards visits children before parents.
 //!
@@ -61,9 +63,24 @@ struct Node {
     /// Number of rows of the parent joint and their first index in the per-row arrays.
     k: u32,
     off: u32,
-    /// The node's tree has a slider without limits or motor: its rows respond rigidly (with
-    /// the position bias) in the biased sweep too (`Forest::solve`).
+    /// The node's tree has a slider: its rows respond rigidly (with the position bias) in the
+    /// biased sweep too (`Forest::solve`).
     rigid: bool,
+}
+
+/// A tree slider's row along its axis (its limits and motor), solved with the tree's response
+/// (`Forest::solve_axial`).
+#[derive(Clone, Copy, Debug)]
+struct Axial {
+    /// The slider's node, and the node range of its tree.
+    node: u32,
+    start: u32,
+    end: u32,
+    /// The row's Jacobian on the node's body and on the other body, and the translation along
+    /// the axis (refreshed by `factor`).
+    jc: V6,
+    jp: V6,
+    translation: f32,
 }
 
 /// The spanning forest and its factorisation (buffers reused across steps). Per-row data is
@@ -97,6 +114,8 @@ pub struct Forest {
     g: Vec<V6>,
     u: Vec<V6>,
     x: Vec<V6>,
+    /// The tree sliders with limits or a motor.
+    axial: Vec<Axial>,
     /// The factorisation is out of date (new step).
     stale: bool,
 }
@@ -223,16 +242,34 @@ impl Forest {
                 c.slider_point = if node.child_is_a { 0.0 } else { 1.0 };
             }
         }
-        // Trees with a slider without limits or motor: see `Forest::solve`. A tree is a run of
-        // nodes from a root.
+        // Trees with a slider respond rigidly, and a slider's limits and motor are solved with
+        // its tree's response: see `Forest::solve`. A tree is a run of nodes from a root.
+        self.axial.clear();
         let mut start = 0;
         for end in 1..=self.nodes.len() {
             if end < self.nodes.len() && self.nodes[end].parent != NONE {
                 continue;
             }
-            let slider = self.nodes[start..end]
-                .iter()
-                .any(|n| n.joint != NONE && matches!(constraints[n.joint as usize].kind, super::JointKind::Slider(p) if !super::slider::has_axial_rows(&p)));
+            let mut slider = false;
+            for i in start..end {
+                let n = &self.nodes[i];
+                if n.joint == NONE {
+                    continue;
+                }
+                if let super::JointKind::Slider(p) = constraints[n.joint as usize].kind {
+                    slider = true;
+                    if super::slider::has_axial_rows(&p) {
+                        self.axial.push(Axial {
+                            node: i as u32,
+                            start: start as u32,
+                            end: end as u32,
+                            jc: ZERO6,
+                            jp: ZERO6,
+                            translation: 0.0,
+                        });
+                    }
+                }
+            }
             for n in &mut self.nodes[start..end] {
                 n.rigid = slider;
             }
@@ -334,6 +371,26 @@ impl Forest {
                 _ => self.factor_joint::<6>(&l, rows, dp),
             }
         }
+        self.factor_axial(constraints, states);
+    }
+
+    /// The tree sliders' rows along their axes at the bodies' current positions.
+    fn factor_axial(&mut self, constraints: &[JointConstraint], states: &[BodyState]) {
+        for a in self.axial.iter_mut() {
+            let node = &self.nodes[a.node as usize];
+            let c = &constraints[node.joint as usize];
+            let (sa, sb) = (&states[c.ia as usize], &states[c.ib as usize]);
+            let sr = Frames::new(c, sa, sb).slider();
+            let row = Row::linear(sr.axes[2], sr.lever_a, sr.lever_b);
+            let (mine, other) = if node.child_is_a {
+                ([row.la, row.aa], [row.lb, row.ab])
+            } else {
+                ([row.lb, row.ab], [row.la, row.aa])
+            };
+            a.jc = [mine[0].x, mine[0].y, mine[0].z, mine[1].x, mine[1].y, mine[1].z].map(f64::from);
+            a.jp = [other[0].x, other[0].y, other[0].z, other[1].x, other[1].y, other[1].z].map(f64::from);
+            a.translation = sr.axes[2].dot(sr.offset);
+        }
     }
 
     /// One joint of the factorisation, `K` rows: `Y = D⁻¹ J_cᵀ`, `S⁻¹ = (J_c Y)⁻¹`, and
@@ -386,7 +443,7 @@ impl Forest {
     /// (relax sweep) or as Box2D's stiff soft constraint (biased sweep, `ctx`), and applies the
     /// impulses. Refactors first when the positions moved (`positions_moved`) or the step is new.
     ///
-    /// A tree with a slider without limits or motor responds rigidly in the biased sweep too,
+    /// A tree with a slider responds rigidly in the biased sweep too,
     /// with the same position bias (a Baumgarte feedback; the exact solve leaves no
     /// Gauss–Seidel mode for it to pump). A slider's rows act at a point that moves along one of its bodies as it slides,
     /// so the impulses kept from the last sub-step no longer balance on that body: a link of
@@ -398,9 +455,10 @@ impl Forest {
     /// answered with a larger impulse. The loop's gain grows with the lever and the sliding
     /// speed: past some 50 m at 20 m/s it gained, and 32 of 60 random hinge → slider chains
     /// blew up (`tests/slider_chains.rs`). Rigid, the error is answered in full each sweep.
-    /// Not with a slider's limit or motor: those rows are solved before the tree against the
-    /// two bodies alone, and against a rigid tree a 20-link chain with a 100× end mass hanging
-    /// on a limited slider bounced between the limits at 30 m/s; it keeps the soft response.
+    /// With limits or a motor on the slider the same chains blew up as long as those trees
+    /// kept the soft response (limits at ±500 m that were never reached: 34 of 60), so they
+    /// respond rigidly too, and the slider's limits and motor are solved after the equality
+    /// rows with the tree's response (`solve_axial`).
     pub fn solve(
         &mut self,
         constraints: &mut [JointConstraint],
@@ -427,28 +485,7 @@ impl Forest {
         for g in self.g.iter_mut() {
             *g = ZERO6;
         }
-        // Backwards: children before parents.
-        for i in (0..m).rev() {
-            let u = chol_solve6(&self.dinv[i], &self.g[i]);
-            self.u[i] = u;
-            match self.nodes[i].k {
-                0 => {}
-                1 => self.backward::<1>(i),
-                3 => self.backward::<3>(i),
-                5 => self.backward::<5>(i),
-                _ => self.backward::<6>(i),
-            }
-        }
-        // Forwards: parents before children; `z` becomes `λ`.
-        for i in 0..m {
-            self.x[i] = match self.nodes[i].k {
-                0 => self.u[i],
-                1 => self.forward::<1>(i),
-                3 => self.forward::<3>(i),
-                5 => self.forward::<5>(i),
-                _ => self.forward::<6>(i),
-            };
-        }
+        self.sweep(0..m);
         let rigid = ctx.soft.impulse_scale == 0.0 && ctx.soft.mass_scale == 1.0;
         for i in 0..m {
             let node = self.nodes[i];
@@ -482,6 +519,114 @@ impl Forest {
                     b.apply_row(&self.row(&node, r), d);
                 }
                 write(c, &b, vel);
+            }
+        }
+        for k in 0..self.axial.len() {
+            self.solve_axial(k, constraints, vel, ctx);
+        }
+    }
+
+    /// The elimination over nodes `range` (whole trees) with the right-hand sides `rhs` and
+    /// the outside impulses `g` (both per solve): `x` the velocity changes, `z` the impulses.
+    fn sweep(&mut self, range: std::ops::Range<usize>) {
+        // Backwards: children before parents.
+        for i in range.clone().rev() {
+            let u = chol_solve6(&self.dinv[i], &self.g[i]);
+            self.u[i] = u;
+            match self.nodes[i].k {
+                0 => {}
+                1 => self.backward::<1>(i),
+                3 => self.backward::<3>(i),
+                5 => self.backward::<5>(i),
+                _ => self.backward::<6>(i),
+            }
+        }
+        // Forwards: parents before children; `z` becomes `λ`.
+        for i in range {
+            self.x[i] = match self.nodes[i].k {
+                0 => self.u[i],
+                1 => self.forward::<1>(i),
+                3 => self.forward::<3>(i),
+                5 => self.forward::<5>(i),
+                _ => self.forward::<6>(i),
+            };
+        }
+    }
+
+    /// A tree slider's motor and limits (`Axial` `k`), solved with the response of its whole
+    /// tree: a unit impulse along the row, with the impulses of the tree's equality rows that
+    /// keep their velocities, moves every body of the tree (`x`) and the row by `1 / mass`.
+    /// The row's impulse then stops or drives the slide against everything hanging on it, and
+    /// the equality rows stay solved. Solved against the two bodies alone (coupled with the
+    /// joint's own equality rows only), a limit holding a 100× end mass below two light links
+    /// saw their mass, and the rigid tree bounced the chain between the limits at 30 m/s.
+    fn solve_axial(&mut self, k: usize, constraints: &mut [JointConstraint], vel: &mut [Velocity], ctx: &Ctx) {
+        let a = self.axial[k];
+        let range = a.start as usize..a.end as usize;
+        let node = self.nodes[a.node as usize];
+        // The response to a unit impulse along the row.
+        for i in range.clone() {
+            self.g[i] = ZERO6;
+            let n = &self.nodes[i];
+            for r in n.off as usize..(n.off + n.k) as usize {
+                self.rhs[r] = 0.0;
+            }
+        }
+        self.g[a.node as usize] = a.jc;
+        if node.parent != NONE {
+            self.g[node.parent as usize] = a.jp;
+        }
+        self.sweep(range.clone());
+        let parent_x = if node.parent != NONE {
+            dot6(&a.jp, &self.x[node.parent as usize])
+        } else {
+            0.0
+        };
+        let inv_mass = dot6(&a.jc, &self.x[a.node as usize]) + parent_x;
+        let mass = if inv_mass > 0.0 && inv_mass.is_finite() {
+            (1.0 / inv_mass) as f32
+        } else {
+            0.0
+        };
+        let c = &mut constraints[node.joint as usize];
+        let super::JointKind::Slider(p) = c.kind else {
+            return;
+        };
+        let mut cdot =
+            (dot6(&a.jc, &six(&vel[node.body as usize])) + dot6(&a.jp, &six(&vel[node.other as usize]))) as f32;
+        let inv_mass = inv_mass as f32;
+        let mut total = 0.0f32;
+        let imp = &mut c.imp;
+        if p.enable_motor {
+            let old = imp.motor;
+            let max = p.max_motor_force * ctx.h;
+            imp.motor = (old - mass * (cdot - p.motor_speed)).clamp(-max, max);
+            let d = imp.motor - old;
+            cdot += inv_mass * d;
+            total += d;
+        }
+        if p.enable_limit {
+            let d = ctx.limit(mass, cdot, a.translation - p.lower, &mut imp.lower);
+            cdot += inv_mass * d;
+            total += d;
+            let d = ctx.limit(mass, -cdot, p.upper - a.translation, &mut imp.upper);
+            total -= d;
+        }
+        if total == 0.0 {
+            return;
+        }
+        let t = total as f64;
+        for i in range {
+            let n = self.nodes[i];
+            let x = &self.x[i];
+            let u = &mut vel[n.body as usize];
+            u.v += Vec3::new((x[0] * t) as f32, (x[1] * t) as f32, (x[2] * t) as f32);
+            u.w += Vec3::new((x[3] * t) as f32, (x[4] * t) as f32, (x[5] * t) as f32);
+            if n.k > 0 {
+                let imp = &mut constraints[n.joint as usize].imp;
+                for r in n.off as usize..(n.off + n.k) as usize {
+                    self.slot[r].add(imp, (self.z[r] * t) as f32);
+                }
             }
         }
     }
