@@ -98,9 +98,14 @@ impl DynamicTree {
     }
 
     /// Splits `order` (indices into `units`) by the best binned SAH plane over the three
-    /// axes; returns the size of the first part (always in `1..len`).
+    /// axes; returns the size of the first part (always in `1..len`). A unit counts with
+    /// the leaves it holds, estimated as `2^height` (a kept subtree of a partial rebuild is
+    /// about balanced; counted as one leaf, the few large subtrees of a mostly-resting
+    /// world were split off one by one, and the rebuilt top grew deep).
     fn partition(&self, order: &mut [u32], units: &[u32], centers: &[Vec3]) -> usize {
         let n = order.len();
+        let weight = |k: u32| (1u32 << self.nodes[units[k as usize] as usize].height.clamp(0, 24)) as f32;
+        let total: f32 = order.iter().map(|&k| weight(k)).sum();
         let mut cmin = Vec3::splat(f32::MAX);
         let mut cmax = Vec3::splat(-f32::MAX);
         for &k in order.iter() {
@@ -117,10 +122,12 @@ impl DynamicTree {
             let scale = BIN_COUNT as f32 / extent;
             let mut boxes = [Aabb::EMPTY; BIN_COUNT];
             let mut counts = [0usize; BIN_COUNT];
+            let mut weights = [0.0f32; BIN_COUNT];
             for &k in order.iter() {
                 let b = bin_of(centers[k as usize][axis], cmin[axis], scale);
                 boxes[b] = boxes[b].union(&self.nodes[units[k as usize] as usize].aabb);
                 counts[b] += 1;
+                weights[b] += weight(k);
             }
             // Sweep from the right to get suffix areas, then from the left.
             let mut right_area = [0.0f32; BIN_COUNT];
@@ -130,15 +137,16 @@ impl DynamicTree {
                 right_area[b] = if acc.min.x <= acc.max.x { acc.perimeter() } else { 0.0 };
             }
             let mut left = Aabb::EMPTY;
-            let mut left_count = 0;
+            let (mut left_count, mut left_weight) = (0, 0.0f32);
             for split in 1..BIN_COUNT {
                 left = left.union(&boxes[split - 1]);
                 left_count += counts[split - 1];
+                left_weight += weights[split - 1];
                 let right_count = n - left_count;
                 if left_count == 0 || right_count == 0 {
                     continue;
                 }
-                let cost = left.perimeter() * left_count as f32 + right_area[split] * right_count as f32;
+                let cost = left.perimeter() * left_weight + right_area[split] * (total - left_weight);
                 if cost < best_cost {
                     best_cost = cost;
                     best = Some((axis, split));
