@@ -150,9 +150,22 @@ impl Writer {
     pub fn values<const W: usize>(&mut self, values: impl Iterator<Item = [u8; W]>) {
         let c = &mut self.columns[self.cur as usize];
         let start = c.bytes.len();
-        for v in values {
-            c.bytes.extend_from_slice(&v);
+        // Internal iteration: the chains of maps, filters and flat maps that lead here fold
+        // far faster than they step.
+        values.for_each(|v| c.bytes.extend_from_slice(&v));
+        if c.bytes.len() > start && c.width != W as u8 {
+            c.width = if c.width == 0 { W as u8 } else { MIXED };
         }
+    }
+
+    /// Appends groups of values of one width (`W` bytes each, `B / W` per group) to the
+    /// current column: a vector's components in order, as `values` would append them one
+    /// by one.
+    #[inline]
+    pub fn value_groups<const W: usize, const B: usize>(&mut self, groups: impl Iterator<Item = [u8; B]>) {
+        let c = &mut self.columns[self.cur as usize];
+        let start = c.bytes.len();
+        groups.for_each(|v| c.bytes.extend_from_slice(&v));
         if c.bytes.len() > start && c.width != W as u8 {
             c.width = if c.width == 0 { W as u8 } else { MIXED };
         }
