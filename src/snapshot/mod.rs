@@ -34,7 +34,7 @@ pub use write::{column_sizes, save, saved_size};
 /// First eight bytes of every snapshot.
 pub const MAGIC: [u8; 8] = *b"HEARTHSS";
 /// Format version; a snapshot of another version is refused.
-pub const VERSION: u32 = 4;
+pub const VERSION: u32 = 5;
 /// Bytes before the payload: magic, version, payload length (u64), checksum (u64).
 pub const HEADER_LEN: usize = 8 + 4 + 8 + 8;
 
