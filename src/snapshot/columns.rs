@@ -876,5 +876,17 @@ mod tests {
         payload[12] = 4 | SPARSE;
         payload.push(0);
         assert!(unpack(&payload, &mut plain).is_err(), "a byte left over");
+        payload.pop();
+        // Lengths beyond 64 times the column data are refused before anything is
+        // allocated; up to it, the bitmap decides.
+        let body = (payload.len() - 13) as u64;
+        for (len, ok) in [(64 * body + 4, false), (u64::MAX, false), (values.len() as u64, true)] {
+            payload[4..12].copy_from_slice(&len.to_le_bytes());
+            let got = unpack(&payload, &mut plain);
+            assert_eq!(got.is_ok(), ok, "length {len}");
+            if !ok {
+                assert!(got.unwrap_err().0.contains("column table"), "length {len}");
+            }
+        }
     }
 }
