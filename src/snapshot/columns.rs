@@ -41,6 +41,8 @@ pub struct Writer {
     columns: Vec<WColumn>,
     used: u32,
     cur: u32,
+    /// `finish`'s scratch: each column's code and stored length.
+    forms: Vec<(u8, usize)>,
 }
 
 impl Default for Writer {
@@ -55,6 +57,7 @@ impl Writer {
             columns: vec![WColumn::default()],
             used: 1,
             cur: 0,
+            forms: Vec::new(),
         }
     }
 
@@ -186,16 +189,21 @@ impl Writer {
     /// length (`u64`, before the sparse form) and code (`u8`: its width; 2, 4 or 8 for byte
     /// planes, plus `SPARSE` for the sparse form; otherwise stored as is), then the columns
     /// in order.
-    pub fn finish(&self, out: &mut Vec<u8>) {
-        let live = self.live();
-        let forms: Vec<(u8, usize)> = live.iter().map(|c| stored(c.width, &c.bytes)).collect();
+    pub fn finish(&mut self, out: &mut Vec<u8>) {
+        let Writer {
+            columns, used, forms, ..
+        } = self;
+        let live = &columns[..*used as usize];
+        // Kept between payloads, like the columns: a save allocates nothing after the first.
+        forms.clear();
+        forms.extend(live.iter().map(|c| stored(c.width, &c.bytes)));
         // Sized once and written in place: a buffer reused from the last payload of about
         // this size is neither cleared nor zeroed again.
         let table = 4 + 9 * live.len();
         out.resize(table + forms.iter().map(|f| f.1).sum::<usize>(), 0);
         out[..4].copy_from_slice(&(live.len() as u32).to_le_bytes());
         let mut at = table;
-        for (k, (c, &(code, len))) in live.iter().zip(&forms).enumerate() {
+        for (k, (c, &(code, len))) in live.iter().zip(forms.iter()).enumerate() {
             let e = &mut out[4 + 9 * k..4 + 9 * k + 9];
             e[..8].copy_from_slice(&(c.bytes.len() as u64).to_le_bytes());
             e[8] = code;
@@ -226,7 +234,7 @@ impl Writer {
             }
         }
         let packed = |c: &WColumn| {
-            let one = Writer {
+            let mut one = Writer {
                 columns: vec![WColumn {
                     bytes: c.bytes.clone(),
                     width: c.width,
@@ -235,6 +243,7 @@ impl Writer {
                 }],
                 used: 1,
                 cur: 0,
+                forms: Vec::new(),
             };
             let mut raw = Vec::new();
             one.finish(&mut raw);
