@@ -380,12 +380,18 @@ impl<T: crate::snapshot::Snap> crate::snapshot::Snap for Pool<T> {
         if let Some(c) = counters.iter().find(|&&c| c == 0 || c > COUNTER_MASK) {
             return bad(format!("snapshot corrupted: slot counter {c} out of range"));
         }
-        let values = Option::<T>::get_all(n, r)?;
-        let live = values.iter().filter(|v| v.is_some()).count();
+        // The bytes `Option::<T>::get_all` reads (flags, then the live values), moved
+        // straight into the slots: the values are large, and each move is a copy.
+        let some = r.within("#some", |r| bool::get_all(n, r))?;
+        let live = some.iter().filter(|&&s| s).count();
+        let mut values = T::get_all(live, r)?.into_iter();
         let slots: Vec<_> = counters
             .into_iter()
-            .zip(values)
-            .map(|(counter, value)| Slot { counter, value })
+            .zip(some)
+            .map(|(counter, s)| Slot {
+                counter,
+                value: if s { values.next() } else { None },
+            })
             .collect();
         let free = r.within("#free", Vec::<u32>::get)?;
         let len = r.within("#len", usize::get)?;

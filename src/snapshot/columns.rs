@@ -5,7 +5,10 @@
 //! whose values all have one width (2, 4 or 8 bytes) is stored as byte planes (every
 //! value's first byte, then every second byte, …): equal fields (masses, inertias, zero
 //! velocities of sleeping bodies, sign and exponent bytes of nearby positions) become long
-//! runs that the zstd stage after this one shrinks.
+//! runs that the zstd stage after this one shrinks. When enough of such a column's values
+//! are zero, it is stored sparse instead: a bitmap of the non-zero values, then only those
+//! as byte planes (`SPARSE`). zstd's cost follows the bytes it reads, and the pile's columns
+//! are two-thirds zero bytes (unused contact points, empty caches, resting bodies).
 //!
 //! A column is known by its path only while writing; the payload lists the columns in the
 //! order the writer first entered them, and the reader, which walks the same structure in
@@ -17,6 +20,9 @@ use super::{bad, ReadResult};
 
 /// Width marker of a column whose values differ in width (stored as is).
 const MIXED: u8 = 0xFF;
+/// Added to a plane column's width (2, 4 or 8) in the column table when it is stored in
+/// the sparse form: a bitmap of its non-zero values, then only those, as byte planes.
+pub(crate) const SPARSE: u8 = 0x40;
 
 #[derive(Default)]
 struct WColumn {
@@ -35,6 +41,8 @@ pub struct Writer {
     columns: Vec<WColumn>,
     used: u32,
     cur: u32,
+    /// `finish`'s scratch: each column's code and stored length.
+    forms: Vec<(u8, usize)>,
 }
 
 impl Default for Writer {
@@ -49,6 +57,7 @@ impl Writer {
             columns: vec![WColumn::default()],
             used: 1,
             cur: 0,
+            forms: Vec::new(),
         }
     }
 
@@ -150,9 +159,22 @@ impl Writer {
     pub fn values<const W: usize>(&mut self, values: impl Iterator<Item = [u8; W]>) {
         let c = &mut self.columns[self.cur as usize];
         let start = c.bytes.len();
-        for v in values {
-            c.bytes.extend_from_slice(&v);
+        // Internal iteration: the chains of maps, filters and flat maps that lead here fold
+        // far faster than they step.
+        values.for_each(|v| c.bytes.extend_from_slice(&v));
+        if c.bytes.len() > start && c.width != W as u8 {
+            c.width = if c.width == 0 { W as u8 } else { MIXED };
         }
+    }
+
+    /// Appends groups of values of one width (`W` bytes each, `B / W` per group) to the
+    /// current column: a vector's components in order, as `values` would append them one
+    /// by one.
+    #[inline]
+    pub fn value_groups<const W: usize, const B: usize>(&mut self, groups: impl Iterator<Item = [u8; B]>) {
+        let c = &mut self.columns[self.cur as usize];
+        let start = c.bytes.len();
+        groups.for_each(|v| c.bytes.extend_from_slice(&v));
         if c.bytes.len() > start && c.width != W as u8 {
             c.width = if c.width == 0 { W as u8 } else { MIXED };
         }
@@ -160,31 +182,41 @@ impl Writer {
 
     /// Bytes the payload takes before compression.
     pub fn raw_len(&self) -> usize {
-        4 + 9 * self.live().len() + self.live().iter().map(|c| c.bytes.len()).sum::<usize>()
+        4 + 9 * self.live().len() + self.live().iter().map(|c| stored(c.width, &c.bytes).1).sum::<usize>()
     }
 
-    /// Replaces `out`'s content with the payload: the column count (`u32`), each column's length (`u64`)
-    /// and width (`u8`: 2, 4 or 8 for byte planes, otherwise stored as is), then the
-    /// columns in order.
-    pub fn finish(&self, out: &mut Vec<u8>) {
+    /// Replaces `out`'s content with the payload: the column count (`u32`), each column's
+    /// length (`u64`, before the sparse form) and code (`u8`: its width; 2, 4 or 8 for byte
+    /// planes, plus `SPARSE` for the sparse form; otherwise stored as is), then the columns
+    /// in order.
+    pub fn finish(&mut self, out: &mut Vec<u8>) {
+        let Writer {
+            columns, used, forms, ..
+        } = self;
+        let live = &columns[..*used as usize];
+        // Kept between payloads, like the columns: a save allocates nothing after the first.
+        forms.clear();
+        forms.extend(live.iter().map(|c| stored(c.width, &c.bytes)));
         // Sized once and written in place: a buffer reused from the last payload of about
         // this size is neither cleared nor zeroed again.
-        out.resize(self.raw_len(), 0);
-        let live = self.live();
+        let table = 4 + 9 * live.len();
+        out.resize(table + forms.iter().map(|f| f.1).sum::<usize>(), 0);
         out[..4].copy_from_slice(&(live.len() as u32).to_le_bytes());
-        for (k, c) in live.iter().enumerate() {
+        let mut at = table;
+        for (k, (c, &(code, len))) in live.iter().zip(forms.iter()).enumerate() {
             let e = &mut out[4 + 9 * k..4 + 9 * k + 9];
             e[..8].copy_from_slice(&(c.bytes.len() as u64).to_le_bytes());
-            e[8] = c.width;
-        }
-        let mut at = 4 + 9 * live.len();
-        for c in live {
-            let dst = &mut out[at..at + c.bytes.len()];
-            match planes(c.width, c.bytes.len()) {
-                1 => dst.copy_from_slice(&c.bytes),
-                w => to_planes(&c.bytes, dst, w),
+            e[8] = code;
+            let dst = &mut out[at..at + len];
+            if code != c.width {
+                to_sparse(&c.bytes, dst, c.width as usize);
+            } else {
+                match planes(code, c.bytes.len()) {
+                    1 => dst.copy_from_slice(&c.bytes),
+                    w => to_planes(&c.bytes, dst, w),
+                }
             }
-            at += c.bytes.len();
+            at += len;
         }
     }
 
@@ -202,7 +234,7 @@ impl Writer {
             }
         }
         let packed = |c: &WColumn| {
-            let one = Writer {
+            let mut one = Writer {
                 columns: vec![WColumn {
                     bytes: c.bytes.clone(),
                     width: c.width,
@@ -211,6 +243,7 @@ impl Writer {
                 }],
                 used: 1,
                 cur: 0,
+                forms: Vec::new(),
             };
             let mut raw = Vec::new();
             one.finish(&mut raw);
@@ -250,6 +283,52 @@ fn planes(width: u8, len: usize) -> usize {
     match width {
         2 | 4 | 8 if len % width as usize == 0 => width as usize,
         _ => 1,
+    }
+}
+
+/// How a column of width code `width` holding `bytes` is stored: its code in the table
+/// (the width, or the width plus `SPARSE`) and its stored length. A plane column whose
+/// zero values are many enough that a bitmap of the others (one bit per value) plus the
+/// others alone is shorter is stored sparse: unused contact points, resting velocities,
+/// off-diagonal inertia, empty caches cost a bit each instead of their width.
+fn stored(width: u8, bytes: &[u8]) -> (u8, usize) {
+    let w = planes(width, bytes.len());
+    if w == 1 {
+        return (width, bytes.len());
+    }
+    let n = bytes.len() / w;
+    let k = match w {
+        2 => planes_u16::nonzero(bytes),
+        4 => planes_u32::nonzero(bytes),
+        _ => planes_u64::nonzero(bytes),
+    };
+    let sparse = n.div_ceil(8) + k * w;
+    if sparse < bytes.len() {
+        (width | SPARSE, sparse)
+    } else {
+        (width, bytes.len())
+    }
+}
+
+/// The sparse form of `values` (width `w`: 2, 4 or 8) into `dst`: the bitmap of non-zero
+/// values (bit `i % 8` of byte `i / 8` for value `i`), then the non-zero values as byte
+/// planes. `dst` has the length `stored` gave.
+fn to_sparse(values: &[u8], dst: &mut [u8], w: usize) {
+    match w {
+        2 => planes_u16::split_sparse(values, dst),
+        4 => planes_u32::split_sparse(values, dst),
+        _ => planes_u64::split_sparse(values, dst),
+    }
+}
+
+/// Undoes `to_sparse`: the values of width `w` into `dst` (their whole length) from the
+/// start of `src`; returns the bytes of `src` used. Refuses a bitmap with bits past the
+/// last value or announcing more values than `src` holds.
+fn from_sparse(src: &[u8], dst: &mut [u8], w: usize) -> ReadResult<usize> {
+    match w {
+        2 => planes_u16::join_sparse(src, dst),
+        4 => planes_u32::join_sparse(src, dst),
+        _ => planes_u64::join_sparse(src, dst),
     }
 }
 
@@ -319,6 +398,121 @@ macro_rules! planes_of {
                     }
                 }
             }
+
+            /// How many of the little-endian values in `values` are not zero.
+            pub(super) fn nonzero(values: &[u8]) -> usize {
+                let mut block = [0 as $t; BLOCK];
+                let mut k = 0;
+                for chunk in values.chunks(BLOCK * W) {
+                    if chunk.iter().fold(0, |a, &x| a | x) == 0 {
+                        continue;
+                    }
+                    block.fill(0);
+                    for (x, v) in block.iter_mut().zip(chunk.chunks_exact(W)) {
+                        *x = <$t>::from_le_bytes(v.try_into().expect("W bytes"));
+                    }
+                    k += block.iter().map(|x| (*x != 0) as u32).sum::<u32>() as usize;
+                }
+                k
+            }
+
+            /// The sparse form of `values` into `dst`: bitmap, then the non-zero values'
+            /// byte planes. Per block of `BLOCK` values: their bitmap, then only the set
+            /// bits are visited, so the cost follows the non-zero values.
+            pub(super) fn split_sparse(values: &[u8], dst: &mut [u8]) {
+                let n = values.len() / W;
+                let (bits, rest) = dst.split_at_mut(n.div_ceil(8));
+                let k = rest.len() / W;
+                let mut block = [0 as $t; BLOCK];
+                let mut words = [0 as $t; BLOCK];
+                let mut plane = [0u8; BLOCK];
+                let mut j = 0;
+                for (b, chunk) in values.chunks(BLOCK * W).enumerate() {
+                    let c = chunk.len() / W;
+                    let nb = c.div_ceil(8);
+                    if chunk.iter().fold(0, |a, &x| a | x) == 0 {
+                        bits[b * BLOCK / 8..b * BLOCK / 8 + nb].fill(0);
+                        continue;
+                    }
+                    if c < BLOCK {
+                        block.fill(0);
+                    }
+                    for (x, v) in block.iter_mut().zip(chunk.chunks_exact(W)) {
+                        *x = <$t>::from_le_bytes(v.try_into().expect("W bytes"));
+                    }
+                    // A byte of the bitmap per eight values (a compare and a mask move).
+                    let mut mask = 0u64;
+                    for (g, group) in block.chunks_exact(8).enumerate() {
+                        let mut byte = 0u8;
+                        for (t, x) in group.iter().enumerate() {
+                            byte |= ((*x != 0) as u8) << t;
+                        }
+                        mask |= (byte as u64) << (8 * g);
+                    }
+                    bits[b * BLOCK / 8..b * BLOCK / 8 + nb].copy_from_slice(&mask.to_le_bytes()[..nb]);
+                    if mask == 0 {
+                        continue;
+                    }
+                    let mut m = 0;
+                    let mut left = mask;
+                    while left != 0 {
+                        words[m % BLOCK] = block[left.trailing_zeros() as usize % BLOCK];
+                        left &= left - 1;
+                        m += 1;
+                    }
+                    for p in 0..W {
+                        for (y, x) in plane.iter_mut().zip(&words[..m]) {
+                            *y = (x >> (8 * p)) as u8;
+                        }
+                        rest[p * k + j..p * k + j + m].copy_from_slice(&plane[..m]);
+                    }
+                    j += m;
+                }
+            }
+
+            /// Undoes `split_sparse`: fills `dst` (all `n` values) from the start of `src`;
+            /// returns the bytes used.
+            pub(super) fn join_sparse(src: &[u8], dst: &mut [u8]) -> super::ReadResult<usize> {
+                let n = dst.len() / W;
+                let nb = n.div_ceil(8);
+                let Some(bits) = src.get(..nb) else {
+                    return super::bad("snapshot corrupted: a sparse column's bitmap ends early");
+                };
+                if n % 8 != 0 && bits[nb - 1] >> (n % 8) != 0 {
+                    return super::bad("snapshot corrupted: a sparse column's bitmap has bits past its values");
+                }
+                let k: usize = bits.iter().map(|b| b.count_ones() as usize).sum();
+                let Some(rest) = src.get(nb..nb + k * W) else {
+                    return super::bad("snapshot corrupted: a sparse column ends early");
+                };
+                let mut words = [0 as $t; BLOCK];
+                let mut j = 0;
+                for (b, chunk) in dst.chunks_mut(BLOCK * W).enumerate() {
+                    let cb = (chunk.len() / W).div_ceil(8);
+                    let mut mask = [0u8; 8];
+                    mask[..cb].copy_from_slice(&bits[b * BLOCK / 8..b * BLOCK / 8 + cb]);
+                    let mask = u64::from_le_bytes(mask);
+                    chunk.fill(0);
+                    if mask == 0 {
+                        continue;
+                    }
+                    let m = mask.count_ones() as usize;
+                    words[..m].fill(0);
+                    for p in 0..W {
+                        for (x, &y) in words[..m].iter_mut().zip(&rest[p * k + j..p * k + j + m]) {
+                            *x |= (y as $t) << (8 * p);
+                        }
+                    }
+                    let mut left = mask;
+                    for x in &words[..m] {
+                        let i = left.trailing_zeros() as usize;
+                        chunk[i * W..i * W + W].copy_from_slice(&x.to_le_bytes());
+                        left &= left - 1;
+                    }
+                    j += m;
+                }
+                Ok(nb + k * W)
+            }
         }
     };
 }
@@ -372,26 +566,52 @@ pub(crate) fn unpack(payload: &[u8], plain: &mut Vec<u8>) -> ReadResult<Vec<(usi
         return corrupt();
     };
     let mut spans = Vec::with_capacity(count as usize);
-    let mut at = 0usize;
     let body = &payload[table_len..];
-    // Written in place: a buffer kept from the last restore is not zeroed again.
-    plain.resize(body.len(), 0);
+    // The columns' lengths before the sparse form (which may exceed the body's length);
+    // each is checked against what is left of the stream as it is read.
+    let mut total = 0usize;
     for k in 0..count as usize {
         let e = &payload[4 + 9 * k..4 + 9 * k + 9];
         let len = u64::from_le_bytes(e[..8].try_into().expect("8"));
-        let len = match usize::try_from(len) {
-            Ok(l) if l <= body.len() - at => l,
+        let sparse_max = body.len().saturating_mul(64);
+        match usize::try_from(len) {
+            Ok(l) if l <= sparse_max => total += l,
             _ => return corrupt(),
-        };
-        let (src, dst) = (&body[at..at + len], &mut plain[at..at + len]);
-        match planes(e[8], len) {
-            1 => dst.copy_from_slice(src),
-            w => from_planes(src, dst, w),
         }
+        if total > sparse_max {
+            return corrupt();
+        }
+    }
+    // Written in place: a buffer kept from the last restore is not zeroed again.
+    plain.resize(total, 0);
+    let (mut at, mut from) = (0usize, 0usize);
+    for k in 0..count as usize {
+        let e = &payload[4 + 9 * k..4 + 9 * k + 9];
+        let len = u64::from_le_bytes(e[..8].try_into().expect("8")) as usize;
+        let code = e[8];
+        let dst = &mut plain[at..at + len];
+        let src = &body[from..];
+        let used = if code & SPARSE != 0 && code != MIXED {
+            let w = (code & !SPARSE) as usize;
+            if planes(w as u8, len) == 1 {
+                return bad("snapshot corrupted: a sparse column's width is not 2, 4 or 8");
+            }
+            from_sparse(src, dst, w)?
+        } else {
+            if len > src.len() {
+                return corrupt();
+            }
+            match planes(code, len) {
+                1 => dst.copy_from_slice(&src[..len]),
+                w => from_planes(&src[..len], dst, w),
+            }
+            len
+        };
         spans.push((at, at + len));
         at += len;
+        from += used;
     }
-    if at != body.len() {
+    if from != body.len() {
         return corrupt();
     }
     Ok(spans)
@@ -544,6 +764,138 @@ mod tests {
             assert_eq!(back, values);
             from_planes(&[], &mut [], w);
             to_planes(&[], &mut [], w);
+        }
+    }
+
+    /// Values of width `w`, `n` of them, about one in `every` non-zero (seeded, so the
+    /// zero pattern crosses block and byte boundaries irregularly).
+    fn sparse_values(n: usize, w: usize, every: u64, seed: u64) -> Vec<u8> {
+        let mut x = seed;
+        let mut out = Vec::with_capacity(n * w);
+        for _ in 0..n {
+            x = x.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+            let nonzero = (x >> 33) % every == 0;
+            for p in 0..w {
+                // A non-zero value has a non-zero byte, somewhere (here: its last).
+                let b = if nonzero {
+                    ((x >> (8 * (p % 4))) as u8) | (p == w - 1) as u8
+                } else {
+                    0
+                };
+                out.push(b);
+            }
+        }
+        out
+    }
+
+    /// The sparse form: bitmap then non-zero values as byte planes, for every width, for
+    /// lengths around the block and byte sizes and for all-zero and all-non-zero columns;
+    /// `from_sparse` undoes it and reports the bytes it used.
+    #[test]
+    fn sparse_round_trip() {
+        for w in [2usize, 4, 8] {
+            for n in [0usize, 1, 7, 8, 9, 63, 64, 65, 200, 1000] {
+                for every in [1u64, 3, 17, 1_000_000] {
+                    let values = sparse_values(n, w, every, (n * w) as u64 + every);
+                    let k = values.chunks(w).filter(|v| v.iter().any(|&b| b != 0)).count();
+                    let len = n.div_ceil(8) + k * w;
+                    let mut dst = vec![0xAA; len];
+                    to_sparse(&values, &mut dst, w);
+                    for i in 0..n {
+                        let bit = dst[i / 8] >> (i % 8) & 1;
+                        assert_eq!(bit == 1, values[i * w..i * w + w].iter().any(|&b| b != 0));
+                    }
+                    let mut back = vec![0x55; values.len()];
+                    let mut src = dst.clone();
+                    src.extend_from_slice(&[9, 9, 9]);
+                    assert_eq!(from_sparse(&src, &mut back, w), Ok(len), "w {w} n {n} every {every}");
+                    assert_eq!(back, values, "w {w} n {n} every {every}");
+                }
+            }
+        }
+    }
+
+    /// The writer stores a mostly-zero plane column sparse and others as planes or as is,
+    /// whichever is shorter, and `unpack` gives back every column's bytes.
+    #[test]
+    fn payload_round_trip_chooses_the_shorter_form() {
+        let mut w = Writer::new();
+        let zeros = sparse_values(1000, 4, 50, 1);
+        let dense = sparse_values(1000, 4, 1, 2);
+        w.within("zeros", |w| {
+            w.values(zeros.chunks(4).map(|c| <[u8; 4]>::try_from(c).unwrap()))
+        });
+        w.within("dense", |w| {
+            w.values(dense.chunks(4).map(|c| <[u8; 4]>::try_from(c).unwrap()))
+        });
+        w.within("bytes", |w| {
+            w.bytes(&[1, 2]);
+            w.bytes(&[3]);
+        });
+        let mut payload = Vec::new();
+        w.finish(&mut payload);
+        assert_eq!(payload.len(), w.raw_len());
+        let code = |k: usize| payload[4 + 9 * k + 8];
+        assert_eq!(code(1), 4 | SPARSE, "the mostly-zero column is sparse");
+        assert_eq!(code(2), 4, "the dense column is byte planes");
+        assert_eq!(code(3), MIXED);
+        // The sparse column: a 125-byte bitmap and about 20 values of 4 bytes, not 4,000.
+        let sparse = payload.len() - (4 + 9 * 4 + 4000 + 3);
+        assert!(sparse < 125 + 4 * 60, "{sparse} bytes");
+        let mut plain = Vec::new();
+        let spans = unpack(&payload, &mut plain).unwrap();
+        assert_eq!(&plain[spans[1].0..spans[1].1], &zeros[..]);
+        assert_eq!(&plain[spans[2].0..spans[2].1], &dense[..]);
+        assert_eq!(
+            &plain[spans[3].0..spans[3].1],
+            &[1, 2, 3],
+            "values of mixed widths as is"
+        );
+    }
+
+    /// A sparse column whose bitmap has bits past its last value, announces more values
+    /// than the stream holds, or whose width is not 2, 4 or 8 is refused, never a panic.
+    #[test]
+    fn corrupted_sparse_columns_are_refused() {
+        let values = sparse_values(13, 4, 3, 7);
+        let k = values.chunks(4).filter(|v| v.iter().any(|&b| b != 0)).count();
+        let mut sparse = vec![0; 2 + 4 * k];
+        to_sparse(&values, &mut sparse, 4);
+        let mut out = vec![0; values.len()];
+        assert!(from_sparse(&sparse, &mut out, 4).is_ok());
+        let mut stray = sparse.clone();
+        stray[1] |= 0x80;
+        assert!(from_sparse(&stray, &mut out, 4).is_err(), "a bit past the last value");
+        let mut more = sparse.clone();
+        more[0] = 0xFF;
+        more[1] |= 0x1F;
+        assert!(from_sparse(&more, &mut out, 4).is_err(), "more values than stored");
+        assert!(from_sparse(&sparse[..1], &mut out, 4).is_err(), "a bitmap cut short");
+        // The same column in a payload, with its code's width made 3 or 1.
+        let mut payload = vec![1, 0, 0, 0];
+        payload.extend_from_slice(&(values.len() as u64).to_le_bytes());
+        payload.push(4 | SPARSE);
+        payload.extend_from_slice(&sparse);
+        let mut plain = Vec::new();
+        assert!(unpack(&payload, &mut plain).is_ok());
+        for bad in [3 | SPARSE, 1 | SPARSE, 16 | SPARSE] {
+            payload[12] = bad;
+            assert!(unpack(&payload, &mut plain).is_err(), "code {bad}");
+        }
+        payload[12] = 4 | SPARSE;
+        payload.push(0);
+        assert!(unpack(&payload, &mut plain).is_err(), "a byte left over");
+        payload.pop();
+        // Lengths beyond 64 times the column data are refused before anything is
+        // allocated; up to it, the bitmap decides.
+        let body = (payload.len() - 13) as u64;
+        for (len, ok) in [(64 * body + 4, false), (u64::MAX, false), (values.len() as u64, true)] {
+            payload[4..12].copy_from_slice(&len.to_le_bytes());
+            let got = unpack(&payload, &mut plain);
+            assert_eq!(got.is_ok(), ok, "length {len}");
+            if !ok {
+                assert!(got.unwrap_err().0.contains("column table"), "length {len}");
+            }
         }
     }
 }

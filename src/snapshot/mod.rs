@@ -455,13 +455,56 @@ macro_rules! snap_floats {
     )*};
 }
 snap_floats! {
-    glam::Vec3: x, y, z;
-    glam::Vec3A: x, y, z;
     glam::DVec3: x, y, z;
     glam::Mat3: x_axis, y_axis, z_axis;
     glam::Mat3A: x_axis, y_axis, z_axis;
-    glam::Quat: x, y, z, w;
     glam::DQuat: x, y, z, w;
+}
+
+/// Vectors of `f32`: the same bytes as `snap_floats` (each component's `f32`, in order, in
+/// the one column), moved between the column and the values without a `Vec<f32>` between.
+macro_rules! snap_f32s {
+    ($($t:ty: $k:literal, $($f:ident),*;)*) => {$(
+        impl Snap for $t {
+            fn put(&self, w: &mut Writer) {
+                $( self.$f.put(w); )*
+            }
+            fn get(r: &mut Reader) -> ReadResult<Self> {
+                let mut v = <$t>::default();
+                $( v.$f = Snap::get(r)?; )*
+                Ok(v)
+            }
+            fn put_all<'s, I>(items: I, w: &mut Writer)
+            where
+                I: Iterator<Item = &'s Self> + Clone,
+                Self: 's,
+            {
+                w.value_groups::<4, { 4 * $k }>(items.map(|v: &'s $t| {
+                    let mut b = [0u8; 4 * $k];
+                    for (d, x) in b.chunks_exact_mut(4).zip([$(v.$f),*]) {
+                        d.copy_from_slice(&x.to_le_bytes());
+                    }
+                    b
+                }));
+            }
+            fn get_all(n: usize, r: &mut Reader) -> ReadResult<Vec<Self>> {
+                let b = r.take_values(n, 4 * $k)?;
+                Ok(b.chunks_exact(4 * $k)
+                    .map(|c| {
+                        let mut v = <$t>::default();
+                        let mut x = c.chunks_exact(4).map(|e| f32::from_le_bytes(e.try_into().expect("4 bytes")));
+                        $( v.$f = x.next().expect("k components"); )*
+                        v
+                    })
+                    .collect())
+            }
+        }
+    )*};
+}
+snap_f32s! {
+    glam::Vec3: 3, x, y, z;
+    glam::Vec3A: 3, x, y, z;
+    glam::Quat: 4, x, y, z, w;
 }
 
 impl crate::world::World {
