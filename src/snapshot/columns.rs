@@ -194,7 +194,7 @@ impl Writer {
             columns, used, forms, ..
         } = self;
         let live = &columns[..*used as usize];
-        // Kept between payloads, like the columns: a save allocates nothing after the first.
+        // Kept between payloads, like the columns: not allocated again after the first.
         forms.clear();
         forms.extend(live.iter().map(|c| stored(c.width, &c.bytes)));
         // Sized once and written in place: a buffer reused from the last payload of about

@@ -196,8 +196,10 @@ pub fn column_sizes(world: &World) -> Vec<(String, usize, usize)> {
 /// Writes the world's snapshot into `out` (cleared first): the frame, then the payload:
 /// its length before compression (`u64`) and its columns compressed with zstd (one frame).
 pub fn save(world: &World, out: &mut Vec<u8>) {
-    // The writer's columns and the payload before compression are kept per thread: a save
-    // of a world about the size of the last one allocates nothing and zeroes nothing.
+    // The writer's columns and the payload before compression are kept per thread: for a
+    // world about the size of the last one they are neither allocated nor zeroed again. (A
+    // save still makes a few smaller allocations: the islands' member lists, the sorted
+    // keys of the pair map, the tree's predicted parents.)
     thread_local! {
         static SCRATCH: std::cell::RefCell<(Writer, Vec<u8>)> =
             std::cell::RefCell::new((Writer::new(), Vec::new()));
