@@ -202,6 +202,42 @@ fn check(runs: &[(String, Run)], max_rise: f64, beyond: bool, max_gap: f32, max_
     worst
 }
 
+/// The rod (0.6 × 0.2 × 0.2 m, 12 kg, centred 0.3 m out along X) and the bead (0.2 m cube,
+/// 8 kg, 1 m out) of the bead-on-a-rod tests.
+fn rod_and_bead(w: &mut World) -> [BodyHandle; 2] {
+    let rod = link(
+        w,
+        Transform::new(Vec3::new(0.3, 0.0, 0.0), Quat::IDENTITY),
+        Vec3::new(0.3, 0.1, 0.1),
+        500.0,
+    );
+    let bead = link(
+        w,
+        Transform::new(Vec3::new(1.0, 0.0, 0.0), Quat::IDENTITY),
+        Vec3::splat(0.1),
+        1000.0,
+    );
+    [rod, bead]
+}
+
+/// A chain's joints by name, for the reports: a slider with its limits or motor.
+fn chain_name(kinds: &[JointKind]) -> String {
+    let names: Vec<String> = kinds
+        .iter()
+        .map(|k| match k {
+            JointKind::Hinge(_) => "hinge".into(),
+            JointKind::Ball(_) => "ball".into(),
+            JointKind::Fixed => "fixed".into(),
+            JointKind::Slider(p) if p.enable_limit => format!("slider ±{:.0} m", p.upper),
+            JointKind::Slider(p) if p.enable_motor => {
+                format!("slider motor {:.1} m/s {:.0} N", p.motor_speed, p.max_motor_force)
+            }
+            _ => "slider".into(),
+        })
+        .collect();
+    names.join(" → ")
+}
+
 /// Seeded random hinge → unlimited slider chains (60 seeds, 10 s each): the hinged link holds
 /// the child as it slides away under gravity, in 57 of them by 100–510 m (measured; at least
 /// 40 asserted). The energy (kinetic plus gravity's potential) never rises by more than 1 % of
@@ -346,18 +382,7 @@ fn bead_on_a_spinning_rod_keeps_angular_momentum_and_energy() {
         ..Default::default()
     })
     .unwrap();
-    let rod = link(
-        &mut w,
-        Transform::new(Vec3::new(0.3, 0.0, 0.0), Quat::IDENTITY),
-        Vec3::new(0.3, 0.1, 0.1),
-        500.0,
-    );
-    let bead = link(
-        &mut w,
-        Transform::new(Vec3::new(1.0, 0.0, 0.0), Quat::IDENTITY),
-        Vec3::splat(0.1),
-        1000.0,
-    );
+    let [rod, bead] = rod_and_bead(&mut w);
     let hinge = join(
         &mut w,
         JointKind::Hinge(HingeParams::default()),
@@ -439,17 +464,8 @@ fn seeded_random_chains_with_unlimited_sliders_gain_no_energy() {
                 _ => free_slider(),
             });
         }
-        let names: Vec<&str> = kinds
-            .iter()
-            .map(|k| match k {
-                JointKind::Hinge(_) => "hinge",
-                JointKind::Ball(_) => "ball",
-                JointKind::Fixed => "fixed",
-                _ => "slider",
-            })
-            .collect();
         runs.push((
-            format!("{} seed {seed}", names.join(" → ")),
+            format!("{} seed {seed}", chain_name(&kinds)),
             chain(&kinds, 1000 + seed, 600),
         ));
     }
@@ -517,19 +533,8 @@ fn seeded_random_chains_with_a_limited_or_motorised_slider_gain_no_energy() {
                 _ => JointKind::Fixed,
             });
         }
-        let names: Vec<String> = kinds
-            .iter()
-            .map(|k| match k {
-                JointKind::Hinge(_) => "hinge".into(),
-                JointKind::Ball(_) => "ball".into(),
-                JointKind::Fixed => "fixed".into(),
-                JointKind::Slider(p) if p.enable_limit => format!("slider ±{:.0} m", p.upper),
-                JointKind::Slider(p) => format!("slider motor {:.1} m/s {:.0} N", p.motor_speed, p.max_motor_force),
-                _ => unreachable!(),
-            })
-            .collect();
         runs.push((
-            format!("{} seed {seed}", names.join(" → ")),
+            format!("{} seed {seed}", chain_name(&kinds)),
             chain(&kinds, 2000 + seed, 600),
         ));
     }
@@ -561,18 +566,7 @@ fn seeded_random_chains_with_a_limited_or_motorised_slider_gain_no_energy() {
 /// the bead and the two joints.
 fn bead_on_a_hinged_rod(slider: SliderParams, spin: f32, out: f32) -> (World, [BodyHandle; 2], [Joint; 2]) {
     let mut w = scenes::world(false);
-    let rod = link(
-        &mut w,
-        Transform::new(Vec3::new(0.3, 0.0, 0.0), Quat::IDENTITY),
-        Vec3::new(0.3, 0.1, 0.1),
-        500.0,
-    );
-    let bead = link(
-        &mut w,
-        Transform::new(Vec3::new(1.0, 0.0, 0.0), Quat::IDENTITY),
-        Vec3::splat(0.1),
-        1000.0,
-    );
+    let [rod, bead] = rod_and_bead(&mut w);
     // The hinge's axis (its frames' Z) along world Y, the slider's along world X.
     let up = Quat::from_rotation_x(-std::f32::consts::FRAC_PI_2);
     let hinge = join(

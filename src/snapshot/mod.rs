@@ -419,17 +419,25 @@ impl<K: Snap + Ord + Copy + std::hash::Hash + Eq, V: Snap + Clone, S: std::hash:
     }
 }
 
+/// `put` and `get` of a struct of `Snap` fields, field by field in order (used by the
+/// two macros below).
+macro_rules! snap_fields {
+    ($t:ty: $($f:ident),*) => {
+        fn put(&self, w: &mut Writer) {
+            $( self.$f.put(w); )*
+        }
+        fn get(r: &mut Reader) -> ReadResult<Self> {
+            let mut v = <$t>::default();
+            $( v.$f = Snap::get(r)?; )*
+            Ok(v)
+        }
+    };
+}
+
 macro_rules! snap_floats {
     ($($t:ty: $($f:ident),*;)*) => {$(
         impl Snap for $t {
-            fn put(&self, w: &mut Writer) {
-                $( self.$f.put(w); )*
-            }
-            fn get(r: &mut Reader) -> ReadResult<Self> {
-                let mut v = <$t>::default();
-                $( v.$f = Snap::get(r)?; )*
-                Ok(v)
-            }
+            snap_fields!($t: $($f),*);
             fn put_all<'s, I>(items: I, w: &mut Writer)
             where
                 I: Iterator<Item = &'s Self> + Clone,
@@ -466,14 +474,7 @@ snap_floats! {
 macro_rules! snap_f32s {
     ($($t:ty: $k:literal, $($f:ident),*;)*) => {$(
         impl Snap for $t {
-            fn put(&self, w: &mut Writer) {
-                $( self.$f.put(w); )*
-            }
-            fn get(r: &mut Reader) -> ReadResult<Self> {
-                let mut v = <$t>::default();
-                $( v.$f = Snap::get(r)?; )*
-                Ok(v)
-            }
+            snap_fields!($t: $($f),*);
             fn put_all<'s, I>(items: I, w: &mut Writer)
             where
                 I: Iterator<Item = &'s Self> + Clone,
