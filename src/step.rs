@@ -325,8 +325,11 @@ impl World {
     }
 
     /// On the stepping thread, in awake order, the refit of every proxy whose swept box left
-    /// its fat box (the bodies `finish_bodies` marked) — exactly what `refresh_proxy` does
-    /// shape by shape.
+    /// its fat box (the bodies `finish_bodies` marked): the same fat box `refresh_proxy`
+    /// computes, but enlarged in place in the tree (rebuilt beside the next narrow phase)
+    /// instead of reinserted. `refresh_proxy` (teleports, wakes, type changes) still
+    /// reinserts: a proxy moved far would otherwise stretch its old ancestors' boxes across
+    /// the level until the next step.
     fn refit_proxies(&mut self, dt: f32) {
         for k in 0..self.awake_bodies.len() {
             let bi = self.awake_bodies[k];
