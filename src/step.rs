@@ -164,14 +164,17 @@ impl World {
         // Every awake contact is updated in parallel: a task writes only to its own contacts
         // and to their result slots. What changes the world's lists (destroyed contacts,
         // woken sleepers) is merged after, on this thread, in the serial order.
-        //    Beside it, as item 0 of the same run, the broad-phase tree is rebuilt above the
-        //    proxies the last step enlarged in place (`refit_proxies`): the tree is not used
+        //    Beside it, in the same run, the broad-phase tree is rebuilt above the proxies
+        //    the last step enlarged in place (`refit_proxies`): the top of the new hierarchy
+        //    is split here, and each subtree below it is a job of the run, worth `JOB_ITEMS`
+        //    items and run by whichever range holds its first item. The tree is not used
         //    again until the next step's pair search, and the rebuild's result does not
-        //    depend on when or where it runs.
+        //    depend on when or where its jobs run.
         let n = self.awake_contacts.len();
         let slop = self.settings.linear_slop;
         self.narrow_results.clear();
         self.narrow_results.resize(n, 0);
+        let jobs = self.broad.tree.begin_rebuild_enlarged();
         {
             let World {
                 contacts,
@@ -184,20 +187,22 @@ impl World {
                 broad,
                 ..
             } = self;
-            let rebuild = broad.tree.has_enlarged() as usize;
-            let tree = crate::parallel::SharedMut::new(&mut broad.tree);
+            let rebuild = broad.tree.rebuild_jobs();
+            let rebuild_items = jobs * JOB_ITEMS;
             let (contacts, results) = (contacts.disjoint(), crate::parallel::Disjoint::new(narrow_results));
             let awake_contacts = &*awake_contacts;
             let (shapes, bodies, geometry) = (&*shapes, &*bodies, &*geometry);
-            crate::parallel::run(&**tasks, (n + rebuild) as u32, NARROW_MIN_RANGE, &|start, end, _| {
-                let (mut start, end) = (start as usize, end as usize);
-                if start < rebuild {
-                    // SAFETY: item 0 is in exactly one range, and nothing else in this run
-                    // touches the tree.
-                    unsafe { tree.get() }.rebuild_enlarged();
-                    start = rebuild;
+            let count = (rebuild_items + n) as u32;
+            crate::parallel::run(&**tasks, count, NARROW_MIN_RANGE, &|start, end, _| {
+                let (start, end) = (start as usize, end as usize);
+                for k in start.div_ceil(JOB_ITEMS)..end.min(rebuild_items).div_ceil(JOB_ITEMS) {
+                    // SAFETY: job `k`'s first item, `k * JOB_ITEMS`, is in exactly one range.
+                    unsafe { rebuild.run(k) };
                 }
-                let (start, end) = (start - rebuild, end - rebuild);
+                let (start, end) = (
+                    start.max(rebuild_items) - rebuild_items,
+                    end.max(rebuild_items) - rebuild_items,
+                );
                 for (k, &ci) in awake_contacts[start..end].iter().enumerate() {
                     // SAFETY: `awake_contacts` lists each contact once and `start + k` is this
                     // task's own index.
@@ -206,6 +211,7 @@ impl World {
                 }
             });
         }
+        self.broad.tree.end_rebuild();
         self.scratch_wake.clear();
         let mut touching = 0;
         let mut i = n;
@@ -441,6 +447,10 @@ const BOUNDS_MIN_RANGE: u32 = 64;
 
 /// Contacts per narrow-phase task, at least.
 const NARROW_MIN_RANGE: u32 = 16;
+/// Items of the narrow-phase run that one job of the tree rebuild counts for (a job of up to
+/// 256 units costs about as much as 50 to 100 contact updates), so that the pool's ranges
+/// spread the jobs over the workers.
+const JOB_ITEMS: usize = 32;
 /// Narrow-phase results: the pair's fat boxes parted, it touches, the sleeper to wake, it
 /// has events to report.
 const DESTROY: u8 = 1;

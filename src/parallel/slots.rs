@@ -35,6 +35,21 @@ impl<'a, T> Disjoint<'a, T> {
         assert!(i < self.len, "index {i} out of {}", self.len);
         &mut *self.ptr.add(i)
     }
+
+    /// The elements `start..end`.
+    ///
+    /// # Safety
+    /// While the returned slice lives, no other call may ask for any of its indices.
+    #[allow(clippy::mut_from_ref)]
+    #[inline]
+    pub(crate) unsafe fn range(&self, start: usize, end: usize) -> &mut [T] {
+        assert!(
+            start <= end && end <= self.len,
+            "range {start}..{end} out of {}",
+            self.len
+        );
+        std::slice::from_raw_parts_mut(self.ptr.add(start), end - start)
+    }
 }
 
 /// One value that several tasks running at the same time reach mutably, each touching only

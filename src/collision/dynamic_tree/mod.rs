@@ -634,17 +634,8 @@ impl DynamicTree {
     #[inline]
     fn refit(&mut self, i: u32) {
         let n = self.nodes[i as usize];
-        let a = &self.nodes[n.child1 as usize];
-        let b = &self.nodes[n.child2 as usize];
-        let aabb = a.aabb.union(&b.aabb);
-        let height = 1 + a.height.max(b.height);
-        let enlarged = a.enlarged || b.enlarged;
-        let n = &mut self.nodes[i as usize];
-        n.aabb = aabb;
-        n.height = height;
-        // Keep "an enlarged node's ancestors are enlarged" through inserts, removals and
-        // rotations, which refit every node up to the root.
-        n.enlarged |= enlarged;
+        let (a, b) = (self.nodes[n.child1 as usize], self.nodes[n.child2 as usize]);
+        self.nodes[i as usize].refit_from(&a, &b);
     }
 
     /// Tree rotation at internal node `a` with children `b`, `c`: swaps a child with a
@@ -835,6 +826,7 @@ impl DynamicTree {
 }
 
 mod rebuild;
+pub use rebuild::RebuildJobs;
 
 #[cfg(test)]
 mod tests;

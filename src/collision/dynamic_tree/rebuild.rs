@@ -1,50 +1,165 @@
 //! Top-down binned SAH rebuilds of a [`DynamicTree`]: of the whole hierarchy
 //! (`rebuild`), or of the part above the proxies enlarged in place since the last one
-//! (`rebuild_enlarged`, Box2D v3's partial `b2DynamicTree_Rebuild`).
+//! (Box2D v3's partial `b2DynamicTree_Rebuild`), in three parts so that the middle one can
+//! run on several threads:
+//!
+//! 1. `begin_rebuild` (calling thread) frees the internal nodes to rebuild, gathers what lies
+//!    below them (the *units*: leaves, or subtrees kept whole) and splits them top-down until
+//!    every range holds at most `JOB_UNITS` units. Each such range becomes a job, and the
+//!    nodes its subtree will need are taken from the free list now, in job order.
+//! 2. [`RebuildJobs::run`] builds one job's subtree into its own nodes; jobs touch disjoint
+//!    nodes and may run at the same time, on any threads, in any order.
+//! 3. `end_rebuild` (calling thread) refits the nodes above the jobs.
+//!
+//! Every node is taken in a fixed order, so the tree, node indices included, does not depend
+//! on how many threads ran the jobs or in which order; its shape is that of a plain recursive
+//! build.
 
-use super::{DynamicTree, Stack, NULL_NODE};
+use super::{DynamicTree, FixedStack, Node, Stack, NULL_NODE};
 use crate::collision::aabb::Aabb;
-use crate::math::Vec3;
+use crate::parallel::Disjoint;
+use glam::Vec3A;
 
 /// Number of bins per axis of the SAH rebuild.
 const BIN_COUNT: usize = 16;
 
+/// Most units one job builds. Larger ranges are split on the calling thread first: about
+/// a third of a 4,000-unit build's partitioning then runs there, in exchange for some
+/// sixteen jobs to spread over the workers.
+pub const JOB_UNITS: usize = 256;
+
+/// A job's work stack holds at most one entry per unit.
+type WorkStack = FixedStack<(u32, u32, u32, bool), JOB_UNITS>;
+
 /// Storage of the rebuilds, reused from one to the next.
 #[derive(Clone, Debug, Default)]
 pub(super) struct Scratch {
-    /// The subtrees the build arranges (leaves, or internal nodes kept whole).
+    /// The subtrees the build arranges (leaves, or internal nodes kept whole), and per unit
+    /// its box, centre and weight (`partition`), gathered so that the partitioning reads
+    /// them in sequence.
     units: Vec<u32>,
-    centers: Vec<Vec3>,
+    boxes: Vec<BinBox>,
+    centers: Vec<Vec3A>,
+    weights: Vec<f32>,
+    /// Unit indices, partitioned in place range by range.
     order: Vec<u32>,
+    /// Nodes created above the jobs, parents first.
     created: Vec<u32>,
-    /// Work items: (start, end, parent, is first child).
+    /// Ranges still to split: (start, end, parent, is first child).
     work: Vec<(usize, usize, u32, bool)>,
+    jobs: Vec<Job>,
+    /// The nodes of every job, job after job; a job's first node is its subtree's root.
+    reserved: Vec<u32>,
+}
+
+/// A range of `order` whose subtree one task builds, into `len - 1` reserved nodes from
+/// `nodes` on.
+#[derive(Clone, Copy, Debug)]
+struct Job {
+    start: u32,
+    end: u32,
+    nodes: u32,
+}
+
+/// The jobs of a rebuild begun with `begin_rebuild`, ready to run on any threads.
+pub struct RebuildJobs<'a> {
+    nodes: Disjoint<'a, Node>,
+    order: Disjoint<'a, u32>,
+    boxes: &'a [BinBox],
+    centers: &'a [Vec3A],
+    weights: &'a [f32],
+    units: &'a [u32],
+    jobs: &'a [Job],
+    reserved: &'a [u32],
 }
 
 impl DynamicTree {
     /// Rebuilds the whole hierarchy top-down with a binned surface-area heuristic. Proxy
     /// ids, boxes and user data are unchanged.
     pub fn rebuild(&mut self) {
-        self.rebuild_from_units(true);
+        self.rebuild_serial(true);
     }
 
     /// Rebuilds, top-down with the same binned SAH, every internal node marked enlarged
     /// (`enlarge_proxy`): the subtrees below them that hold no enlarged proxy are kept
     /// whole and arranged anew. Leaves only the unmarked tree. Allocates nothing once its
-    /// scratch has grown. Deterministic: the same tree gives the same result.
+    /// scratch has grown. Deterministic: the same tree gives the same result. The same as
+    /// `begin_rebuild_enlarged`, every job, then `end_rebuild`.
     pub fn rebuild_enlarged(&mut self) {
+        self.rebuild_serial(false);
+    }
+
+    fn rebuild_serial(&mut self, full: bool) {
+        let jobs = self.begin_rebuild(full, JOB_UNITS);
+        if jobs > 0 {
+            let run = self.rebuild_jobs();
+            for k in 0..jobs {
+                // SAFETY: each job once, one at a time.
+                unsafe { run.run(k) };
+            }
+        }
+        self.end_rebuild();
+    }
+
+    /// Begins the partial rebuild of `rebuild_enlarged` and returns its number of jobs
+    /// (0 when nothing is enlarged). Until `end_rebuild`, only `rebuild_jobs` may be used.
+    pub fn begin_rebuild_enlarged(&mut self) -> usize {
         if self.has_enlarged() {
-            self.rebuild_from_units(false);
+            self.begin_rebuild(false, JOB_UNITS)
+        } else {
+            self.scratch.created.clear();
+            self.scratch.jobs.clear();
+            0
         }
     }
 
-    /// Frees the internal nodes to rebuild (all, or the enlarged ones) and builds a new
-    /// hierarchy over what lies below them.
-    fn rebuild_from_units(&mut self, full: bool) {
-        if self.root == NULL_NODE {
-            return;
+    /// The jobs of the rebuild begun last, to run each exactly once before `end_rebuild`.
+    pub fn rebuild_jobs(&mut self) -> RebuildJobs<'_> {
+        let Scratch {
+            units,
+            boxes,
+            centers,
+            weights,
+            order,
+            jobs,
+            reserved,
+            ..
+        } = &mut self.scratch;
+        RebuildJobs {
+            nodes: Disjoint::new(&mut self.nodes),
+            order: Disjoint::new(order),
+            boxes,
+            centers,
+            weights,
+            units,
+            jobs,
+            reserved,
         }
+    }
+
+    /// Finishes the rebuild begun last, once all its jobs have run: refits the nodes above
+    /// them.
+    pub fn end_rebuild(&mut self) {
+        let created = std::mem::take(&mut self.scratch.created);
+        for &i in created.iter().rev() {
+            self.refit(i);
+        }
+        self.scratch.created = created;
+        self.scratch.jobs.clear();
+    }
+
+    /// Frees the internal nodes to rebuild (all, or the enlarged ones), splits what lies
+    /// below them down to jobs of at most `job_units` units (1: no jobs, all split here) and
+    /// reserves the jobs' nodes. Returns the number of jobs.
+    pub(super) fn begin_rebuild(&mut self, full: bool, job_units: usize) -> usize {
         let mut s = std::mem::take(&mut self.scratch);
+        s.created.clear();
+        s.jobs.clear();
+        s.reserved.clear();
+        if self.root == NULL_NODE {
+            self.scratch = s;
+            return 0;
+        }
         // Collect the units in a deterministic (depth-first) order, free the nodes above.
         s.units.clear();
         let mut stack = Stack::new();
@@ -59,22 +174,39 @@ impl DynamicTree {
                 self.free_node(i);
             }
         }
+        let nodes = &self.nodes;
+        let unit = |i: &u32| &nodes[*i as usize];
+        s.boxes.clear();
+        s.boxes.extend(s.units.iter().map(|i| BinBox::from(&unit(i).aabb)));
         s.centers.clear();
         s.centers
-            .extend(s.units.iter().map(|&l| self.nodes[l as usize].aabb.center()));
+            .extend(s.units.iter().map(|i| Vec3A::from(unit(i).aabb.center())));
+        s.weights.clear();
+        s.weights.extend(s.units.iter().map(|i| unit_weight(unit(i))));
         s.order.clear();
         s.order.extend(0..s.units.len() as u32);
 
-        // Internal nodes are created parent-first; refitting them in reverse creation order
-        // is bottom-up.
-        s.created.clear();
+        // Nodes are created parent-first: refitting in reverse creation order is bottom-up.
         s.work.clear();
         s.work.push((0, s.units.len(), NULL_NODE, true));
         while let Some((start, end, parent, first)) = s.work.pop() {
             let node = if end - start == 1 {
                 s.units[s.order[start] as usize]
+            } else if end - start <= job_units {
+                let at = s.reserved.len();
+                for _ in start + 1..end {
+                    let i = self.allocate_node();
+                    self.nodes[i as usize].height = 1;
+                    s.reserved.push(i);
+                }
+                s.jobs.push(Job {
+                    start: start as u32,
+                    end: end as u32,
+                    nodes: at as u32,
+                });
+                s.reserved[at]
             } else {
-                let mid = self.partition(&mut s.order[start..end], &s.units, &s.centers) + start;
+                let mid = partition(&mut s.order[start..end], &s.boxes, &s.centers, &s.weights) + start;
                 let i = self.allocate_node();
                 self.nodes[i as usize].height = 1;
                 s.created.push(i);
@@ -91,87 +223,209 @@ impl DynamicTree {
                 self.nodes[parent as usize].child2 = node;
             }
         }
-        for &i in s.created.iter().rev() {
-            self.refit(i);
-        }
+        let jobs = s.jobs.len();
         self.scratch = s;
-    }
-
-    /// Splits `order` (indices into `units`) by the best binned SAH plane over the three
-    /// axes; returns the size of the first part (always in `1..len`). A unit counts with
-    /// the leaves it holds, estimated as `2^height` (a kept subtree of a partial rebuild is
-    /// about balanced; counted as one leaf, the few large subtrees of a mostly-resting
-    /// world were split off one by one, and the rebuilt top grew deep).
-    fn partition(&self, order: &mut [u32], units: &[u32], centers: &[Vec3]) -> usize {
-        let n = order.len();
-        let weight = |k: u32| (1u32 << self.nodes[units[k as usize] as usize].height.clamp(0, 24)) as f32;
-        let total: f32 = order.iter().map(|&k| weight(k)).sum();
-        let mut cmin = Vec3::splat(f32::MAX);
-        let mut cmax = Vec3::splat(-f32::MAX);
-        for &k in order.iter() {
-            cmin = cmin.min(centers[k as usize]);
-            cmax = cmax.max(centers[k as usize]);
-        }
-        let mut best: Option<(usize, usize)> = None; // (axis, split bin)
-        let mut best_cost = f32::MAX;
-        for axis in 0..3 {
-            let extent = cmax[axis] - cmin[axis];
-            if extent.is_nan() || extent <= 0.0 {
-                continue;
-            }
-            let scale = BIN_COUNT as f32 / extent;
-            let mut boxes = [Aabb::EMPTY; BIN_COUNT];
-            let mut counts = [0usize; BIN_COUNT];
-            let mut weights = [0.0f32; BIN_COUNT];
-            for &k in order.iter() {
-                let b = bin_of(centers[k as usize][axis], cmin[axis], scale);
-                boxes[b] = boxes[b].union(&self.nodes[units[k as usize] as usize].aabb);
-                counts[b] += 1;
-                weights[b] += weight(k);
-            }
-            // Sweep from the right to get suffix areas, then from the left.
-            let mut right_area = [0.0f32; BIN_COUNT];
-            let mut acc = Aabb::EMPTY;
-            for b in (1..BIN_COUNT).rev() {
-                acc = acc.union(&boxes[b]);
-                right_area[b] = if acc.min.x <= acc.max.x { acc.perimeter() } else { 0.0 };
-            }
-            let mut left = Aabb::EMPTY;
-            let (mut left_count, mut left_weight) = (0, 0.0f32);
-            for split in 1..BIN_COUNT {
-                left = left.union(&boxes[split - 1]);
-                left_count += counts[split - 1];
-                left_weight += weights[split - 1];
-                let right_count = n - left_count;
-                if left_count == 0 || right_count == 0 {
-                    continue;
-                }
-                let cost = left.perimeter() * left_weight + right_area[split] * (total - left_weight);
-                if cost < best_cost {
-                    best_cost = cost;
-                    best = Some((axis, split));
-                }
-            }
-        }
-        let Some((axis, split)) = best else {
-            // All centers coincide: split by count.
-            return n / 2;
-        };
-        let scale = BIN_COUNT as f32 / (cmax[axis] - cmin[axis]);
-        // In-place partition: not stable, but deterministic.
-        let mut i = 0;
-        for j in 0..n {
-            if bin_of(centers[order[j] as usize][axis], cmin[axis], scale) < split {
-                order.swap(i, j);
-                i += 1;
-            }
-        }
-        debug_assert!(i > 0 && i < n);
-        i
+        jobs
     }
 }
 
+impl RebuildJobs<'_> {
+    /// Builds job `k`'s subtree into its reserved nodes and refits them. Its root is
+    /// already linked to the node above.
+    ///
+    /// # Safety
+    /// No other call for the same `k` runs at the same time (each job runs once).
+    pub unsafe fn run(&self, k: usize) {
+        let job = self.jobs[k];
+        let (start, end) = (job.start as usize, job.end as usize);
+        // SAFETY: jobs cover disjoint ranges of `order`, and only job `k` uses this one.
+        let order = unsafe { self.order.range(start, end) };
+        let reserved = &self.reserved[job.nodes as usize..job.nodes as usize + (end - start - 1)];
+        // SAFETY (every `nodes.at` below): the nodes reached are this job's reserved nodes
+        // and its units, which no other job reaches, and each reference is dropped before
+        // the next one to the same node is made.
+        let node = |i: u32| unsafe { self.nodes.at(i as usize) };
+        let mut next = 1;
+        let mut work = WorkStack::new();
+        work.push((0, order.len() as u32, NULL_NODE, true));
+        while let Some((lo, hi, parent, first)) = work.pop() {
+            let (lo, hi) = (lo as usize, hi as usize);
+            let i = if parent == NULL_NODE {
+                reserved[0]
+            } else if hi - lo == 1 {
+                self.units[order[lo] as usize]
+            } else {
+                next += 1;
+                reserved[next - 1]
+            };
+            if hi - lo > 1 {
+                let mid = partition(&mut order[lo..hi], self.boxes, self.centers, self.weights) + lo;
+                work.push((mid as u32, hi as u32, i, false));
+                work.push((lo as u32, mid as u32, i, true));
+            }
+            if parent != NULL_NODE {
+                node(i).parent = parent;
+                let p = node(parent);
+                if first {
+                    p.child1 = i;
+                } else {
+                    p.child2 = i;
+                }
+            }
+        }
+        debug_assert_eq!(next, reserved.len());
+        // Reserved nodes were used parent-first.
+        for &i in reserved.iter().rev() {
+            let n = *node(i);
+            let (a, b) = (*node(n.child1), *node(n.child2));
+            node(i).refit_from(&a, &b);
+        }
+    }
+}
+
+impl Node {
+    /// Box, height and enlarged mark of an internal node from its two children.
+    #[inline]
+    pub(super) fn refit_from(&mut self, a: &Node, b: &Node) {
+        self.aabb = a.aabb.union(&b.aabb);
+        self.height = 1 + a.height.max(b.height);
+        // Keep "an enlarged node's ancestors are enlarged" through inserts, removals and
+        // rotations, which refit every node up to the root.
+        self.enlarged |= a.enlarged || b.enlarged;
+    }
+}
+
+/// How many leaves a unit counts for in the SAH cost, estimated as `2^height` (a kept
+/// subtree of a partial rebuild is about balanced; counted as one leaf, the few large
+/// subtrees of a mostly-resting world were split off one by one, and the rebuilt top grew
+/// deep).
 #[inline]
-fn bin_of(c: f32, min: f32, scale: f32) -> usize {
-    (((c - min) * scale) as usize).min(BIN_COUNT - 1)
+fn unit_weight(n: &Node) -> f32 {
+    (1u32 << n.height.clamp(0, 24)) as f32
+}
+
+/// A unit's box as the partitioning reads it: the same bounds as its `Aabb`, in SIMD lanes
+/// (a union is two instructions).
+#[derive(Clone, Copy, Debug)]
+struct BinBox {
+    min: Vec3A,
+    max: Vec3A,
+}
+
+impl BinBox {
+    const EMPTY: BinBox = BinBox {
+        min: Vec3A::splat(f32::MAX),
+        max: Vec3A::splat(-f32::MAX),
+    };
+
+    #[inline]
+    fn union(&self, o: &BinBox) -> BinBox {
+        BinBox {
+            min: self.min.min(o.min),
+            max: self.max.max(o.max),
+        }
+    }
+
+    /// `Aabb::perimeter`, the same operations in the same order: half the surface area, or
+    /// 0 for the empty box.
+    #[inline]
+    fn perimeter(&self) -> f32 {
+        if self.min.x <= self.max.x {
+            let d = self.max - self.min;
+            d.x * d.y + d.y * d.z + d.z * d.x
+        } else {
+            0.0
+        }
+    }
+}
+
+impl From<&Aabb> for BinBox {
+    fn from(b: &Aabb) -> Self {
+        BinBox {
+            min: b.min.into(),
+            max: b.max.into(),
+        }
+    }
+}
+
+/// Splits `order` (indices of units) by the best binned SAH plane over the three axes;
+/// returns the size of the first part (always in `1..len`). One pass over the units bins
+/// them along all three axes.
+fn partition(order: &mut [u32], boxes: &[BinBox], centers: &[Vec3A], weights: &[f32]) -> usize {
+    let n = order.len();
+    let mut total = 0.0f32;
+    let mut cmin = Vec3A::splat(f32::MAX);
+    let mut cmax = Vec3A::splat(-f32::MAX);
+    for &k in order.iter() {
+        total += weights[k as usize];
+        cmin = cmin.min(centers[k as usize]);
+        cmax = cmax.max(centers[k as usize]);
+    }
+    let extent = cmax - cmin;
+    // An axis along which all centres coincide (or that is not finite) is not split; its
+    // scale of 0 puts every unit in bin 0.
+    let valid = [0, 1, 2].map(|a| extent[a] > 0.0);
+    let scale = Vec3A::from_array([0, 1, 2].map(|a| if valid[a] { BIN_COUNT as f32 / extent[a] } else { 0.0 }));
+    let mut boxes_b = [[BinBox::EMPTY; BIN_COUNT]; 3];
+    let mut counts = [[0u32; BIN_COUNT]; 3];
+    let mut weights_b = [[0.0f32; BIN_COUNT]; 3];
+    for &k in order.iter() {
+        let (b, w) = (&boxes[k as usize], weights[k as usize]);
+        let bins = bins_of(centers[k as usize], cmin, scale);
+        for axis in 0..3 {
+            let bin = bins[axis];
+            boxes_b[axis][bin] = boxes_b[axis][bin].union(b);
+            counts[axis][bin] += 1;
+            weights_b[axis][bin] += w;
+        }
+    }
+    let mut best: Option<(usize, usize)> = None; // (axis, split bin)
+    let mut best_cost = f32::MAX;
+    for axis in (0..3).filter(|&a| valid[a]) {
+        let (boxes, counts, weights) = (&boxes_b[axis], &counts[axis], &weights_b[axis]);
+        // Sweep from the right to get suffix areas, then from the left.
+        let mut right_area = [0.0f32; BIN_COUNT];
+        let mut acc = BinBox::EMPTY;
+        for b in (1..BIN_COUNT).rev() {
+            acc = acc.union(&boxes[b]);
+            right_area[b] = acc.perimeter();
+        }
+        let mut left = BinBox::EMPTY;
+        let (mut left_count, mut left_weight) = (0, 0.0f32);
+        for split in 1..BIN_COUNT {
+            left = left.union(&boxes[split - 1]);
+            left_count += counts[split - 1] as usize;
+            left_weight += weights[split - 1];
+            if left_count == 0 || left_count == n {
+                continue;
+            }
+            let cost = left.perimeter() * left_weight + right_area[split] * (total - left_weight);
+            if cost < best_cost {
+                best_cost = cost;
+                best = Some((axis, split));
+            }
+        }
+    }
+    let Some((axis, split)) = best else {
+        // All centres coincide: split by count.
+        return n / 2;
+    };
+    // In-place partition: not stable, but deterministic.
+    let mut i = 0;
+    for j in 0..n {
+        if bins_of(centers[order[j] as usize], cmin, scale)[axis] < split {
+            order.swap(i, j);
+            i += 1;
+        }
+    }
+    debug_assert!(i > 0 && i < n);
+    i
+}
+
+/// The bin of centre `c` along each axis: `(c - min) * scale` rounded down, at most the last
+/// bin (`c >= min`, so never negative).
+#[inline]
+fn bins_of(c: Vec3A, min: Vec3A, scale: Vec3A) -> [usize; 3] {
+    let t = ((c - min) * scale).min(Vec3A::splat((BIN_COUNT - 1) as f32));
+    [t.x as usize, t.y as usize, t.z as usize]
 }

@@ -763,3 +763,86 @@ fn enlarging_in_place_and_rebuilding_the_enlarged_part_match_brute_force() {
         assert_eq!(run(seed), run(seed), "seed {seed}: the same calls gave different trees");
     }
 }
+
+/// The tree as nested boxes, heights and proxies in depth-first order, without node indices.
+fn shape_of(tree: &DynamicTree) -> Vec<(Aabb, i32, u32)> {
+    let mut out = Vec::new();
+    let mut stack = vec![tree.root];
+    while let Some(i) = stack.pop() {
+        let n = tree.nodes[i as usize];
+        out.push((n.aabb, n.height, if n.is_leaf() { i } else { NULL_NODE }));
+        if !n.is_leaf() {
+            stack.push(n.child2);
+            stack.push(n.child1);
+        }
+    }
+    out
+}
+
+/// A rebuild split into jobs builds the same hierarchy as one that splits every range on the
+/// calling thread, whatever the job size, and the same tree, node indices included, whatever
+/// order and threads its jobs run in (two threads taking jobs from a shared counter, and
+/// the jobs in reverse).
+#[test]
+fn rebuild_jobs_give_the_tree_of_a_serial_build_on_any_threads() {
+    for seed in 1..6u64 {
+        let mut rng = Rng::new(seed);
+        let mut tree = DynamicTree::new();
+        let mut ids = Vec::new();
+        for k in 0..(500 + rng.below(3000)) {
+            ids.push(tree.create_proxy(random_box(&mut rng), k as u32));
+        }
+        let share = rng.range(0.05, 1.0);
+        for &id in &ids {
+            if rng.f32() < share {
+                let b = tree.fat_aabb(id);
+                let d = rng.vec3(-3.0, 3.0);
+                tree.enlarge_proxy(id, Aabb::new(b.min + d, b.max + d));
+            }
+        }
+        let full = rng.below(2) == 0;
+        let build = |job_units: usize, how: u32| {
+            let mut t = tree.clone();
+            let jobs = t.begin_rebuild(full, job_units);
+            let run = t.rebuild_jobs();
+            match how {
+                0 => (0..jobs).for_each(|k| unsafe { run.run(k) }),
+                1 => (0..jobs).rev().for_each(|k| unsafe { run.run(k) }),
+                _ => {
+                    let next = std::sync::atomic::AtomicUsize::new(0);
+                    std::thread::scope(|s| {
+                        for _ in 0..2 {
+                            s.spawn(|| loop {
+                                let k = next.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+                                if k >= jobs {
+                                    break;
+                                }
+                                // SAFETY: the counter hands out each job once.
+                                unsafe { run.run(k) };
+                            });
+                        }
+                    });
+                }
+            }
+            t.end_rebuild();
+            t.validate();
+            assert!(t.nodes.iter().all(|n| !n.enlarged));
+            (jobs, t)
+        };
+        let (none, serial) = build(1, 0);
+        assert_eq!(none, 0);
+        for job_units in [2, 7, 64, rebuild::JOB_UNITS] {
+            let (jobs, first) = build(job_units, 0);
+            assert!(jobs > 0 || !tree.has_enlarged() && !full);
+            assert_eq!(shape_of(&first), shape_of(&serial), "seed {seed}, jobs of {job_units}");
+            for how in 1..3 {
+                let (_, t) = build(job_units, how);
+                assert_eq!(
+                    format!("{:?}", t.nodes),
+                    format!("{:?}", first.nodes),
+                    "seed {seed}, order {how}"
+                );
+            }
+        }
+    }
+}
