@@ -522,6 +522,10 @@ fn fit<T: Clone>(v: &mut Vec<T>, len: usize, first: T) {
 
 /// Awake bodies per task, at least, in the per-body stages.
 const BODY_MIN_RANGE: u32 = 64;
+/// Solver bodies per worker from which the sub-steps run stage by stage even without
+/// contact batches: a sub-step's integration stages cost about 100 instructions per body,
+/// against a few microseconds per stage to hand blocks out and wait.
+const STAGED_BODIES_PER_WORKER: usize = 256;
 
 /// Refreshes one awake body for the step and gives its solver state, velocity, simulation
 /// data and drive (`solver_index` is its slot).
@@ -878,9 +882,12 @@ pub fn solve(world: &mut World, dt: f32) {
     let limits = (settings.max_linear_speed, settings.max_angular_speed);
     let runner = &*world.tasks;
     // On several workers, stage by stage (`solver_stages`), when there are enough batches
-    // to share; the results are those of the loop below, bit for bit.
+    // or bodies to share (bodies alone: a pile in free fall, whose six sub-steps of
+    // integration and guards would otherwise run on this thread); the results are those
+    // of the loop below, bit for bit.
     let workers = runner.worker_count();
-    let staged = workers > 1 && batches.len() >= (8 * workers) as usize;
+    let staged = workers > 1
+        && (batches.len() >= (8 * workers) as usize || vel.len() >= STAGED_BODIES_PER_WORKER * workers as usize);
     if staged {
         use crate::dynamics::solver_stages::{substeps as staged, Sweep, Written};
         use crate::parallel::SharedMut;
