@@ -169,7 +169,8 @@ pub trait Snap: Sized {
     /// The `n` values `get_all` reads, each stored straight into its place in `dst`
     /// (`at(dst, i)` for value `i`) rather than collected first: a struct's fields, its
     /// fields' fields and so on down to the numbers are filled where they will stay, with
-    /// no vector per field between. The default collects with `get_all`, then moves.
+    /// no vector per field between (`snap_struct!`'s `get_all` does so for every
+    /// `SnapBlank`). The default collects with `get_all`, then moves.
     #[inline]
     fn get_into<O>(
         dst: &mut [O],
@@ -184,9 +185,24 @@ pub trait Snap: Sized {
     }
 }
 
-/// Chooses how `snap_struct!`'s `get_all` makes its values, by whether the struct has
-/// `Default` and `Clone` (autoref specialisation: the macro names the concrete type, so
-/// the method found is `Blank`'s when the bounds hold and `NoBlank`'s otherwise).
+/// A value for `get_all` to read a struct into in place: `get_into` overwrites every
+/// stored field with what the snapshot holds and every skipped one with its default, so
+/// nothing of the blank is left. Every type with a default is one; the bodies, shapes and
+/// contacts have theirs in `types.rs`.
+pub trait SnapBlank {
+    fn blank() -> Self;
+}
+
+impl<T: Default> SnapBlank for T {
+    #[inline]
+    fn blank() -> Self {
+        T::default()
+    }
+}
+
+/// Chooses how `snap_struct!`'s `get_all` makes its values, by whether the struct is a
+/// `SnapBlank` (autoref specialisation: the macro names the concrete type, so the method
+/// found is `Blank`'s when the bound holds and `NoBlank`'s otherwise).
 #[doc(hidden)]
 pub struct Probe<T>(std::marker::PhantomData<T>);
 
@@ -199,15 +215,15 @@ impl<T> Probe<T> {
 
 #[doc(hidden)]
 pub trait Blank<T> {
-    /// `n` default values to read into in place (`n` is at most the bytes left: every
+    /// `n` blank values to read into in place (`n` is at most the bytes left: every
     /// stored value takes at least one).
     fn blank(&self, n: usize) -> Option<Vec<T>>;
 }
 
-impl<T: Default + Clone> Blank<T> for Probe<T> {
+impl<T: SnapBlank> Blank<T> for Probe<T> {
     #[inline]
     fn blank(&self, n: usize) -> Option<Vec<T>> {
-        Some(vec![T::default(); n])
+        Some(std::iter::repeat_with(T::blank).take(n).collect())
     }
 }
 
@@ -559,7 +575,7 @@ macro_rules! snap_fields {
 }
 
 macro_rules! snap_floats {
-    ($($t:ty: $($f:ident),*;)*) => {$(
+    ($($t:ty: $($n:literal $f:ident),*;)*) => {$(
         impl Snap for $t {
             snap_fields!($t: $($f),*);
             fn put_all<'s, I>(items: I, w: &mut Writer)
@@ -593,17 +609,22 @@ macro_rules! snap_floats {
                 let Some(total) = n.checked_mul(K) else {
                     return bad("snapshot corrupted: a count out of range");
                 };
-                let fields: [fn(&mut $t) -> &mut _; K] = [$(|v| &mut v.$f),*];
-                Snap::get_into(dst, total, move |d: &mut [O], i| fields[i % K](at(d, i / K)), r)
+                Snap::get_into(dst, total, move |d: &mut [O], i| {
+                    let v = at(d, i / K);
+                    match i % K {
+                        $($n => &mut v.$f,)*
+                        _ => unreachable!("K components"),
+                    }
+                }, r)
             }
         }
     )*};
 }
 snap_floats! {
-    glam::DVec3: x, y, z;
-    glam::Mat3: x_axis, y_axis, z_axis;
-    glam::Mat3A: x_axis, y_axis, z_axis;
-    glam::DQuat: x, y, z, w;
+    glam::DVec3: 0 x, 1 y, 2 z;
+    glam::Mat3: 0 x_axis, 1 y_axis, 2 z_axis;
+    glam::Mat3A: 0 x_axis, 1 y_axis, 2 z_axis;
+    glam::DQuat: 0 x, 1 y, 2 z, 3 w;
 }
 
 /// Vectors of `f32`: the same bytes as `snap_floats` (each component's `f32`, in order, in

@@ -77,6 +77,99 @@ impl Snap for Handle {
     }
 }
 
+/// Blanks to read into (`SnapBlank`): every field is overwritten by `get_into`.
+impl super::SnapBlank for Body {
+    fn blank() -> Self {
+        Body {
+            body_type: BodyType::Static,
+            xf: Default::default(),
+            center: Default::default(),
+            local_center: Default::default(),
+            v: Default::default(),
+            w: Default::default(),
+            force: Default::default(),
+            torque: Default::default(),
+            mass: 0.0,
+            inv_mass: 0.0,
+            inertia_local: Default::default(),
+            inv_inertia_local: Default::default(),
+            isotropic: false,
+            inv_inertia_world: Default::default(),
+            linear_damping: 0.0,
+            angular_damping: 0.0,
+            gravity_scale: 0.0,
+            allow_sleep: false,
+            awake: false,
+            motion: 0.0,
+            sleep_time: 0.0,
+            user_data: 0,
+            shapes: Vec::new(),
+            contacts: Vec::new(),
+            awake_index: 0,
+            sleep_island: Handle::NULL,
+            island_next: 0,
+            solver_index: 0,
+            kinematic_target: None,
+            kinematic_stop: false,
+            enable_move_events: false,
+            reported_xf: Default::default(),
+            mass_override: None,
+            enabled: false,
+            locked_axes: 0,
+        }
+    }
+}
+
+impl super::SnapBlank for Shape {
+    fn blank() -> Self {
+        Shape {
+            body: 0,
+            geometry: Geometry::Sphere {
+                center: Default::default(),
+                radius: 0.0,
+            },
+            def: Default::default(),
+            proxy: 0,
+            aabb: Default::default(),
+            fat_aabb: Default::default(),
+            in_move_buffer: false,
+            extent: 0.0,
+        }
+    }
+}
+
+impl super::SnapBlank for Contact {
+    fn blank() -> Self {
+        Contact {
+            shape_a: 0,
+            shape_b: 0,
+            body_a: 0,
+            body_b: 0,
+            manifold: Default::default(),
+            impulses: Default::default(),
+            friction: Default::default(),
+            static_friction: 0.0,
+            dynamic_friction: 0.0,
+            restitution: 0.0,
+            rolling_resistance: 0.0,
+            torsional_friction: 0.0,
+            touching: false,
+            awake_index: 0,
+            key: 0,
+            radius_a: 0.0,
+            radius_b: 0.0,
+            size: 0.0,
+            cache: Default::default(),
+            multi: false,
+            more: Vec::new(),
+            sat: Default::default(),
+            event_flags: 0,
+            reported: false,
+            disabled: false,
+        }
+    }
+}
+
 snap_struct!(Transform { p, q });
 snap_struct!(WorldSettings {
     gravity,
