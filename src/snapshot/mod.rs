@@ -220,6 +220,11 @@ pub trait Blank<T> {
     fn blank(&self, n: usize) -> Option<Vec<T>>;
 }
 
+/// Bytes of memory per byte left in the payload up to which `get_all` makes blanks to read
+/// into (a count past it is corrupted: the struct's fields are then read first).
+#[doc(hidden)]
+pub const BLANK_RATIO: usize = 16;
+
 impl<T: SnapBlank> Blank<T> for Probe<T> {
     #[inline]
     fn blank(&self, n: usize) -> Option<Vec<T>> {
@@ -289,8 +294,16 @@ macro_rules! snap_struct {
                 if n > r.remaining() {
                     return $crate::snapshot::bad("snapshot corrupted: a count exceeds the bytes left");
                 }
+                // The blanks are made before any column is read, so a corrupted count must
+                // not make many: past `BLANK_RATIO` bytes of blanks per byte left (the pile's
+                // bodies and contacts take a tenth of it or less), the field-by-field path below reads the values
+                // instead, allocating only as each field's column proves long enough (and
+                // refusing a short one). Both paths read the same values.
+                let fits = n.saturating_mul(std::mem::size_of::<$t>())
+                    <= r.remaining().saturating_mul($crate::snapshot::BLANK_RATIO);
                 #[allow(clippy::needless_borrow)]
-                if let Some(mut v) = (&$crate::snapshot::Probe::<$t>::new()).blank(n) {
+                let blanks = if fits { (&$crate::snapshot::Probe::<$t>::new()).blank(n) } else { None };
+                if let Some(mut v) = blanks {
                     <$t as $crate::snapshot::Snap>::get_into(&mut v, n, |d: &mut [$t], i| &mut d[i], r)?;
                     return Ok(v);
                 }

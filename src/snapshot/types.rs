@@ -1045,6 +1045,13 @@ mod tests {
         if !values.is_empty() || empty_too {
             r.finish().unwrap();
         }
+        // More values than were written: refused, by either of `get_all`'s paths (in place
+        // for counts the bytes left could hold, field by field past that).
+        for more in [values.len() + 1, 2 * values.len() + 1, plain.len() + 1] {
+            let mut r = Reader::new(&plain, &spans, 7);
+            let got = r.within("x", |r| T::get_all(more, r));
+            assert!(got.unwrap_err().0.contains("corrupted"), "{more} of {}", values.len());
+        }
     }
 
     /// Seeded randomized: ids (null among them), enum tags, maps (empty among them),
