@@ -368,7 +368,11 @@ impl<T: crate::snapshot::Snap> crate::snapshot::Snap for Pool<T> {
         first_counter.put(w);
         w.put_len(slots.len());
         w.within("#counter", |w| u32::put_all(slots.iter().map(|s| &s.counter), w));
-        Option::<T>::put_all(slots.iter().map(|s| &s.value), w);
+        // `Option::<T>::put_all`'s bytes: the flags, then the live values field by field
+        // from a list of them (each field's pass walks that list, not every slot).
+        w.within("#some", |w| w.values(slots.iter().map(|s| [s.value.is_some() as u8])));
+        let live: Vec<&T> = slots.iter().filter_map(|s| s.value.as_ref()).collect();
+        T::put_all(live.iter().copied(), w);
         w.within("#free", |w| free.put(w));
         w.put_len(*len);
     }

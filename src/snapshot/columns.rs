@@ -416,6 +416,24 @@ macro_rules! planes_of {
                 k
             }
 
+            /// Bit `t` set for each value `block[t]` that is not zero: the flags as bytes
+            /// (a vector compare), then each eight of them gathered into a byte by one
+            /// multiplication (flag `i` of a word moves to bit `56 + i`; the products of
+            /// the other flags land on other bits, without carries).
+            #[inline(always)]
+            fn nonzero_mask(block: &[$t; BLOCK]) -> u64 {
+                let mut flags = [0u8; BLOCK];
+                for (f, x) in flags.iter_mut().zip(block) {
+                    *f = (*x != 0) as u8;
+                }
+                let mut mask = 0u64;
+                for (g, group) in flags.chunks_exact(8).enumerate() {
+                    let b = u64::from_le_bytes(group.try_into().expect("8 flags"));
+                    mask |= (b.wrapping_mul(0x0102_0408_1020_4080) >> 56) << (8 * g);
+                }
+                mask
+            }
+
             /// The sparse form of `values` into `dst`: bitmap, then the non-zero values'
             /// byte planes. Per block of `BLOCK` values: their bitmap, then only the set
             /// bits are visited, so the cost follows the non-zero values.
@@ -440,15 +458,7 @@ macro_rules! planes_of {
                     for (x, v) in block.iter_mut().zip(chunk.chunks_exact(W)) {
                         *x = <$t>::from_le_bytes(v.try_into().expect("W bytes"));
                     }
-                    // A byte of the bitmap per eight values (a compare and a mask move).
-                    let mut mask = 0u64;
-                    for (g, group) in block.chunks_exact(8).enumerate() {
-                        let mut byte = 0u8;
-                        for (t, x) in group.iter().enumerate() {
-                            byte |= ((*x != 0) as u8) << t;
-                        }
-                        mask |= (byte as u64) << (8 * g);
-                    }
+                    let mask = nonzero_mask(&block);
                     bits[b * BLOCK / 8..b * BLOCK / 8 + nb].copy_from_slice(&mask.to_le_bytes()[..nb]);
                     if mask == 0 {
                         continue;
@@ -481,7 +491,14 @@ macro_rules! planes_of {
                 if n % 8 != 0 && bits[nb - 1] >> (n % 8) != 0 {
                     return super::bad("snapshot corrupted: a sparse column's bitmap has bits past its values");
                 }
-                let k: usize = bits.iter().map(|b| b.count_ones() as usize).sum();
+                let k: usize = bits
+                    .chunks(8)
+                    .map(|c| {
+                        let mut w = [0u8; 8];
+                        w[..c.len()].copy_from_slice(c);
+                        u64::from_le_bytes(w).count_ones() as usize
+                    })
+                    .sum();
                 let Some(rest) = src.get(nb..nb + k * W) else {
                     return super::bad("snapshot corrupted: a sparse column ends early");
                 };

@@ -165,6 +165,84 @@ pub trait Snap: Sized {
         }
         Ok(v)
     }
+
+    /// The `n` values `get_all` reads, each stored straight into its place in `dst`
+    /// (`at(dst, i)` for value `i`) rather than collected first: a struct's fields, its
+    /// fields' fields and so on down to the numbers are filled where they will stay, with
+    /// no vector per field between (`snap_struct!`'s `get_all` does so for every
+    /// `SnapBlank`). The default collects with `get_all`, then moves.
+    #[inline]
+    fn get_into<O>(
+        dst: &mut [O],
+        n: usize,
+        at: impl Fn(&mut [O], usize) -> &mut Self + Copy,
+        r: &mut Reader,
+    ) -> ReadResult<()> {
+        for (i, x) in Self::get_all(n, r)?.into_iter().enumerate() {
+            *at(dst, i) = x;
+        }
+        Ok(())
+    }
+}
+
+/// A value for `get_all` to read a struct into in place: `get_into` overwrites every
+/// stored field with what the snapshot holds and every skipped one with its default, so
+/// nothing of the blank is left. Every type with a default is one; the bodies, shapes and
+/// contacts have theirs in `types.rs`.
+pub trait SnapBlank {
+    fn blank() -> Self;
+}
+
+impl<T: Default> SnapBlank for T {
+    #[inline]
+    fn blank() -> Self {
+        T::default()
+    }
+}
+
+/// Chooses how `snap_struct!`'s `get_all` makes its values, by whether the struct is a
+/// `SnapBlank` (autoref specialisation: the macro names the concrete type, so the method
+/// found is `Blank`'s when the bound holds and `NoBlank`'s otherwise).
+#[doc(hidden)]
+pub struct Probe<T>(std::marker::PhantomData<T>);
+
+impl<T> Probe<T> {
+    #[doc(hidden)]
+    pub fn new() -> Self {
+        Probe(std::marker::PhantomData)
+    }
+}
+
+#[doc(hidden)]
+pub trait Blank<T> {
+    /// `n` blank values to read into in place (`n` is at most the bytes left: every
+    /// stored value takes at least one).
+    fn blank(&self, n: usize) -> Option<Vec<T>>;
+}
+
+/// Bytes of memory per byte left in the payload up to which `get_all` makes blanks to read
+/// into (a count past it is corrupted: the struct's fields are then read first).
+#[doc(hidden)]
+pub const BLANK_RATIO: usize = 16;
+
+impl<T: SnapBlank> Blank<T> for Probe<T> {
+    #[inline]
+    fn blank(&self, n: usize) -> Option<Vec<T>> {
+        Some(std::iter::repeat_with(T::blank).take(n).collect())
+    }
+}
+
+#[doc(hidden)]
+pub trait NoBlank<T> {
+    /// None: the values are built field by field.
+    fn blank(&self, n: usize) -> Option<Vec<T>>;
+}
+
+impl<T> NoBlank<T> for &Probe<T> {
+    #[inline]
+    fn blank(&self, _: usize) -> Option<Vec<T>> {
+        None
+    }
 }
 
 /// Implements [`Snap`] for a struct by listing its fields, all of them: the writer
@@ -195,10 +273,40 @@ macro_rules! snap_struct {
                     $crate::snapshot::Snap::put_all(items.clone().map(|x: &'s $t| &x.$f), w)
                 }); )*
             }
+            fn get_into<O>(
+                dst: &mut [O],
+                n: usize,
+                at: impl Fn(&mut [O], usize) -> &mut Self + Copy,
+                r: &mut $crate::snapshot::Reader,
+            ) -> $crate::snapshot::ReadResult<()> {
+                $( r.within(stringify!($f), |r| {
+                    $crate::snapshot::Snap::get_into(dst, n, move |d: &mut [O], i| &mut at(d, i).$f, r)
+                })?; )*
+                $($( for i in 0..n { at(dst, i).$s = Default::default(); } )*)?
+                Ok(())
+            }
             fn get_all(
                 n: usize,
                 r: &mut $crate::snapshot::Reader,
             ) -> $crate::snapshot::ReadResult<Vec<Self>> {
+                #[allow(unused_imports)]
+                use $crate::snapshot::{Blank as _, NoBlank as _};
+                if n > r.remaining() {
+                    return $crate::snapshot::bad("snapshot corrupted: a count exceeds the bytes left");
+                }
+                // The blanks are made before any column is read, so a corrupted count must
+                // not make many: past `BLANK_RATIO` bytes of blanks per byte left (the pile's
+                // bodies and contacts take a tenth of it or less), the field-by-field path below reads the values
+                // instead, allocating only as each field's column proves long enough (and
+                // refusing a short one). Both paths read the same values.
+                let fits = n.saturating_mul(std::mem::size_of::<$t>())
+                    <= r.remaining().saturating_mul($crate::snapshot::BLANK_RATIO);
+                #[allow(clippy::needless_borrow)]
+                let blanks = if fits { (&$crate::snapshot::Probe::<$t>::new()).blank(n) } else { None };
+                if let Some(mut v) = blanks {
+                    <$t as $crate::snapshot::Snap>::get_into(&mut v, n, |d: &mut [$t], i| &mut d[i], r)?;
+                    return Ok(v);
+                }
                 $( let mut $f = r
                     .within(stringify!($f), |r| $crate::snapshot::Snap::get_all(n, r))?
                     .into_iter(); )*
@@ -240,6 +348,19 @@ macro_rules! snap_num {
                     .map(|c| <$t>::from_le_bytes(c.try_into().expect("sized")))
                     .collect())
             }
+            fn get_into<O>(
+                dst: &mut [O],
+                n: usize,
+                at: impl Fn(&mut [O], usize) -> &mut Self + Copy,
+                r: &mut Reader,
+            ) -> ReadResult<()> {
+                const W: usize = std::mem::size_of::<$t>();
+                let b = r.take_values(n, W)?;
+                for (i, c) in b.chunks_exact(W).enumerate() {
+                    *at(dst, i) = <$t>::from_le_bytes(c.try_into().expect("sized"));
+                }
+                Ok(())
+            }
         }
     )*};
 }
@@ -279,6 +400,21 @@ impl Snap for bool {
             return bad(format!("snapshot corrupted: flag {v} is not 0 or 1"));
         }
         Ok(b.iter().map(|&v| v == 1).collect())
+    }
+    fn get_into<O>(
+        dst: &mut [O],
+        n: usize,
+        at: impl Fn(&mut [O], usize) -> &mut Self + Copy,
+        r: &mut Reader,
+    ) -> ReadResult<()> {
+        let b = r.take_values(n, 1)?;
+        if let Some(v) = b.iter().find(|&&v| v > 1) {
+            return bad(format!("snapshot corrupted: flag {v} is not 0 or 1"));
+        }
+        for (i, &v) in b.iter().enumerate() {
+            *at(dst, i) = v == 1;
+        }
+        Ok(())
     }
 }
 
@@ -373,6 +509,17 @@ impl<T: Snap, const N: usize> Snap for [T; N] {
             .map(|_| std::array::from_fn(|_| all.next().expect("n * N values")))
             .collect())
     }
+    fn get_into<O>(
+        dst: &mut [O],
+        n: usize,
+        at: impl Fn(&mut [O], usize) -> &mut Self + Copy,
+        r: &mut Reader,
+    ) -> ReadResult<()> {
+        let Some(total) = n.checked_mul(N) else {
+            return bad("snapshot corrupted: an array count out of range");
+        };
+        T::get_into(dst, total, move |d: &mut [O], i| &mut at(d, i / N)[i % N], r)
+    }
 }
 
 macro_rules! snap_tuple {
@@ -396,21 +543,27 @@ snap_tuple!(0 A, 1 B, 2 C, 3 D);
 impl<K: Snap + Ord + Copy + std::hash::Hash + Eq, V: Snap + Clone, S: std::hash::BuildHasher + Default> Snap
     for std::collections::HashMap<K, V, S>
 {
+    /// The keys and values go to their own columns, so writing all keys, then all values
+    /// (`put_all`, `get_all`) gives the bytes entry-by-entry writing would; the two columns
+    /// are entered (made) only when there is an entry, as that would.
     fn put(&self, w: &mut Writer) {
-        let mut keys: Vec<K> = self.keys().copied().collect();
-        keys.sort_unstable();
-        w.put_len(keys.len());
-        for k in keys {
-            w.within("#key", |w| k.put(w));
-            w.within("#value", |w| self[&k].put(w));
+        let mut entries: Vec<(K, &V)> = self.iter().map(|(k, v)| (*k, v)).collect();
+        entries.sort_unstable_by_key(|e| e.0);
+        w.put_len(entries.len());
+        if !entries.is_empty() {
+            w.within("#key", |w| K::put_all(entries.iter().map(|e| &e.0), w));
+            w.within("#value", |w| V::put_all(entries.iter().map(|e| e.1), w));
         }
     }
     fn get(r: &mut Reader) -> ReadResult<Self> {
         let n = r.count()?;
         let mut m = Self::with_capacity_and_hasher(n, S::default());
-        for _ in 0..n {
-            let k = r.within("#key", K::get)?;
-            let v = r.within("#value", V::get)?;
+        if n == 0 {
+            return Ok(m);
+        }
+        let keys = r.within("#key", |r| K::get_all(n, r))?;
+        let values = r.within("#value", |r| V::get_all(n, r))?;
+        for (k, v) in keys.into_iter().zip(values) {
             if m.insert(k, v).is_some() {
                 return bad("snapshot corrupted: a map key appears twice");
             }
@@ -435,7 +588,7 @@ macro_rules! snap_fields {
 }
 
 macro_rules! snap_floats {
-    ($($t:ty: $($f:ident),*;)*) => {$(
+    ($($t:ty: $($n:literal $f:ident),*;)*) => {$(
         impl Snap for $t {
             snap_fields!($t: $($f),*);
             fn put_all<'s, I>(items: I, w: &mut Writer)
@@ -459,14 +612,32 @@ macro_rules! snap_floats {
                     })
                     .collect())
             }
+            fn get_into<O>(
+                dst: &mut [O],
+                n: usize,
+                at: impl Fn(&mut [O], usize) -> &mut Self + Copy,
+                r: &mut Reader,
+            ) -> ReadResult<()> {
+                const K: usize = [$(stringify!($f)),*].len();
+                let Some(total) = n.checked_mul(K) else {
+                    return bad("snapshot corrupted: a count out of range");
+                };
+                Snap::get_into(dst, total, move |d: &mut [O], i| {
+                    let v = at(d, i / K);
+                    match i % K {
+                        $($n => &mut v.$f,)*
+                        _ => unreachable!("K components"),
+                    }
+                }, r)
+            }
         }
     )*};
 }
 snap_floats! {
-    glam::DVec3: x, y, z;
-    glam::Mat3: x_axis, y_axis, z_axis;
-    glam::Mat3A: x_axis, y_axis, z_axis;
-    glam::DQuat: x, y, z, w;
+    glam::DVec3: 0 x, 1 y, 2 z;
+    glam::Mat3: 0 x_axis, 1 y_axis, 2 z_axis;
+    glam::Mat3A: 0 x_axis, 1 y_axis, 2 z_axis;
+    glam::DQuat: 0 x, 1 y, 2 z, 3 w;
 }
 
 /// Vectors of `f32`: the same bytes as `snap_floats` (each component's `f32`, in order, in
@@ -498,6 +669,20 @@ macro_rules! snap_f32s {
                         v
                     })
                     .collect())
+            }
+            fn get_into<O>(
+                dst: &mut [O],
+                n: usize,
+                at: impl Fn(&mut [O], usize) -> &mut Self + Copy,
+                r: &mut Reader,
+            ) -> ReadResult<()> {
+                let b = r.take_values(n, 4 * $k)?;
+                for (i, c) in b.chunks_exact(4 * $k).enumerate() {
+                    let v = at(dst, i);
+                    let mut x = c.chunks_exact(4).map(|e| f32::from_le_bytes(e.try_into().expect("4 bytes")));
+                    $( v.$f = x.next().expect("k components"); )*
+                }
+                Ok(())
             }
         }
     )*};

@@ -40,6 +40,134 @@ impl Snap for Handle {
             Ok,
         )
     }
+    fn put_all<'s, I>(items: I, w: &mut Writer)
+    where
+        I: Iterator<Item = &'s Self> + Clone,
+        Self: 's,
+    {
+        w.value_groups::<4, 8>(items.map(|h| {
+            let mut b = [0u8; 8];
+            b[..4].copy_from_slice(&h.index.to_le_bytes());
+            b[4..].copy_from_slice(&crate::pool::counter_of(*h).to_le_bytes());
+            b
+        }));
+    }
+    fn get_all(n: usize, r: &mut Reader) -> ReadResult<Vec<Self>> {
+        let mut v = vec![Handle::NULL; n.min(r.remaining())];
+        Self::get_into(&mut v, n, |d, i| &mut d[i], r)?;
+        Ok(v)
+    }
+    fn get_into<O>(
+        dst: &mut [O],
+        n: usize,
+        at: impl Fn(&mut [O], usize) -> &mut Self + Copy,
+        r: &mut Reader,
+    ) -> ReadResult<()> {
+        let b = r.take_values(n, 8)?;
+        let tag = r.tag;
+        for (i, c) in b.chunks_exact(8).enumerate() {
+            let index = u32::from_le_bytes(c[..4].try_into().expect("4 bytes"));
+            let counter = u32::from_le_bytes(c[4..].try_into().expect("4 bytes"));
+            match crate::pool::handle_with_tag(index, counter, tag) {
+                Some(h) => *at(dst, i) = h,
+                None => return bad(format!("snapshot corrupted: id counter {counter} out of range")),
+            }
+        }
+        Ok(())
+    }
+}
+
+/// Blanks to read into (`SnapBlank`): every field is overwritten by `get_into`.
+impl super::SnapBlank for Body {
+    fn blank() -> Self {
+        Body {
+            body_type: BodyType::Static,
+            xf: Default::default(),
+            center: Default::default(),
+            local_center: Default::default(),
+            v: Default::default(),
+            w: Default::default(),
+            force: Default::default(),
+            torque: Default::default(),
+            mass: 0.0,
+            inv_mass: 0.0,
+            inertia_local: Default::default(),
+            inv_inertia_local: Default::default(),
+            isotropic: false,
+            inv_inertia_world: Default::default(),
+            linear_damping: 0.0,
+            angular_damping: 0.0,
+            gravity_scale: 0.0,
+            allow_sleep: false,
+            awake: false,
+            motion: 0.0,
+            sleep_time: 0.0,
+            user_data: 0,
+            shapes: Vec::new(),
+            contacts: Vec::new(),
+            awake_index: 0,
+            sleep_island: Handle::NULL,
+            island_next: 0,
+            solver_index: 0,
+            kinematic_target: None,
+            kinematic_stop: false,
+            enable_move_events: false,
+            reported_xf: Default::default(),
+            mass_override: None,
+            enabled: false,
+            locked_axes: 0,
+        }
+    }
+}
+
+impl super::SnapBlank for Shape {
+    fn blank() -> Self {
+        Shape {
+            body: 0,
+            geometry: Geometry::Sphere {
+                center: Default::default(),
+                radius: 0.0,
+            },
+            def: Default::default(),
+            proxy: 0,
+            aabb: Default::default(),
+            fat_aabb: Default::default(),
+            in_move_buffer: false,
+            extent: 0.0,
+        }
+    }
+}
+
+impl super::SnapBlank for Contact {
+    fn blank() -> Self {
+        Contact {
+            shape_a: 0,
+            shape_b: 0,
+            body_a: 0,
+            body_b: 0,
+            manifold: Default::default(),
+            impulses: Default::default(),
+            friction: Default::default(),
+            static_friction: 0.0,
+            dynamic_friction: 0.0,
+            restitution: 0.0,
+            rolling_resistance: 0.0,
+            torsional_friction: 0.0,
+            touching: false,
+            awake_index: 0,
+            key: 0,
+            radius_a: 0.0,
+            radius_b: 0.0,
+            size: 0.0,
+            cache: Default::default(),
+            multi: false,
+            more: Vec::new(),
+            sat: Default::default(),
+            event_flags: 0,
+            reported: false,
+            disabled: false,
+        }
+    }
 }
 
 snap_struct!(Transform { p, q });
@@ -446,6 +574,30 @@ macro_rules! snap_unit_enum {
             fn get(r: &mut Reader) -> ReadResult<Self> {
                 let all = [$($v),*];
                 Ok(all[r.tag($what, all.len() as u8)? as usize])
+            }
+            fn put_all<'s, I>(items: I, w: &mut Writer)
+            where
+                I: Iterator<Item = &'s Self> + Clone,
+                Self: 's,
+            {
+                // Entered only for a value, as `put` per value would.
+                if items.clone().next().is_some() {
+                    let all = [$($v),*];
+                    w.within("#tag", |w| {
+                        w.values(items.map(|x| [all.iter().position(|a| a == x).expect("listed variant") as u8]))
+                    });
+                }
+            }
+            fn get_all(n: usize, r: &mut Reader) -> ReadResult<Vec<Self>> {
+                if n == 0 {
+                    return Ok(Vec::new());
+                }
+                let all = [$($v),*];
+                let b = r.within("#tag", |r| r.take_values(n, 1))?;
+                if let Some(t) = b.iter().find(|&&t| t as usize >= all.len()) {
+                    return bad(format!("snapshot corrupted: {} variant {t} unknown", $what));
+                }
+                Ok(b.iter().map(|&t| all[t as usize]).collect())
             }
         }
     };
@@ -854,5 +1006,126 @@ impl Snap for GeneratorDef {
                 capacity: Snap::get(r)?,
             },
         })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::collision::narrow_phase::{Manifold, ManifoldPoint};
+    use crate::math::Vec3;
+
+    /// The payload `f` writes.
+    fn payload(f: impl Fn(&mut Writer)) -> Vec<u8> {
+        let mut w = Writer::new();
+        f(&mut w);
+        let mut out = Vec::new();
+        w.finish(&mut out);
+        out
+    }
+
+    /// `put_all` of `values` writes the bytes `put` of each in turn writes (columns made in
+    /// the same order, also for no values when `empty_too`: a struct's `put_all` makes its
+    /// fields' columns even for none), and both `get_all` (in place
+    /// for types with a default) and `get` of each read the values back.
+    fn bulk_matches_one_by_one<T: Snap + PartialEq + std::fmt::Debug>(values: &[T], empty_too: bool) {
+        let one = payload(|w| w.within("x", |w| values.iter().for_each(|v| v.put(w))));
+        let all = payload(|w| w.within("x", |w| T::put_all(values.iter(), w)));
+        if !values.is_empty() || empty_too {
+            assert_eq!(one, all, "{} values", values.len());
+        }
+        let mut plain = Vec::new();
+        let spans = super::super::columns::unpack(&all, &mut plain).unwrap();
+        let mut r = Reader::new(&plain, &spans, 7);
+        assert_eq!(r.within("x", |r| T::get_all(values.len(), r)).as_deref(), Ok(values));
+        r.finish().unwrap();
+        let mut r = Reader::new(&plain, &spans, 7);
+        let got: ReadResult<Vec<T>> = r.within("x", |r| (0..values.len()).map(|_| T::get(r)).collect());
+        assert_eq!(got.as_deref(), Ok(values));
+        if !values.is_empty() || empty_too {
+            r.finish().unwrap();
+        }
+        // More values than were written: refused, by either of `get_all`'s paths (in place
+        // for counts the bytes left could hold, field by field past that).
+        for more in [values.len() + 1, 2 * values.len() + 1, plain.len() + 1] {
+            let mut r = Reader::new(&plain, &spans, 7);
+            let got = r.within("x", |r| T::get_all(more, r));
+            assert!(got.unwrap_err().0.contains("corrupted"), "{more} of {}", values.len());
+        }
+    }
+
+    /// Seeded randomized: ids (null among them), enum tags, maps (empty among them),
+    /// arrays of vectors, matrices and manifolds (read in place, field by field, down to
+    /// their arrays of points) of many counts, across the 64-value blocks.
+    #[test]
+    fn bulk_paths_match_value_by_value() {
+        struct Rng(u64);
+        impl Rng {
+            fn next(&mut self) -> u64 {
+                self.0 ^= self.0 << 13;
+                self.0 ^= self.0 >> 7;
+                self.0 ^= self.0 << 17;
+                self.0
+            }
+            fn f(&mut self) -> f32 {
+                (self.next() % 2001) as f32 * 0.37 - 370.0
+            }
+        }
+        let mut rng = Rng(0x9E37_79B9_7F4A_7C15);
+        for n in [0usize, 1, 2, 7, 64, 65, 300] {
+            let vectors: Vec<[Vec3; 4]> = (0..n)
+                .map(|_| std::array::from_fn(|_| Vec3::new(rng.f(), rng.f(), rng.f())))
+                .collect();
+            let matrices: Vec<glam::Mat3> = (0..n)
+                .map(|_| glam::Mat3::from_cols_array(&std::array::from_fn(|_| rng.f())))
+                .collect();
+            bulk_matches_one_by_one(&vectors, true);
+            bulk_matches_one_by_one(&matrices, true);
+            let manifolds: Vec<Manifold> = (0..n)
+                .map(|_| Manifold {
+                    normal: Vec3::new(rng.f(), rng.f(), rng.f()),
+                    points: std::array::from_fn(|_| ManifoldPoint {
+                        point: Vec3::new(rng.f(), rng.f(), rng.f()),
+                        separation: rng.f(),
+                        id: rng.next() as u32,
+                    }),
+                    count: rng.next() as usize % 5,
+                })
+                .collect();
+            bulk_matches_one_by_one(&manifolds, false);
+            let handles: Vec<Handle> = (0..n)
+                .map(|i| {
+                    let (index, counter) = (rng.next() as u32 % 5000, 1 + rng.next() as u32 % 1000);
+                    if i % 5 == 0 {
+                        Handle::NULL
+                    } else {
+                        crate::pool::handle_with_tag(index, counter, 7).unwrap()
+                    }
+                })
+                .collect();
+            bulk_matches_one_by_one(&handles, true);
+            let types: Vec<BodyType> = (0..n)
+                .map(|_| [BodyType::Static, BodyType::Kinematic, BodyType::Dynamic][rng.next() as usize % 3])
+                .collect();
+            bulk_matches_one_by_one(&types, true);
+            let maps: Vec<crate::hash::IntMap<u64, u32>> = (0..n.min(20))
+                .map(|k| (0..k * 7).map(|_| (rng.next() % 50, rng.next() as u32)).collect())
+                .collect();
+            bulk_matches_one_by_one(&maps, true);
+            // A map's keys, then its values, in their own columns: the bytes of writing
+            // entry by entry in key order.
+            for m in &maps {
+                let mut keys: Vec<u64> = m.keys().copied().collect();
+                keys.sort_unstable();
+                let by_entry = payload(|w| {
+                    w.put_len(keys.len());
+                    for k in &keys {
+                        w.within("#key", |w| k.put(w));
+                        w.within("#value", |w| m[k].put(w));
+                    }
+                });
+                assert_eq!(payload(|w| m.put(w)), by_entry);
+            }
+        }
     }
 }
