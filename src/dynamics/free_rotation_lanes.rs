@@ -8,8 +8,8 @@
 //! as there), and IEEE arithmetic on a lane gives the same bits as on a scalar, so every
 //! body ends exactly as `integrate_general_position` leaves it (`lanes_match_the_scalar_path`
 //! checks bit for bit). Only the lane count per instruction changes: `D4` (plain arrays,
-//! any machine) or `Y4` (AVX's four-lane registers, picked at run time). The f32 parts (speed caps,
-//! translation, the world inverse inertia) stay per body, as before.
+//! any machine) or `Y4` (AVX's four-lane registers, picked at run time). The f32 parts
+//! (speed caps, translation, the world inverse inertia) stay per body, as before.
 
 use super::{half_turn, BodySim, BodyState, Velocity};
 use crate::math::{clamp_length, Mat3};
