@@ -139,12 +139,8 @@ impl Geometry {
             Geometry::Hull { hull, local, scale } => {
                 let h = store.hull_at(hull.index);
                 let m = Mat3::from_quat(xf.q * local.q) * scale;
-                let (mut lo, mut hi) = (Vec3::splat(f32::MAX), Vec3::splat(f32::MIN));
-                for v in h.vertices() {
-                    let w = m * *v;
-                    lo = lo.min(w);
-                    hi = hi.max(w);
-                }
+                // The bounds of `m * v` over the vertices, four at a time (the same values).
+                let (lo, hi) = h.transformed_bounds(&m);
                 let p = xf.apply(local.p);
                 Aabb::new(lo + p, hi + p).expanded(h.radius() * scale)
             }

@@ -91,3 +91,63 @@ fn free_rotation_matches_the_general_products() {
         assert!((e_out - e_ref).abs() <= 1.0e-12 * e_ref.max(1.0), "{e_ref} {e_out}");
     }
 }
+
+/// The principal axes lent by a slot's last step (`cached_principal_axes`) are the ones a
+/// new Jacobi iteration gives, bit for bit, and are lent only for the same inertia: random
+/// inertias, each against the slot's previous body of the same, a slightly different and
+/// a non-gyroscopic inertia.
+#[test]
+fn cached_principal_axes_are_the_computed_ones() {
+    use super::{cached_principal_axes, principal_axes, BodySim};
+    use crate::math::{Mat3, Quat, Vec3};
+    let mut rnd = rng(0x1f83_d9ab_fb41_bd6b);
+    let mut lent = 0;
+    for i in 0..2000u32 {
+        let q = DQuat::from_xyzw(rnd() - 0.5, rnd() - 0.5, rnd() - 0.5, rnd() - 0.5).normalize();
+        let m = DVec3::new(0.1 + rnd(), 0.1 + rnd(), 0.1 + rnd());
+        let p = glam::DMat3::from_quat(q);
+        let inertia = (p * glam::DMat3::from_diagonal(m) * p.transpose()).as_mat3();
+        let (principal, moments) = principal_axes(&inertia);
+        let mut prev = BodySim {
+            body: i,
+            lin_accel: Vec3::ZERO,
+            torque: Vec3::ZERO,
+            lin_damping: 0.0,
+            ang_damping: 0.0,
+            q0: Quat::IDENTITY,
+            inertia,
+            inv_inertia: inertia.inverse(),
+            gyroscopic: true,
+            reduced: false,
+            principal,
+            moments,
+            dynamic: true,
+            rk4: false,
+            arrive: false,
+        };
+        let bits = |(p, m): (DQuat, DVec3)| (p.to_array().map(f64::to_bits), m.to_array().map(f64::to_bits));
+        // The same inertia: lent, and equal to a new computation.
+        assert_eq!(
+            bits(cached_principal_axes(&inertia, &prev)),
+            bits(principal_axes(&inertia))
+        );
+        lent += 1;
+        // Another inertia (one entry one ulp off, or another body): computed anew.
+        let mut other = inertia;
+        other.x_axis.x = f32::from_bits(other.x_axis.x.to_bits() + 1);
+        let other = if i % 2 == 0 {
+            other
+        } else {
+            Mat3::from_diagonal(Vec3::new(1.0, 2.0, 3.0))
+        };
+        assert_eq!(bits(cached_principal_axes(&other, &prev)), bits(principal_axes(&other)));
+        // A slot whose last body was not gyroscopic lends nothing.
+        prev.gyroscopic = false;
+        prev.principal = DQuat::IDENTITY;
+        assert_eq!(
+            bits(cached_principal_axes(&inertia, &prev)),
+            bits(principal_axes(&inertia))
+        );
+    }
+    assert_eq!(lent, 2000);
+}

@@ -9,7 +9,8 @@
 //! impulses.
 //!
 //! Plain and kinematic bodies are integrated in SIMD lanes (`integrate_wide.rs`); bodies with
-//! torque, gyroscopic motion or RK4 take the scalar path here.
+//! torque, gyroscopic motion or RK4 take the scalar path here, the gyroscopic ones' position
+//! update four at a time in f64 lanes with the same result (`free_rotation_lanes.rs`).
 
 use crate::dynamics::body::{lock_angular, lock_linear, reduced_inverse_inertia, world_inertia, Body};
 use crate::dynamics::contact_solver::{self, ContactRef, Sources};
@@ -267,6 +268,18 @@ fn has_gyroscopic_term(i: &Mat3) -> bool {
     off > 1e-6 * scale || (d.max_element() - d.min_element()) > 1e-6 * scale
 }
 
+/// `principal_axes(i)`, taken from `prev` when it was computed there for the same inertia
+/// bit for bit (the same result: `principal_axes` depends on nothing else).
+#[inline]
+fn cached_principal_axes(i: &Mat3, prev: &BodySim) -> (DQuat, DVec3) {
+    let bits = |m: &Mat3| m.to_cols_array().map(f32::to_bits);
+    if prev.gyroscopic && bits(&prev.inertia) == bits(i) {
+        (prev.principal, prev.moments)
+    } else {
+        principal_axes(i)
+    }
+}
+
 /// Principal axes of a symmetric inertia: the rotation `P` (body frame from principal
 /// frame) and the principal moments, `I = P diag(m) Pᵀ` (cyclic Jacobi, f64).
 fn principal_axes(i: &Mat3) -> (DQuat, DVec3) {
@@ -364,6 +377,27 @@ fn free_rotation(q: DQuat, w: DVec3, m: DVec3, h: f64) -> (DQuat, DVec3) {
     (q, w)
 }
 
+/// `half_turn`'s series: sin x = x + x·x²·S(x²), cos x = 1 + x²·C(x²).
+const HALF_TURN_SIN: [f64; 7] = [
+    -1.0 / 6.0,
+    1.0 / 120.0,
+    -1.0 / 5040.0,
+    1.0 / 362_880.0,
+    -1.0 / 39_916_800.0,
+    1.0 / 6_227_020_800.0,
+    -1.0 / 1_307_674_368_000.0,
+];
+const HALF_TURN_COS: [f64; 8] = [
+    -1.0 / 2.0,
+    1.0 / 24.0,
+    -1.0 / 720.0,
+    1.0 / 40_320.0,
+    -1.0 / 3_628_800.0,
+    1.0 / 479_001_600.0,
+    -1.0 / 87_178_291_200.0,
+    1.0 / 20_922_789_888_000.0,
+];
+
 /// `(sin x, cos x)`. Below π/4 (a half turn of one of six sub-steps at 60 Hz: spins up to
 /// about 560 rad/s about the axis) by their Taylor series to x¹⁵ and x¹⁶, whose remainders
 /// are under 1e-16 relative there: the library's values to within f64 rounding, in far
@@ -374,25 +408,8 @@ fn half_turn(x: f64) -> (f64, f64) {
     if x.abs().partial_cmp(&std::f64::consts::FRAC_PI_4) != Some(std::cmp::Ordering::Less) {
         return x.sin_cos();
     }
-    const S: [f64; 7] = [
-        -1.0 / 6.0,
-        1.0 / 120.0,
-        -1.0 / 5040.0,
-        1.0 / 362_880.0,
-        -1.0 / 39_916_800.0,
-        1.0 / 6_227_020_800.0,
-        -1.0 / 1_307_674_368_000.0,
-    ];
-    const C: [f64; 8] = [
-        -1.0 / 2.0,
-        1.0 / 24.0,
-        -1.0 / 720.0,
-        1.0 / 40_320.0,
-        -1.0 / 3_628_800.0,
-        1.0 / 479_001_600.0,
-        -1.0 / 87_178_291_200.0,
-        1.0 / 20_922_789_888_000.0,
-    ];
+    const S: [f64; 7] = HALF_TURN_SIN;
+    const C: [f64; 8] = HALF_TURN_COS;
     let x2 = x * x;
     let ps = S.iter().rev().fold(0.0, |acc, &k| acc * x2 + k);
     let pc = C.iter().rev().fold(0.0, |acc, &k| acc * x2 + k);
@@ -498,7 +515,10 @@ pub fn prepare_bodies(world: &mut World, dt: f32, h: f32) {
                     slots.3.at(k),
                 )
             };
-            (*state, *vel, *sim, *drive) = prepare_body(body, bi, k as u32 + 1, gravity, dt, h, (max_v, max_w));
+            // The slot's last step (`fit` keeps the arrays) may hold this inertia's
+            // principal axes already.
+            let prev = *sim;
+            (*state, *vel, *sim, *drive) = prepare_body(body, bi, k as u32 + 1, gravity, dt, h, (max_v, max_w), &prev);
             if state.locks != 0 {
                 any_locked.store(true, std::sync::atomic::Ordering::Relaxed);
             }
@@ -528,7 +548,11 @@ const BODY_MIN_RANGE: u32 = 64;
 const STAGED_BODIES_PER_WORKER: usize = 256;
 
 /// Refreshes one awake body for the step and gives its solver state, velocity, simulation
-/// data and drive (`solver_index` is its slot).
+/// data and drive (`solver_index` is its slot). `prev` is what the slot held in the last
+/// step: a gyroscopic body of the same inertia there (bit for bit; usually this body)
+/// lends its principal axes, which are a function of the inertia alone, instead of a new
+/// Jacobi iteration.
+#[allow(clippy::too_many_arguments)]
 fn prepare_body(
     body: &mut Body,
     bi: u32,
@@ -537,6 +561,7 @@ fn prepare_body(
     dt: f32,
     h: f32,
     (max_v, max_w): (f32, f32),
+    prev: &BodySim,
 ) -> (BodyState, Velocity, BodySim, Drive) {
     body.solver_index = solver_index;
     let dynamic = body.is_dynamic();
@@ -568,7 +593,7 @@ fn prepare_body(
     let gyroscopic = dynamic && locks & 56 == 0 && has_gyroscopic_term(&body.inertia_local);
     let reduced = dynamic && locks & 56 != 0 && locks & 56 != 56 && !body.isotropic;
     let (principal, moments) = if gyroscopic {
-        principal_axes(&body.inertia_local)
+        cached_principal_axes(&body.inertia_local, prev)
     } else {
         (DQuat::IDENTITY, DVec3::ZERO)
     };
@@ -663,7 +688,10 @@ pub(crate) fn integrate_general_velocities(
 }
 
 /// Moves the bodies with torque, gyroscopic motion or RK4 by their velocities, capped at the
-/// speed limits before and after (RK4's stiff damping is split out, see `rk4_step`).
+/// speed limits before and after (RK4's stiff damping is split out, see `rk4_step`). The
+/// gyroscopic ones (most of these: every body with anisotropic inertia) go four at a time
+/// through `free_rotation_lanes`, with the same result bit for bit; bodies are independent,
+/// so the order does not matter.
 pub(crate) fn integrate_general_positions(
     vel: &mut [Velocity],
     states: &mut [BodyState],
@@ -672,45 +700,63 @@ pub(crate) fn integrate_general_positions(
     h: f32,
     limits: (f32, f32),
 ) {
+    let mut lanes = [0u32; 64];
+    let mut n = 0;
     for &k in bodies {
-        let (u, s, sim) = (&mut vel[k as usize], &mut states[k as usize], &sims[k as usize]);
-        // The solve may have pushed past the limits: no body moves faster than them.
+        let sim = &sims[k as usize];
+        if sim.gyroscopic && !sim.rk4 {
+            lanes[n] = k;
+            n += 1;
+            if n == lanes.len() {
+                free_rotation_lanes::gyroscopic_positions(vel, states, sims, &lanes, h, limits);
+                n = 0;
+            }
+        } else {
+            integrate_general_position(&mut vel[k as usize], &mut states[k as usize], sim, h, limits);
+        }
+    }
+    free_rotation_lanes::gyroscopic_positions(vel, states, sims, &lanes[..n], h, limits);
+}
+
+/// One body of `integrate_general_positions`.
+#[inline]
+fn integrate_general_position(u: &mut Velocity, s: &mut BodyState, sim: &BodySim, h: f32, limits: (f32, f32)) {
+    // The solve may have pushed past the limits: no body moves faster than them.
+    u.v = clamp_length(u.v, limits.0);
+    u.w = clamp_length(u.w, limits.1);
+    let dq = if sim.rk4 {
+        let dq = rk4_step(u, s, sim, h);
         u.v = clamp_length(u.v, limits.0);
         u.w = clamp_length(u.w, limits.1);
-        let dq = if sim.rk4 {
-            let dq = rk4_step(u, s, sim, h);
-            u.v = clamp_length(u.v, limits.0);
-            u.w = clamp_length(u.w, limits.1);
-            dq
-        } else if sim.gyroscopic {
-            s.set_dp(s.dp() + h * u.v);
-            let q = (s.dq() * sim.q0).as_dquat().normalize() * sim.principal;
-            let (q, w) = free_rotation(q, u.w.as_dvec3(), sim.moments, h as f64);
-            u.w = clamp_length(w.as_vec3(), limits.1);
-            (q * sim.principal.conjugate() * sim.q0.as_dquat().conjugate())
-                .normalize()
-                .as_quat()
-        } else if sim.reduced {
-            // Locked angular axes: the constraint torque that keeps them is along them, so the
-            // free components of the world angular momentum `I ω` stay through the free turn;
-            // the velocity follows from them with the turned body's reduced inertia.
-            s.set_dp(s.dp() + h * u.v);
-            let momentum = world_inertia(&sim.inertia, s.dq() * sim.q0) * u.w.as_dvec3();
-            let dq = integrate_rotation(s.dq(), u.w, h);
-            let inv_i = reduced_inverse_inertia(world_inertia(&sim.inertia, dq * sim.q0), s.locks);
-            s.set_inv_i(inv_i);
-            u.w = clamp_length((inv_i.as_dmat3() * momentum).as_vec3(), limits.1);
-            dq
-        } else {
-            s.set_dp(s.dp() + h * u.v);
-            integrate_rotation(s.dq(), u.w, h)
-        };
-        s.set_rotation(dq);
-        if sim.gyroscopic {
-            // Anisotropic inertia turns with the body: keep the world inverse current.
-            let r = Mat3::from_quat(dq * sim.q0);
-            s.set_inv_i(r * sim.inv_inertia * r.transpose());
-        }
+        dq
+    } else if sim.gyroscopic {
+        s.set_dp(s.dp() + h * u.v);
+        let q = (s.dq() * sim.q0).as_dquat().normalize() * sim.principal;
+        let (q, w) = free_rotation(q, u.w.as_dvec3(), sim.moments, h as f64);
+        u.w = clamp_length(w.as_vec3(), limits.1);
+        (q * sim.principal.conjugate() * sim.q0.as_dquat().conjugate())
+            .normalize()
+            .as_quat()
+    } else if sim.reduced {
+        // Locked angular axes: the constraint torque that keeps them is along them, so the
+        // free components of the world angular momentum `I ω` stay through the free turn;
+        // the velocity follows from them with the turned body's reduced inertia.
+        s.set_dp(s.dp() + h * u.v);
+        let momentum = world_inertia(&sim.inertia, s.dq() * sim.q0) * u.w.as_dvec3();
+        let dq = integrate_rotation(s.dq(), u.w, h);
+        let inv_i = reduced_inverse_inertia(world_inertia(&sim.inertia, dq * sim.q0), s.locks);
+        s.set_inv_i(inv_i);
+        u.w = clamp_length((inv_i.as_dmat3() * momentum).as_vec3(), limits.1);
+        dq
+    } else {
+        s.set_dp(s.dp() + h * u.v);
+        integrate_rotation(s.dq(), u.w, h)
+    };
+    s.set_rotation(dq);
+    if sim.gyroscopic {
+        // Anisotropic inertia turns with the body: keep the world inverse current.
+        let r = Mat3::from_quat(dq * sim.q0);
+        s.set_inv_i(r * sim.inv_inertia * r.transpose());
     }
 }
 
@@ -1030,6 +1076,9 @@ fn finalize_bodies(world: &mut World) {
         }
     });
 }
+
+#[path = "free_rotation_lanes.rs"]
+mod free_rotation_lanes;
 
 #[cfg(test)]
 #[path = "free_rotation_tests.rs"]

@@ -23,7 +23,7 @@ pub mod builder;
 pub mod mass;
 
 use crate::collision::shape::MassProperties;
-use crate::math::Vec3;
+use crate::math::{Mat3, Vec3};
 
 /// Most vertices a hull keeps (indices fit a byte, as in Box2D's and Jolt's hulls).
 pub const MAX_HULL_VERTICES: usize = 255;
@@ -409,6 +409,59 @@ impl ConvexHull {
         }
     }
 
+    /// Smallest and largest `v · d` over the vertices (the core's extent along `d`), four
+    /// vertices at a time in independent lanes as `min_dot`, with the one-at-a-time
+    /// products (`x·dx + y·dy + z·dz`): a minimum and a maximum do not depend on the order,
+    /// so the values are those of one vertex at a time (`interval_matches_one_at_a_time`).
+    #[inline]
+    pub(crate) fn dot_interval(&self, d: Vec3) -> (f32, f32) {
+        let (mut lo, mut hi) = ([f32::MAX; 4], [f32::MIN; 4]);
+        for b in &self.lanes {
+            for k in 0..4 {
+                let x = b.x[k] * d.x + b.y[k] * d.y + b.z[k] * d.z;
+                lo[k] = if x < lo[k] { x } else { lo[k] };
+                hi[k] = if x > hi[k] { x } else { hi[k] };
+            }
+        }
+        let min = |a: f32, b: f32| if b < a { b } else { a };
+        let max = |a: f32, b: f32| if b > a { b } else { a };
+        (
+            min(min(lo[0], lo[1]), min(lo[2], lo[3])),
+            max(max(hi[0], hi[1]), max(hi[2], hi[3])),
+        )
+    }
+
+    /// Bounds of the vertices turned and scaled by `m` (`m * v`), four vertices at a time in
+    /// independent lanes, each coordinate with glam's products and sums in glam's order
+    /// (`(m.x_axis·x + m.y_axis·y) + m.z_axis·z`): a minimum and a maximum do not depend on
+    /// the order, so the bounds are those of one vertex at a time (`Geometry::aabb`; see
+    /// `transformed_bounds_match_one_at_a_time`).
+    #[inline]
+    pub(crate) fn transformed_bounds(&self, m: &Mat3) -> (Vec3, Vec3) {
+        let mut out = [(0.0f32, 0.0f32); 3];
+        for (r, o) in out.iter_mut().enumerate() {
+            let (a, b, c) = (m.x_axis[r], m.y_axis[r], m.z_axis[r]);
+            let (mut lo, mut hi) = ([f32::MAX; 4], [f32::MIN; 4]);
+            for l in &self.lanes {
+                for k in 0..4 {
+                    let x = a * l.x[k] + b * l.y[k] + c * l.z[k];
+                    lo[k] = if x < lo[k] { x } else { lo[k] };
+                    hi[k] = if x > hi[k] { x } else { hi[k] };
+                }
+            }
+            let min = |a: f32, b: f32| if b < a { b } else { a };
+            let max = |a: f32, b: f32| if b > a { b } else { a };
+            *o = (
+                min(min(lo[0], lo[1]), min(lo[2], lo[3])),
+                max(max(hi[0], hi[1]), max(hi[2], hi[3])),
+            );
+        }
+        (
+            Vec3::new(out[0].0, out[1].0, out[2].0),
+            Vec3::new(out[0].1, out[1].1, out[2].1),
+        )
+    }
+
     /// Radius about the centre of mass that bounds the core.
     pub fn bound_radius(&self) -> f32 {
         self.bound_radius
@@ -437,6 +490,40 @@ mod tests {
             }
         }
         best
+    }
+
+    /// `transformed_bounds` gives the bounds of `m * v` one vertex at a time (glam's
+    /// product, `Vec3::min`/`max`), bit for bit: random hulls of 4 to 40 points under random
+    /// turns and scales, the identity and quarter turns (where products tie or vanish).
+    #[test]
+    fn transformed_bounds_match_one_at_a_time() {
+        let mut r = crate::math::test_rnd::Rnd(0x5be0_cd19_137e_2179);
+        for n in 0..600 {
+            let pts: Vec<Vec3> = (0..4 + n % 37).map(|_| r.point(Vec3::new(0.6, 0.4, 0.5))).collect();
+            let h = build(&pts, &HullSettings::default()).unwrap();
+            let q = match n % 5 {
+                0 => crate::math::Quat::IDENTITY,
+                1 => crate::math::Quat::from_rotation_y(std::f32::consts::FRAC_PI_2),
+                _ => r.quat(),
+            };
+            let m = Mat3::from_quat(q) * (0.1 + 3.0 * r.f());
+            let (mut lo, mut hi) = (Vec3::splat(f32::MAX), Vec3::splat(f32::MIN));
+            for v in h.vertices() {
+                let w = m * *v;
+                lo = lo.min(w);
+                hi = hi.max(w);
+            }
+            let (l, u) = h.transformed_bounds(&m);
+            // Equal values; a zero may differ only in its sign, which no bound comparison sees.
+            for (a, b) in [(l, lo), (u, hi)] {
+                for k in 0..3 {
+                    assert!(
+                        a[k] == b[k] && (a[k] == 0.0 || a[k].to_bits() == b[k].to_bits()),
+                        "{a} {b}"
+                    );
+                }
+            }
+        }
     }
 
     /// The four-lane `support_index` picks the vertex one at a time does: random clouds

@@ -43,6 +43,7 @@ use super::hull::{feature_id, one_point, Candidate, Candidates, InA, Own, Poly, 
 use super::Manifold;
 use crate::collision::gjk;
 use crate::math::{Mat3, Vec3};
+use crate::simd::{Lanes, F4};
 
 /// The feature that decided the last test of a pair (see the module doc).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -336,31 +337,33 @@ fn hull_hull_with(a: &Poly, b: &Poly, speculative: f32, cache: &mut SatCache, pr
         let c = -(rel.r * gb.n1);
         let d = -(rel.r * gb.n2);
         let d_x_c = rel.r * gb.n2_x_n1;
-        // Four of A's edges at a time (`EdgeLanes`): the arc test's dot products lane by
-        // lane, in the scalar form's order of operations, so the same pairs pass.
+        // Four of A's edges at a time (`EdgeLanes`, in `F4` lanes): the arc test's dot
+        // products lane by lane, in the scalar form's order of operations, so the same pairs
+        // pass.
+        let v = |p: Vec3| (F4::splat(p.x), F4::splat(p.y), F4::splat(p.z));
+        let (c4, d4, dxc4) = (v(c), v(d), v(d_x_c));
+        let dot = |(x, y, z): (F4, F4, F4), n: &[[f32; 4]; 3]| {
+            x * F4::load(&n[0]) + y * F4::load(&n[1]) + z * F4::load(&n[2])
+        };
+        let zero = F4::zero();
         for (block, l) in a.hull.edge_lanes.iter().enumerate() {
             let lanes = a_lanes.get(block).copied().unwrap_or(0x0f);
             if lanes == 0 {
                 continue;
             }
-            let dot = |v: Vec3, n: &[[f32; 4]; 3]| -> [f32; 4] {
-                let mut out = [0.0f32; 4];
-                for (k, o) in out.iter_mut().enumerate() {
-                    *o = v.x * n[0][k] + v.y * n[1][k] + v.z * n[2][k];
-                }
-                out
-            };
-            let (cba, dba) = (dot(c, &l.n2_x_n1), dot(d, &l.n2_x_n1));
-            let (adc, bdc) = (dot(d_x_c, &l.n1), dot(d_x_c, &l.n2));
-            let mut pass = [false; 4];
-            for (k, p) in pass.iter_mut().enumerate() {
-                *p =
-                    (lanes >> k & 1 != 0) & (cba[k] * dba[k] < 0.0) & (adc[k] * bdc[k] < 0.0) & (cba[k] * bdc[k] > 0.0);
-            }
-            if pass == [false; 4] {
+            let (cba, dba) = (dot(c4, &l.n2_x_n1), dot(d4, &l.n2_x_n1));
+            let (adc, bdc) = (dot(dxc4, &l.n1), dot(dxc4, &l.n2));
+            // cba·dba < 0, adc·bdc < 0 and cba·bdc > 0, lane by lane (bit k: lane k).
+            let pass = zero
+                .gt(cba * dba)
+                .and(zero.gt(adc * bdc))
+                .and((cba * bdc).gt(zero))
+                .bits()
+                & lanes as u32;
+            if pass == 0 {
                 continue;
             }
-            for (k, _) in pass.iter().enumerate().filter(|(_, &p)| p) {
+            for k in (0..4).filter(|k| pass >> k & 1 != 0) {
                 let ka = 4 * block + k;
                 let ga = a.hull.edge_gauss[ka];
                 let (pa0, pa1) = (a.vertex(ga.v0 as usize), a.vertex(ga.v1 as usize));

@@ -3,6 +3,7 @@
 use super::triangle::{Polytope, CLIP_CAP};
 use crate::collision::hull::ConvexHull;
 use crate::math::Vec3;
+use crate::simd::{Lanes, F4};
 
 /// A hull scaled uniformly about its origin, in its own frame.
 pub struct HullView<'a> {
@@ -24,13 +25,23 @@ impl<'a> HullView<'a> {
 impl Polytope for HullView<'_> {
     #[inline]
     fn interval(&self, a: Vec3) -> (f32, f32) {
-        let (mut lo, mut hi) = (f32::MAX, f32::MIN);
-        for v in self.hull.vertices() {
-            let x = v.dot(a);
-            lo = lo.min(x);
-            hi = hi.max(x);
-        }
+        // Four vertices at a time; the same values as one at a time (`v.dot(a)`, min, max).
+        let (lo, hi) = self.hull.dot_interval(a);
         (lo * self.scale, hi * self.scale)
+    }
+
+    /// One vertex at a time for four axes: each lane's products (`v.dot(a)`'s order) and
+    /// its minimum and maximum, as `interval` (lane by lane the same values).
+    #[inline]
+    fn interval4(&self, ax: F4, ay: F4, az: F4) -> (F4, F4) {
+        let (mut lo, mut hi) = (F4::splat(f32::MAX), F4::splat(f32::MIN));
+        for v in self.hull.vertices() {
+            let x = F4::splat(v.x) * ax + F4::splat(v.y) * ay + F4::splat(v.z) * az;
+            lo = F4::select(lo.gt(x), x, lo);
+            hi = F4::select(x.gt(hi), x, hi);
+        }
+        let s = F4::splat(self.scale);
+        (lo * s, hi * s)
     }
 
     fn face_count(&self) -> usize {
@@ -101,6 +112,36 @@ mod tests {
     use super::*;
     use crate::collision::hull::builder::{build, HullSettings};
     use crate::collision::narrow_phase::triangle::{polytope_triangle, LocalBox, TriContact, Triangle};
+
+    /// The hull's extent four vertices at a time (`ConvexHull::dot_interval`) is the one
+    /// vertex at a time of `v.dot(a)`, `min`, `max`, bit for bit: random hulls of 4 to 40
+    /// points, random directions (some along the axes, where products tie or vanish).
+    #[test]
+    fn interval_matches_one_at_a_time() {
+        let mut rnd = crate::math::test_rnd::Rnd(0x3c6e_f372_fe94_f82b);
+        for n in 4..400 {
+            let pts: Vec<Vec3> = (0..4 + n % 37).map(|_| rnd.point(Vec3::new(0.7, 0.5, 0.3))).collect();
+            let hull = build(&pts, &HullSettings::default()).unwrap();
+            for k in 0..40 {
+                let a = match k % 8 {
+                    0 => Vec3::X,
+                    1 => Vec3::NEG_Y,
+                    2 => Vec3::new(0.0, 1.0, 1.0),
+                    _ => Vec3::new(rnd.f() - 0.5, rnd.f() - 0.5, rnd.f() - 0.5) * 3.0,
+                };
+                let (mut lo, mut hi) = (f32::MAX, f32::MIN);
+                for v in hull.vertices() {
+                    let x = v.dot(a);
+                    lo = lo.min(x);
+                    hi = hi.max(x);
+                }
+                let (l, h) = hull.dot_interval(a);
+                // Equal values; a zero may differ only in its sign, which no caller reads.
+                assert!(l == lo && (l == 0.0 || l.to_bits() == lo.to_bits()), "{l} {lo}");
+                assert!(h == hi && (h == 0.0 || h.to_bits() == hi.to_bits()), "{h} {hi}");
+            }
+        }
+    }
 
     /// A cube hull against random triangles gives the box's answer (normal, deepest point).
     #[test]

@@ -23,6 +23,7 @@ use super::geom::closest_segment_segment;
 use super::ManifoldPoint;
 use crate::collision::mesh::edges::vertex_active;
 use crate::math::Vec3;
+use crate::simd::{Lanes, F4};
 
 /// Most points a triangle contributes (a hull face clipped by a triangle may have more; the
 /// extra ones are reduced away, see `TriContact::push`).
@@ -327,6 +328,14 @@ pub fn capsule_triangle(p0: Vec3, p1: Vec3, r: f32, t: &Triangle, speculative: f
 pub trait Polytope {
     /// Interval of the core's projection onto `a`.
     fn interval(&self, a: Vec3) -> (f32, f32);
+    /// `interval` along four axes at once (lane k: `(ax, ay, az)`'s lane k), the same
+    /// values lane by lane.
+    #[inline]
+    fn interval4(&self, ax: F4, ay: F4, az: F4) -> (F4, F4) {
+        let (x, y, z) = (ax.to_floats(), ay.to_floats(), az.to_floats());
+        let r = [0, 1, 2, 3].map(|k| self.interval(Vec3::new(x[k], y[k], z[k])));
+        (F4::from_fn(|k| r[k].0), F4::from_fn(|k| r[k].1))
+    }
     fn face_count(&self) -> usize;
     /// Outward unit normal and offset of face `f` (`dot(normal, x) <= offset` inside).
     fn face_plane(&self, f: usize) -> (Vec3, f32);
@@ -482,36 +491,77 @@ pub fn polytope_triangle<P: Polytope>(
             (sep_face, face) = (s, f);
         }
     }
-    // Best allowed edge pair.
+    // Best allowed edge pair: p's edge direction `i` crossed with the triangle's edge `e`,
+    // for the pairs `j = 3i + e` four at a time (`F4` lanes, each lane the scalar form's
+    // operations in its order: `edge_axes_match_one_at_a_time`). Any axis separating the
+    // shapes ends the test whatever its place; the best allowed one is then picked in pair
+    // order, so ties go as one pair at a time.
     let (mut sep_edge, mut edge, mut edge_axis) = (f32::MIN, (0, 0), Vec3::ZERO);
     let center = p.center();
-    for i in 0..p.edge_direction_count() {
-        let d = p.edge_direction(i);
-        for e in 0..3 {
-            let te = t.v[(e + 1) % 3] - t.v[e];
-            let mut a = d.cross(te);
-            let len_sq = a.length_squared();
-            if len_sq < 1.0e-10 * te.length_squared() {
-                continue;
-            }
-            a /= len_sq.sqrt();
-            if a.dot(center - t.v[e]) < 0.0 {
-                a = -a;
-            }
-            let (plo, phi) = p.interval(a);
-            let tp = t.v.map(|v| v.dot(a));
-            let (tlo, thi) = (tp[0].min(tp[1]).min(tp[2]), tp[0].max(tp[1]).max(tp[2]));
-            // Oriented from the triangle to p; the reverse orientation (p behind) only
-            // matters for separation.
-            let s = plo - thi - radius;
-            let s_rev = tlo - phi - radius;
-            if s.max(s_rev) > speculative {
-                return false;
-            }
-            if s > sep_edge && t.flags & (1 << e) != 0 && a.dot(n) >= 0.0 && a.dot(n) < FACE_AXIS_COS {
-                (sep_edge, edge, edge_axis) = (s, (i, e), a);
+    let te: [Vec3; 3] = [0, 1, 2].map(|e| t.v[(e + 1) % 3] - t.v[e]);
+    let parallel: [f32; 3] = te.map(|x| 1.0e-10 * x.length_squared());
+    let to_center: [Vec3; 3] = [0, 1, 2].map(|e| center - t.v[e]);
+    let tv = t.v.map(|v| (F4::splat(v.x), F4::splat(v.y), F4::splat(v.z)));
+    let (radius4, speculative4) = (F4::splat(radius), F4::splat(speculative));
+    let pairs = 3 * p.edge_direction_count();
+    let mut j0 = 0;
+    while j0 < pairs {
+        let live = (pairs - j0).min(4);
+        // Lane k: pair j0 + k (padding lanes repeat the last pair and are masked out).
+        let pair = |k: usize| ((j0 + k.min(live - 1)) / 3, (j0 + k.min(live - 1)) % 3);
+        let d: [Vec3; 4] = [0, 1, 2, 3].map(|k| p.edge_direction(pair(k).0));
+        let (dx, dy, dz) = (
+            F4::from_fn(|k| d[k].x),
+            F4::from_fn(|k| d[k].y),
+            F4::from_fn(|k| d[k].z),
+        );
+        let (ex, ey, ez) = (
+            F4::from_fn(|k| te[pair(k).1].x),
+            F4::from_fn(|k| te[pair(k).1].y),
+            F4::from_fn(|k| te[pair(k).1].z),
+        );
+        // d × te (glam's cross), its squared length, and the parallel test.
+        let (ax, ay, az) = (dy * ez - ey * dz, dz * ex - ez * dx, dx * ey - ex * dy);
+        let len_sq = ax * ax + ay * ay + az * az;
+        let skip = F4::from_fn(|k| parallel[pair(k).1]).gt(len_sq).bits();
+        let valid = !skip & ((1u32 << live) - 1);
+        let len = len_sq.sqrt();
+        let (ax, ay, az) = (ax / len, ay / len, az / len);
+        // Oriented from the triangle towards p's centre.
+        let (cx, cy, cz) = (
+            F4::from_fn(|k| to_center[pair(k).1].x),
+            F4::from_fn(|k| to_center[pair(k).1].y),
+            F4::from_fn(|k| to_center[pair(k).1].z),
+        );
+        // Negated exactly (a product by −1 flips the sign of a zero too, as `-a` does).
+        let flip = F4::zero().gt(ax * cx + ay * cy + az * cz);
+        let neg = F4::splat(-1.0);
+        let (ax, ay, az) = (
+            F4::select(flip, neg * ax, ax),
+            F4::select(flip, neg * ay, ay),
+            F4::select(flip, neg * az, az),
+        );
+        let (plo, phi) = p.interval4(ax, ay, az);
+        let tp = tv.map(|(x, y, z)| x * ax + y * ay + z * az);
+        let min = |a: F4, b: F4| F4::select(a.gt(b), b, a);
+        let max = |a: F4, b: F4| F4::select(b.gt(a), b, a);
+        let (tlo, thi) = (min(min(tp[0], tp[1]), tp[2]), max(max(tp[0], tp[1]), tp[2]));
+        // Oriented from the triangle to p; the reverse orientation (p behind) only
+        // matters for separation.
+        let s = plo - thi - radius4;
+        let s_rev = tlo - phi - radius4;
+        if s.gt(speculative4).or(s_rev.gt(speculative4)).bits() & valid != 0 {
+            return false;
+        }
+        let (s, ax, ay, az) = (s.to_floats(), ax.to_floats(), ay.to_floats(), az.to_floats());
+        for k in (0..live).filter(|k| valid >> k & 1 != 0) {
+            let (i, e) = pair(k);
+            let a = Vec3::new(ax[k], ay[k], az[k]);
+            if s[k] > sep_edge && t.flags & (1 << e) != 0 && a.dot(n) >= 0.0 && a.dot(n) < FACE_AXIS_COS {
+                (sep_edge, edge, edge_axis) = (s[k], (i, e), a);
             }
         }
+        j0 += 4;
     }
     let mut best = (sep_tri, Axis::Triangle);
     if face != usize::MAX && sep_face > sep_tri + FACE_REL_TOL * sep_tri.abs() + FACE_ABS_TOL {
@@ -632,6 +682,153 @@ fn face_reference<P: Polytope>(p: &P, f: usize, radius: f32, t: &Triangle, specu
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// `polytope_triangle` as it was, one edge pair at a time (the reference of
+    /// `edge_axes_match_one_at_a_time`).
+    fn polytope_triangle_scalar<P: Polytope>(
+        p: &P,
+        radius: f32,
+        t: &Triangle,
+        speculative: f32,
+        out: &mut TriContact,
+    ) -> bool {
+        let n = t.n;
+        let d0 = n.dot(t.v[0]);
+        let (lo, hi) = p.interval(n);
+        if hi + radius < d0 {
+            return false;
+        }
+        let sep_tri = lo - d0 - radius;
+        if sep_tri > speculative {
+            return false;
+        }
+        let (mut sep_face, mut face) = (f32::MIN, usize::MAX);
+        for f in 0..p.face_count() {
+            let (m, off) = p.face_plane(f);
+            let tmin = t.v[0].dot(m).min(t.v[1].dot(m)).min(t.v[2].dot(m));
+            let s = tmin - off - radius;
+            if s > speculative {
+                return false;
+            }
+            if s > sep_face && axis_allowed(-m, t) {
+                (sep_face, face) = (s, f);
+            }
+        }
+        let (mut sep_edge, mut edge, mut edge_axis) = (f32::MIN, (0, 0), Vec3::ZERO);
+        let center = p.center();
+        for i in 0..p.edge_direction_count() {
+            let d = p.edge_direction(i);
+            for e in 0..3 {
+                let te = t.v[(e + 1) % 3] - t.v[e];
+                let mut a = d.cross(te);
+                let len_sq = a.length_squared();
+                if len_sq < 1.0e-10 * te.length_squared() {
+                    continue;
+                }
+                a /= len_sq.sqrt();
+                if a.dot(center - t.v[e]) < 0.0 {
+                    a = -a;
+                }
+                let (plo, phi) = p.interval(a);
+                let tp = t.v.map(|v| v.dot(a));
+                let (tlo, thi) = (tp[0].min(tp[1]).min(tp[2]), tp[0].max(tp[1]).max(tp[2]));
+                let s = plo - thi - radius;
+                let s_rev = tlo - phi - radius;
+                if s.max(s_rev) > speculative {
+                    return false;
+                }
+                if s > sep_edge && t.flags & (1 << e) != 0 && a.dot(n) >= 0.0 && a.dot(n) < FACE_AXIS_COS {
+                    (sep_edge, edge, edge_axis) = (s, (i, e), a);
+                }
+            }
+        }
+        let mut best = (sep_tri, Axis::Triangle);
+        if face != usize::MAX && sep_face > sep_tri + FACE_REL_TOL * sep_tri.abs() + FACE_ABS_TOL {
+            best = (sep_face, Axis::Face(face));
+        }
+        if sep_edge > best.0 + EDGE_REL_TOL * best.0.abs() + EDGE_ABS_TOL {
+            best = (sep_edge, Axis::Edge(edge.0, edge.1));
+        }
+        out.count = 0;
+        match best.1 {
+            Axis::Triangle => triangle_reference(p, radius, t, speculative, out),
+            Axis::Face(f) => face_reference(p, f, radius, t, speculative, out),
+            Axis::Edge(i, e) => {
+                let (a0, a1) = p.support_edge(-edge_axis, i);
+                let (b0, b1) = (t.v[e], t.v[(e + 1) % 3]);
+                let (s, u) = closest_segment_segment(a0, a1, b0, b1);
+                let (pa, pb) = (a0 + s * (a1 - a0), b0 + u * (b1 - b0));
+                let sep = (pa - pb).dot(edge_axis) - radius;
+                if sep <= speculative {
+                    out.normal = edge_axis;
+                    let code = 128 + (3 * i as u32 + e as u32) % 128;
+                    out.push(pb + (0.5 * sep) * edge_axis, sep, triangle_id(t.index, code));
+                }
+            }
+        }
+        out.count > 0
+    }
+
+    /// The edge pairs four at a time change nothing: random boxes and hulls (rounded or
+    /// not, scaled) against random triangles around them — resting, overlapping, apart,
+    /// edge-on, with every combination of active edges, and triangles with an edge along
+    /// one of the shape's edge directions (parallel pairs) — give the same answer and the
+    /// same contact, bit for bit, as one pair at a time, edge contacts among them.
+    #[test]
+    fn edge_axes_match_one_at_a_time() {
+        use super::super::hull_view::HullView;
+        use crate::collision::hull::builder::{build, HullSettings};
+        let mut rnd = crate::math::test_rnd::Rnd(0xa54f_f53a_5f1d_36f1);
+        let (mut hits, mut edges) = (0, 0);
+        for trial in 0..20_000 {
+            let pts: Vec<Vec3> = (0..6 + trial % 13)
+                .map(|_| rnd.point(Vec3::new(0.5, 0.4, 0.45)))
+                .collect();
+            let hull = build(&pts, &HullSettings::default()).unwrap();
+            let half = Vec3::new(0.1 + rnd.f(), 0.1 + rnd.f(), 0.1 + rnd.f()) * 0.5;
+            let c = Vec3::new(rnd.f() - 0.5, rnd.f() - 0.8, rnd.f() - 0.5);
+            let mut v = [0, 1, 2].map(|_| c + 1.5 * Vec3::new(rnd.f() - 0.5, 0.3 * (rnd.f() - 0.5), rnd.f() - 0.5));
+            if trial % 7 == 0 {
+                // An edge along the box's x axis (parallel to one of its edge directions).
+                v[1] = v[0] + Vec3::new(0.8, 0.0, 0.0);
+            }
+            let nrm = (v[1] - v[0]).cross(v[2] - v[0]);
+            if nrm.length() < 1e-4 {
+                continue;
+            }
+            let t = Triangle {
+                v,
+                n: nrm.normalize(),
+                flags: (trial % 8) as u8,
+                index: trial as u32,
+            };
+            let radius = if trial % 3 == 0 { 0.02 } else { 0.0 };
+            let speculative = [0.0, 0.02, 0.1][trial % 3];
+            let (mut a, mut b) = (TriContact::EMPTY, TriContact::EMPTY);
+            let (ra, rb) = if trial % 2 == 0 {
+                let view = HullView::new(&hull, 0.5 + rnd.f());
+                (
+                    polytope_triangle(&view, radius, &t, speculative, &mut a),
+                    polytope_triangle_scalar(&view, radius, &t, speculative, &mut b),
+                )
+            } else {
+                let bx = LocalBox(half);
+                (
+                    polytope_triangle(&bx, radius, &t, speculative, &mut a),
+                    polytope_triangle_scalar(&bx, radius, &t, speculative, &mut b),
+                )
+            };
+            assert_eq!(ra, rb, "trial {trial}");
+            if ra {
+                assert_eq!(format!("{a:?}"), format!("{b:?}"), "trial {trial}");
+                let bits = |c: &TriContact| c.normal.to_array().map(f32::to_bits);
+                assert_eq!(bits(&a), bits(&b), "trial {trial}");
+                hits += 1;
+                edges += (a.count == 1 && a.points[0].id & (1 << 31) != 0 && (a.points[0].id & 0xff) >= 128) as usize;
+            }
+        }
+        assert!(hits > 3000 && edges > 50, "{hits} contacts, {edges} edge contacts");
+    }
 
     fn flat(flags: u8) -> Triangle {
         Triangle {
