@@ -826,7 +826,7 @@ impl DynamicTree {
 }
 
 mod rebuild;
-pub use rebuild::RebuildJobs;
+pub use rebuild::{RebuildJobs, JOB_UNITS};
 
 #[cfg(test)]
 mod tests;

@@ -4,16 +4,17 @@
 //! run on several threads:
 //!
 //! 1. `begin_rebuild` (calling thread) frees the internal nodes to rebuild, gathers what lies
-//!    below them (the *units*: leaves, or subtrees kept whole) and splits them top-down until
-//!    every range holds at most `JOB_UNITS` units. Each such range becomes a job, and the
-//!    nodes its subtree will need are taken from the free list now, in job order.
+//!    below them (the *units*: leaves, or subtrees kept whole), takes the nodes the new
+//!    hierarchy needs from the free list and splits the units top-down until every range
+//!    holds at most a job's worth of units. Each such range becomes a job.
 //! 2. [`RebuildJobs::run`] builds one job's subtree into its own nodes; jobs touch disjoint
 //!    nodes and may run at the same time, on any threads, in any order.
 //! 3. `end_rebuild` (calling thread) refits the nodes above the jobs.
 //!
-//! Every node is taken in a fixed order, so the tree, node indices included, does not depend
-//! on how many threads ran the jobs or in which order; its shape is that of a plain recursive
-//! build.
+//! The new internal nodes are numbered in pre-order (a range's node is followed by its first
+//! part's nodes, then its second part's), so the tree, node indices included, is the same
+//! whatever the size of the jobs, how many threads ran them or in which order; its shape is
+//! that of a plain recursive build.
 
 use super::{DynamicTree, FixedStack, Node, Stack, NULL_NODE};
 use crate::collision::aabb::Aabb;
@@ -23,13 +24,14 @@ use glam::Vec3A;
 /// Number of bins per axis of the SAH rebuild.
 const BIN_COUNT: usize = 16;
 
-/// Most units one job builds. Larger ranges are split on the calling thread first: about
-/// a third of a 4,000-unit build's partitioning then runs there, in exchange for some
-/// sixteen jobs to spread over the workers.
+/// Most units one job builds when the rebuild is shared among workers. Larger ranges are
+/// split on the calling thread first: about a third of a 4,000-unit build's partitioning
+/// then runs there, in exchange for some sixteen jobs to spread over the workers.
 pub const JOB_UNITS: usize = 256;
 
-/// A job's work stack holds at most one entry per unit.
-type WorkStack = FixedStack<(u32, u32, u32, bool), JOB_UNITS>;
+/// A job's work stack: (range start, range end, parent, is first child, pre-order slot). It
+/// holds at most one entry per level of the subtree, plus one.
+type WorkStack = FixedStack<(u32, u32, u32, bool, u32), 128>;
 
 /// Storage of the rebuilds, reused from one to the next.
 #[derive(Clone, Debug, Default)]
@@ -45,20 +47,20 @@ pub(super) struct Scratch {
     order: Vec<u32>,
     /// Nodes created above the jobs, parents first.
     created: Vec<u32>,
-    /// Ranges still to split: (start, end, parent, is first child).
-    work: Vec<(usize, usize, u32, bool)>,
+    /// Ranges still to split: (start, end, parent, is first child, pre-order slot).
+    work: Vec<(usize, usize, u32, bool, usize)>,
     jobs: Vec<Job>,
-    /// The nodes of every job, job after job; a job's first node is its subtree's root.
+    /// The new internal nodes, by pre-order slot.
     reserved: Vec<u32>,
 }
 
-/// A range of `order` whose subtree one task builds, into `len - 1` reserved nodes from
-/// `nodes` on.
+/// A range of `order` whose subtree one task builds, into the `len - 1` reserved nodes from
+/// pre-order slot `slot` on.
 #[derive(Clone, Copy, Debug)]
 struct Job {
     start: u32,
     end: u32,
-    nodes: u32,
+    slot: u32,
 }
 
 /// The jobs of a rebuild begun with `begin_rebuild`, ready to run on any threads.
@@ -90,7 +92,7 @@ impl DynamicTree {
     }
 
     fn rebuild_serial(&mut self, full: bool) {
-        let jobs = self.begin_rebuild(full, JOB_UNITS);
+        let jobs = self.begin_rebuild(full, |_| usize::MAX);
         if jobs > 0 {
             let run = self.rebuild_jobs();
             for k in 0..jobs {
@@ -103,9 +105,11 @@ impl DynamicTree {
 
     /// Begins the partial rebuild of `rebuild_enlarged` and returns its number of jobs
     /// (0 when nothing is enlarged). Until `end_rebuild`, only `rebuild_jobs` may be used.
-    pub fn begin_rebuild_enlarged(&mut self) -> usize {
+    /// `job_units` gives the most units a job may build, from the number of units: the
+    /// rest is split on this thread first.
+    pub fn begin_rebuild_enlarged(&mut self, job_units: impl Fn(usize) -> usize) -> usize {
         if self.has_enlarged() {
-            self.begin_rebuild(false, JOB_UNITS)
+            self.begin_rebuild(false, job_units)
         } else {
             self.scratch.created.clear();
             self.scratch.jobs.clear();
@@ -149,9 +153,9 @@ impl DynamicTree {
     }
 
     /// Frees the internal nodes to rebuild (all, or the enlarged ones), splits what lies
-    /// below them down to jobs of at most `job_units` units (1: no jobs, all split here) and
-    /// reserves the jobs' nodes. Returns the number of jobs.
-    pub(super) fn begin_rebuild(&mut self, full: bool, job_units: usize) -> usize {
+    /// below them down to jobs of at most `job_units(units)` units (1: no jobs, all split
+    /// here) and reserves the new nodes. Returns the number of jobs.
+    pub(super) fn begin_rebuild(&mut self, full: bool, job_units: impl Fn(usize) -> usize) -> usize {
         let mut s = std::mem::take(&mut self.scratch);
         s.created.clear();
         s.jobs.clear();
@@ -185,33 +189,32 @@ impl DynamicTree {
         s.weights.extend(s.units.iter().map(|i| unit_weight(unit(i))));
         s.order.clear();
         s.order.extend(0..s.units.len() as u32);
+        for _ in 1..s.units.len() {
+            let i = self.allocate_node();
+            self.nodes[i as usize].height = 1;
+            s.reserved.push(i);
+        }
+        let job_units = job_units(s.units.len()).max(1);
 
         // Nodes are created parent-first: refitting in reverse creation order is bottom-up.
         s.work.clear();
-        s.work.push((0, s.units.len(), NULL_NODE, true));
-        while let Some((start, end, parent, first)) = s.work.pop() {
+        s.work.push((0, s.units.len(), NULL_NODE, true, 0));
+        while let Some((start, end, parent, first, slot)) = s.work.pop() {
             let node = if end - start == 1 {
                 s.units[s.order[start] as usize]
             } else if end - start <= job_units {
-                let at = s.reserved.len();
-                for _ in start + 1..end {
-                    let i = self.allocate_node();
-                    self.nodes[i as usize].height = 1;
-                    s.reserved.push(i);
-                }
                 s.jobs.push(Job {
                     start: start as u32,
                     end: end as u32,
-                    nodes: at as u32,
+                    slot: slot as u32,
                 });
-                s.reserved[at]
+                s.reserved[slot]
             } else {
                 let mid = partition(&mut s.order[start..end], &s.boxes, &s.centers, &s.weights) + start;
-                let i = self.allocate_node();
-                self.nodes[i as usize].height = 1;
+                let i = s.reserved[slot];
                 s.created.push(i);
-                s.work.push((mid, end, i, false));
-                s.work.push((start, mid, i, true));
+                s.work.push((mid, end, i, false, slot + (mid - start)));
+                s.work.push((start, mid, i, true, slot + 1));
                 i
             };
             self.nodes[node as usize].parent = parent;
@@ -240,28 +243,25 @@ impl RebuildJobs<'_> {
         let (start, end) = (job.start as usize, job.end as usize);
         // SAFETY: jobs cover disjoint ranges of `order`, and only job `k` uses this one.
         let order = unsafe { self.order.range(start, end) };
-        let reserved = &self.reserved[job.nodes as usize..job.nodes as usize + (end - start - 1)];
+        // This job's nodes, by pre-order slot from its root's.
+        let reserved = &self.reserved[job.slot as usize..job.slot as usize + (end - start - 1)];
         // SAFETY (every `nodes.at` below): the nodes reached are this job's reserved nodes
         // and its units, which no other job reaches, and each reference is dropped before
         // the next one to the same node is made.
         let node = |i: u32| unsafe { self.nodes.at(i as usize) };
-        let mut next = 1;
         let mut work = WorkStack::new();
-        work.push((0, order.len() as u32, NULL_NODE, true));
-        while let Some((lo, hi, parent, first)) = work.pop() {
+        work.push((0, order.len() as u32, NULL_NODE, true, 0));
+        while let Some((lo, hi, parent, first, slot)) = work.pop() {
             let (lo, hi) = (lo as usize, hi as usize);
-            let i = if parent == NULL_NODE {
-                reserved[0]
-            } else if hi - lo == 1 {
+            let i = if hi - lo == 1 {
                 self.units[order[lo] as usize]
             } else {
-                next += 1;
-                reserved[next - 1]
+                reserved[slot as usize]
             };
             if hi - lo > 1 {
                 let mid = partition(&mut order[lo..hi], self.boxes, self.centers, self.weights) + lo;
-                work.push((mid as u32, hi as u32, i, false));
-                work.push((lo as u32, mid as u32, i, true));
+                work.push((mid as u32, hi as u32, i, false, slot + (mid - lo) as u32));
+                work.push((lo as u32, mid as u32, i, true, slot + 1));
             }
             if parent != NULL_NODE {
                 node(i).parent = parent;
@@ -273,8 +273,7 @@ impl RebuildJobs<'_> {
                 }
             }
         }
-        debug_assert_eq!(next, reserved.len());
-        // Reserved nodes were used parent-first.
+        // Pre-order puts every parent before its descendants.
         for &i in reserved.iter().rev() {
             let n = *node(i);
             let (a, b) = (*node(n.child1), *node(n.child2));

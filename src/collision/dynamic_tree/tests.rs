@@ -779,10 +779,10 @@ fn shape_of(tree: &DynamicTree) -> Vec<(Aabb, i32, u32)> {
     out
 }
 
-/// A rebuild split into jobs builds the same hierarchy as one that splits every range on the
-/// calling thread, whatever the job size, and the same tree, node indices included, whatever
-/// order and threads its jobs run in (two threads taking jobs from a shared counter, and
-/// the jobs in reverse).
+/// A rebuild split into jobs builds the same tree, node indices included, as one that splits
+/// every range on the calling thread, whatever the job size (one job for everything too) and
+/// whatever order and threads its jobs run in (two threads taking jobs from a shared counter,
+/// and the jobs in reverse).
 #[test]
 fn rebuild_jobs_give_the_tree_of_a_serial_build_on_any_threads() {
     for seed in 1..6u64 {
@@ -803,7 +803,7 @@ fn rebuild_jobs_give_the_tree_of_a_serial_build_on_any_threads() {
         let full = rng.below(2) == 0;
         let build = |job_units: usize, how: u32| {
             let mut t = tree.clone();
-            let jobs = t.begin_rebuild(full, job_units);
+            let jobs = t.begin_rebuild(full, |_| job_units);
             let run = t.rebuild_jobs();
             match how {
                 0 => (0..jobs).for_each(|k| unsafe { run.run(k) }),
@@ -831,10 +831,16 @@ fn rebuild_jobs_give_the_tree_of_a_serial_build_on_any_threads() {
         };
         let (none, serial) = build(1, 0);
         assert_eq!(none, 0);
-        for job_units in [2, 7, 64, rebuild::JOB_UNITS] {
+        for job_units in [2, 7, 64, JOB_UNITS, usize::MAX] {
             let (jobs, first) = build(job_units, 0);
             assert!(jobs > 0 || !tree.has_enlarged() && !full);
             assert_eq!(shape_of(&first), shape_of(&serial), "seed {seed}, jobs of {job_units}");
+            // Pre-order slots: the job size does not change the node indices either.
+            assert_eq!(
+                format!("{:?}", first.nodes),
+                format!("{:?}", serial.nodes),
+                "seed {seed}, jobs of {job_units}"
+            );
             for how in 1..3 {
                 let (_, t) = build(job_units, how);
                 assert_eq!(
