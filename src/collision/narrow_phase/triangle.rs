@@ -563,6 +563,34 @@ pub fn polytope_triangle<P: Polytope>(
         }
         j0 += 4;
     }
+    let separations = Separations {
+        triangle: sep_tri,
+        face: (sep_face, face),
+        edge: (sep_edge, edge, edge_axis),
+    };
+    manifold_from_best_axis(p, radius, t, speculative, &separations, out)
+}
+
+/// The best separation found along each kind of axis: the triangle's normal, a face of the
+/// polytope (`usize::MAX` when none), an edge pair (polytope edge direction, triangle edge)
+/// with its axis.
+struct Separations {
+    triangle: f32,
+    face: (f32, usize),
+    edge: (f32, (usize, usize), Vec3),
+}
+
+/// Picks the reference axis (the triangle's normal unless a face, then an edge pair,
+/// separates clearly more) and builds the manifold on it.
+fn manifold_from_best_axis<P: Polytope>(
+    p: &P,
+    radius: f32,
+    t: &Triangle,
+    speculative: f32,
+    sep: &Separations,
+    out: &mut TriContact,
+) -> bool {
+    let (sep_tri, (sep_face, face), (sep_edge, edge, edge_axis)) = (sep.triangle, sep.face, sep.edge);
     let mut best = (sep_tri, Axis::Triangle);
     if face != usize::MAX && sep_face > sep_tri + FACE_REL_TOL * sep_tri.abs() + FACE_ABS_TOL {
         best = (sep_face, Axis::Face(face));
@@ -742,31 +770,12 @@ mod tests {
                 }
             }
         }
-        let mut best = (sep_tri, Axis::Triangle);
-        if face != usize::MAX && sep_face > sep_tri + FACE_REL_TOL * sep_tri.abs() + FACE_ABS_TOL {
-            best = (sep_face, Axis::Face(face));
-        }
-        if sep_edge > best.0 + EDGE_REL_TOL * best.0.abs() + EDGE_ABS_TOL {
-            best = (sep_edge, Axis::Edge(edge.0, edge.1));
-        }
-        out.count = 0;
-        match best.1 {
-            Axis::Triangle => triangle_reference(p, radius, t, speculative, out),
-            Axis::Face(f) => face_reference(p, f, radius, t, speculative, out),
-            Axis::Edge(i, e) => {
-                let (a0, a1) = p.support_edge(-edge_axis, i);
-                let (b0, b1) = (t.v[e], t.v[(e + 1) % 3]);
-                let (s, u) = closest_segment_segment(a0, a1, b0, b1);
-                let (pa, pb) = (a0 + s * (a1 - a0), b0 + u * (b1 - b0));
-                let sep = (pa - pb).dot(edge_axis) - radius;
-                if sep <= speculative {
-                    out.normal = edge_axis;
-                    let code = 128 + (3 * i as u32 + e as u32) % 128;
-                    out.push(pb + (0.5 * sep) * edge_axis, sep, triangle_id(t.index, code));
-                }
-            }
-        }
-        out.count > 0
+        let separations = Separations {
+            triangle: sep_tri,
+            face: (sep_face, face),
+            edge: (sep_edge, edge, edge_axis),
+        };
+        manifold_from_best_axis(p, radius, t, speculative, &separations, out)
     }
 
     /// The edge pairs four at a time change nothing: random boxes and hulls (rounded or
