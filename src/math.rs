@@ -131,11 +131,17 @@ pub(crate) mod test_rnd {
     pub(crate) struct Rnd(pub(crate) u64);
 
     impl Rnd {
-        pub(crate) fn f(&mut self) -> f32 {
+        /// The next state of the xorshift generator.
+        pub(crate) fn next_u64(&mut self) -> u64 {
             self.0 ^= self.0 << 13;
             self.0 ^= self.0 >> 7;
             self.0 ^= self.0 << 17;
-            (self.0 >> 40) as f32 / (1u64 << 24) as f32
+            self.0
+        }
+
+        /// A value in `[0, 1)`.
+        pub(crate) fn f(&mut self) -> f32 {
+            (self.next_u64() >> 40) as f32 / (1u64 << 24) as f32
         }
 
         /// A point of the box `scale` centred on the origin.

@@ -1059,43 +1059,33 @@ mod tests {
     /// their arrays of points) of many counts, across the 64-value blocks.
     #[test]
     fn bulk_paths_match_value_by_value() {
-        struct Rng(u64);
-        impl Rng {
-            fn next(&mut self) -> u64 {
-                self.0 ^= self.0 << 13;
-                self.0 ^= self.0 >> 7;
-                self.0 ^= self.0 << 17;
-                self.0
-            }
-            fn f(&mut self) -> f32 {
-                (self.next() % 2001) as f32 * 0.37 - 370.0
-            }
-        }
-        let mut rng = Rng(0x9E37_79B9_7F4A_7C15);
+        // Values on a grid of 0.37 in [-370, 370].
+        let grid = |r: &mut crate::math::test_rnd::Rnd| (r.next_u64() % 2001) as f32 * 0.37 - 370.0;
+        let mut rng = crate::math::test_rnd::Rnd(0x9E37_79B9_7F4A_7C15);
         for n in [0usize, 1, 2, 7, 64, 65, 300] {
             let vectors: Vec<[Vec3; 4]> = (0..n)
-                .map(|_| std::array::from_fn(|_| Vec3::new(rng.f(), rng.f(), rng.f())))
+                .map(|_| std::array::from_fn(|_| Vec3::new(grid(&mut rng), grid(&mut rng), grid(&mut rng))))
                 .collect();
             let matrices: Vec<glam::Mat3> = (0..n)
-                .map(|_| glam::Mat3::from_cols_array(&std::array::from_fn(|_| rng.f())))
+                .map(|_| glam::Mat3::from_cols_array(&std::array::from_fn(|_| grid(&mut rng))))
                 .collect();
             bulk_matches_one_by_one(&vectors, true);
             bulk_matches_one_by_one(&matrices, true);
             let manifolds: Vec<Manifold> = (0..n)
                 .map(|_| Manifold {
-                    normal: Vec3::new(rng.f(), rng.f(), rng.f()),
+                    normal: Vec3::new(grid(&mut rng), grid(&mut rng), grid(&mut rng)),
                     points: std::array::from_fn(|_| ManifoldPoint {
-                        point: Vec3::new(rng.f(), rng.f(), rng.f()),
-                        separation: rng.f(),
-                        id: rng.next() as u32,
+                        point: Vec3::new(grid(&mut rng), grid(&mut rng), grid(&mut rng)),
+                        separation: grid(&mut rng),
+                        id: rng.next_u64() as u32,
                     }),
-                    count: rng.next() as usize % 5,
+                    count: rng.next_u64() as usize % 5,
                 })
                 .collect();
             bulk_matches_one_by_one(&manifolds, false);
             let handles: Vec<Handle> = (0..n)
                 .map(|i| {
-                    let (index, counter) = (rng.next() as u32 % 5000, 1 + rng.next() as u32 % 1000);
+                    let (index, counter) = (rng.next_u64() as u32 % 5000, 1 + rng.next_u64() as u32 % 1000);
                     if i % 5 == 0 {
                         Handle::NULL
                     } else {
@@ -1105,11 +1095,15 @@ mod tests {
                 .collect();
             bulk_matches_one_by_one(&handles, true);
             let types: Vec<BodyType> = (0..n)
-                .map(|_| [BodyType::Static, BodyType::Kinematic, BodyType::Dynamic][rng.next() as usize % 3])
+                .map(|_| [BodyType::Static, BodyType::Kinematic, BodyType::Dynamic][rng.next_u64() as usize % 3])
                 .collect();
             bulk_matches_one_by_one(&types, true);
             let maps: Vec<crate::hash::IntMap<u64, u32>> = (0..n.min(20))
-                .map(|k| (0..k * 7).map(|_| (rng.next() % 50, rng.next() as u32)).collect())
+                .map(|k| {
+                    (0..k * 7)
+                        .map(|_| (rng.next_u64() % 50, rng.next_u64() as u32))
+                        .collect()
+                })
                 .collect();
             bulk_matches_one_by_one(&maps, true);
             // A map's keys, then its values, in their own columns: the bytes of writing
