@@ -41,8 +41,48 @@ pub struct Writer {
     columns: Vec<WColumn>,
     used: u32,
     cur: u32,
-    /// `finish`'s scratch: each column's code and stored length.
-    forms: Vec<(u8, usize)>,
+    /// `finish`'s scratch, kept between payloads.
+    scratch: Packed,
+}
+
+/// A plane column's bitmap of non-zero values and those values, packed (`gather`).
+#[derive(Default)]
+struct Packed {
+    bits: Vec<u8>,
+    w16: Vec<u16>,
+    w32: Vec<u32>,
+    w64: Vec<u64>,
+}
+
+/// Appends column `c` (of byte planes, its values in `$m`'s width) to `out` in the shorter
+/// of its forms; its code.
+macro_rules! encode {
+    ($m:ident, $words:ident, $c:expr, $s:expr, $out:expr, $at:ident) => {{
+        let (c, s, out): (&WColumn, &mut Packed, &mut Vec<u8>) = ($c, $s, $out);
+        let w = c.width as usize;
+        let nb = (c.bytes.len() / w).div_ceil(8);
+        let k = $m::gather(&c.bytes, &mut s.bits, &mut s.$words);
+        let at = $at;
+        if nb + k * w < c.bytes.len() {
+            $at += nb + k * w;
+            grow(out, $at);
+            out[at..at + nb].copy_from_slice(&s.bits[..nb]);
+            $m::split_words(&s.$words[..k], &mut out[at + nb..$at]);
+            c.width | SPARSE
+        } else {
+            $at += c.bytes.len();
+            grow(out, $at);
+            $m::split(&c.bytes, &mut out[at..$at]);
+            c.width
+        }
+    }};
+}
+
+/// Makes `out` at least `len` bytes long (zeros added), keeping what it holds.
+fn grow(out: &mut Vec<u8>, len: usize) {
+    if out.len() < len {
+        out.resize(len, 0);
+    }
 }
 
 impl Default for Writer {
@@ -57,7 +97,7 @@ impl Writer {
             columns: vec![WColumn::default()],
             used: 1,
             cur: 0,
-            forms: Vec::new(),
+            scratch: Packed::default(),
         }
     }
 
@@ -188,36 +228,36 @@ impl Writer {
     /// Replaces `out`'s content with the payload: the column count (`u32`), each column's
     /// length (`u64`, before the sparse form) and code (`u8`: its width; 2, 4 or 8 for byte
     /// planes, plus `SPARSE` for the sparse form; otherwise stored as is), then the columns
-    /// in order.
+    /// in order. A plane column is read once to find its non-zero values (`gather`), which
+    /// decides its form; the sparse form is then written from what that pass packed.
     pub fn finish(&mut self, out: &mut Vec<u8>) {
         let Writer {
-            columns, used, forms, ..
+            columns, used, scratch, ..
         } = self;
         let live = &columns[..*used as usize];
-        // Kept between payloads, like the columns: not allocated again after the first.
-        forms.clear();
-        forms.extend(live.iter().map(|c| stored(c.width, &c.bytes)));
-        // Sized once and written in place: a buffer reused from the last payload of about
-        // this size is neither cleared nor zeroed again.
+        // `out` only grows: a buffer kept from the last payload of about this size is
+        // written over, not zeroed again; it is cut to the payload's length at the end.
         let table = 4 + 9 * live.len();
-        out.resize(table + forms.iter().map(|f| f.1).sum::<usize>(), 0);
+        grow(out, table);
         out[..4].copy_from_slice(&(live.len() as u32).to_le_bytes());
         let mut at = table;
-        for (k, (c, &(code, len))) in live.iter().zip(forms.iter()).enumerate() {
+        for (k, c) in live.iter().enumerate() {
+            let code = match planes(c.width, c.bytes.len()) {
+                1 => {
+                    grow(out, at + c.bytes.len());
+                    out[at..at + c.bytes.len()].copy_from_slice(&c.bytes);
+                    at += c.bytes.len();
+                    c.width
+                }
+                2 => encode!(planes_u16, w16, c, scratch, out, at),
+                4 => encode!(planes_u32, w32, c, scratch, out, at),
+                _ => encode!(planes_u64, w64, c, scratch, out, at),
+            };
             let e = &mut out[4 + 9 * k..4 + 9 * k + 9];
             e[..8].copy_from_slice(&(c.bytes.len() as u64).to_le_bytes());
             e[8] = code;
-            let dst = &mut out[at..at + len];
-            if code != c.width {
-                to_sparse(&c.bytes, dst, c.width as usize);
-            } else {
-                match planes(code, c.bytes.len()) {
-                    1 => dst.copy_from_slice(&c.bytes),
-                    w => to_planes(&c.bytes, dst, w),
-                }
-            }
-            at += len;
         }
+        out.truncate(at);
     }
 
     /// Each column's path, length, and length compressed alone (byte planes, zstd), for
@@ -243,7 +283,7 @@ impl Writer {
                 }],
                 used: 1,
                 cur: 0,
-                forms: Vec::new(),
+                scratch: Packed::default(),
             };
             let mut raw = Vec::new();
             one.finish(&mut raw);
@@ -313,6 +353,7 @@ fn stored(width: u8, bytes: &[u8]) -> (u8, usize) {
 /// The sparse form of `values` (width `w`: 2, 4 or 8) into `dst`: the bitmap of non-zero
 /// values (bit `i % 8` of byte `i / 8` for value `i`), then the non-zero values as byte
 /// planes. `dst` has the length `stored` gave.
+#[cfg(test)]
 fn to_sparse(values: &[u8], dst: &mut [u8], w: usize) {
     match w {
         2 => planes_u16::split_sparse(values, dst),
@@ -334,6 +375,7 @@ fn from_sparse(src: &[u8], dst: &mut [u8], w: usize) -> ReadResult<usize> {
 
 /// Splits `values` (of width `w`: 2, 4 or 8) into byte planes in `dst` (same length): every
 /// value's first byte, then every second byte, and so on.
+#[cfg(test)]
 fn to_planes(values: &[u8], dst: &mut [u8], w: usize) {
     match w {
         2 => planes_u16::split(values, dst),
@@ -362,21 +404,112 @@ macro_rules! planes_of {
             use super::BLOCK;
             const W: usize = std::mem::size_of::<$t>();
 
+            /// The values of `chunk` (at most `BLOCK` little-endian values) into `block`,
+            /// zeros after them.
+            #[inline(always)]
+            fn load(chunk: &[u8], block: &mut [$t; BLOCK]) {
+                if chunk.len() == BLOCK * W {
+                    let c: &[u8; BLOCK * W] = chunk.try_into().expect("a whole block");
+                    for (x, v) in block.iter_mut().zip(c.chunks_exact(W)) {
+                        *x = <$t>::from_le_bytes(v.try_into().expect("W bytes"));
+                    }
+                } else {
+                    block.fill(0);
+                    for (x, v) in block.iter_mut().zip(chunk.chunks_exact(W)) {
+                        *x = <$t>::from_le_bytes(v.try_into().expect("W bytes"));
+                    }
+                }
+            }
+
+            /// The first `chunk.len() / W` values of `block` into `chunk`, little-endian.
+            #[inline(always)]
+            fn store(block: &[$t; BLOCK], chunk: &mut [u8]) {
+                if chunk.len() == BLOCK * W {
+                    let c: &mut [u8; BLOCK * W] = chunk.try_into().expect("a whole block");
+                    for (v, x) in c.chunks_exact_mut(W).zip(block) {
+                        v.copy_from_slice(&x.to_le_bytes());
+                    }
+                } else {
+                    for (v, x) in chunk.chunks_exact_mut(W).zip(block) {
+                        v.copy_from_slice(&x.to_le_bytes());
+                    }
+                }
+            }
+
+            /// Byte `p` of each of the `k` first values of `block` into `dst` (`k` bytes).
+            #[inline(always)]
+            fn plane_out(block: &[$t; BLOCK], p: usize, dst: &mut [u8]) {
+                if dst.len() == BLOCK {
+                    let d: &mut [u8; BLOCK] = dst.try_into().expect("a whole block");
+                    for (y, x) in d.iter_mut().zip(block) {
+                        *y = (x >> (8 * p)) as u8;
+                    }
+                } else {
+                    for (y, x) in dst.iter_mut().zip(block) {
+                        *y = (x >> (8 * p)) as u8;
+                    }
+                }
+            }
+
+            /// Adds byte plane `p` (`src`, at most `BLOCK` bytes) into the values of `block`.
+            #[inline(always)]
+            fn plane_in(src: &[u8], p: usize, block: &mut [$t; BLOCK]) {
+                if src.len() == BLOCK {
+                    let s: &[u8; BLOCK] = src.try_into().expect("a whole block");
+                    for (x, &y) in block.iter_mut().zip(s) {
+                        *x |= (y as $t) << (8 * p);
+                    }
+                } else {
+                    for (x, &y) in block.iter_mut().zip(src) {
+                        *x |= (y as $t) << (8 * p);
+                    }
+                }
+            }
+
+            /// A block's mask from its bitmap bytes (at most 8).
+            #[inline(always)]
+            fn mask_at(bits: &[u8]) -> u64 {
+                match <[u8; 8]>::try_from(bits) {
+                    Ok(b) => u64::from_le_bytes(b),
+                    Err(_) => bits.iter().rev().fold(0, |m, &b| m << 8 | b as u64),
+                }
+            }
+
+            /// A block's mask into its bitmap bytes (at most 8).
+            #[inline(always)]
+            fn put_mask(mask: u64, bits: &mut [u8]) {
+                match <&mut [u8; 8]>::try_from(&mut *bits) {
+                    Ok(b) => *b = mask.to_le_bytes(),
+                    Err(_) => {
+                        for (i, b) in bits.iter_mut().enumerate() {
+                            *b = (mask >> (8 * i)) as u8;
+                        }
+                    }
+                }
+            }
+
             /// Byte planes of the little-endian values in `values`, into `dst`.
             pub(super) fn split(values: &[u8], dst: &mut [u8]) {
                 let n = values.len() / W;
-                let mut words = [0 as $t; BLOCK];
-                let mut plane = [0u8; BLOCK];
+                let mut block = [0 as $t; BLOCK];
                 for (b, chunk) in values.chunks(BLOCK * W).enumerate() {
                     let (i, k) = (b * BLOCK, chunk.len() / W);
-                    for (x, v) in words.iter_mut().zip(chunk.chunks_exact(W)) {
-                        *x = <$t>::from_le_bytes(v.try_into().expect("W bytes"));
-                    }
+                    load(chunk, &mut block);
                     for p in 0..W {
-                        for (y, x) in plane.iter_mut().zip(&words) {
-                            *y = (x >> (8 * p)) as u8;
-                        }
-                        dst[p * n + i..p * n + i + k].copy_from_slice(&plane[..k]);
+                        plane_out(&block, p, &mut dst[p * n + i..p * n + i + k]);
+                    }
+                }
+            }
+
+            /// Byte planes of `words`, into `dst` (`W` bytes per word).
+            pub(super) fn split_words(words: &[$t], dst: &mut [u8]) {
+                let n = words.len();
+                let mut block = [0 as $t; BLOCK];
+                for (b, chunk) in words.chunks(BLOCK).enumerate() {
+                    let (i, k) = (b * BLOCK, chunk.len());
+                    block[..k].copy_from_slice(chunk);
+                    for p in 0..W {
+                        plane_out(&block, p, &mut dst[p * n + i..p * n + i + k]);
                     }
                 }
             }
@@ -384,18 +517,14 @@ macro_rules! planes_of {
             /// Little-endian values from the byte planes in `src`, into `dst`.
             pub(super) fn join(src: &[u8], dst: &mut [u8]) {
                 let n = src.len() / W;
-                let mut words = [0 as $t; BLOCK];
+                let mut block = [0 as $t; BLOCK];
                 for (b, chunk) in dst.chunks_mut(BLOCK * W).enumerate() {
                     let (i, k) = (b * BLOCK, chunk.len() / W);
-                    words.fill(0);
+                    block.fill(0);
                     for p in 0..W {
-                        for (x, &y) in words.iter_mut().zip(&src[p * n + i..p * n + i + k]) {
-                            *x |= (y as $t) << (8 * p);
-                        }
+                        plane_in(&src[p * n + i..p * n + i + k], p, &mut block);
                     }
-                    for (v, x) in chunk.chunks_exact_mut(W).zip(&words) {
-                        v.copy_from_slice(&x.to_le_bytes());
-                    }
+                    store(&block, chunk);
                 }
             }
 
@@ -407,10 +536,7 @@ macro_rules! planes_of {
                     if chunk.iter().fold(0, |a, &x| a | x) == 0 {
                         continue;
                     }
-                    block.fill(0);
-                    for (x, v) in block.iter_mut().zip(chunk.chunks_exact(W)) {
-                        *x = <$t>::from_le_bytes(v.try_into().expect("W bytes"));
-                    }
+                    load(chunk, &mut block);
                     k += block.iter().map(|x| (*x != 0) as u32).sum::<u32>() as usize;
                 }
                 k
@@ -434,50 +560,58 @@ macro_rules! planes_of {
                 mask
             }
 
-            /// The sparse form of `values` into `dst`: bitmap, then the non-zero values'
-            /// byte planes. Per block of `BLOCK` values: their bitmap, then only the set
-            /// bits are visited, so the cost follows the non-zero values.
-            pub(super) fn split_sparse(values: &[u8], dst: &mut [u8]) {
+            /// One pass over `values`: their bitmap of non-zero values into `bits[..⌈n/8⌉]`
+            /// and the non-zero values, in order, into `words[..k]`; returns `k`. The
+            /// buffers grow to fit and are otherwise reused as they are (only what is
+            /// returned is written). A block of non-zero values is copied whole; in others
+            /// only the set bits of the block's mask are visited.
+            pub(super) fn gather(values: &[u8], bits: &mut Vec<u8>, words: &mut Vec<$t>) -> usize {
                 let n = values.len() / W;
-                let (bits, rest) = dst.split_at_mut(n.div_ceil(8));
-                let k = rest.len() / W;
-                let mut block = [0 as $t; BLOCK];
-                let mut words = [0 as $t; BLOCK];
-                let mut plane = [0u8; BLOCK];
-                let mut j = 0;
-                for (b, chunk) in values.chunks(BLOCK * W).enumerate() {
-                    let c = chunk.len() / W;
-                    let nb = c.div_ceil(8);
-                    if chunk.iter().fold(0, |a, &x| a | x) == 0 {
-                        bits[b * BLOCK / 8..b * BLOCK / 8 + nb].fill(0);
-                        continue;
-                    }
-                    if c < BLOCK {
-                        block.fill(0);
-                    }
-                    for (x, v) in block.iter_mut().zip(chunk.chunks_exact(W)) {
-                        *x = <$t>::from_le_bytes(v.try_into().expect("W bytes"));
-                    }
-                    let mask = nonzero_mask(&block);
-                    bits[b * BLOCK / 8..b * BLOCK / 8 + nb].copy_from_slice(&mask.to_le_bytes()[..nb]);
-                    if mask == 0 {
-                        continue;
-                    }
-                    let mut m = 0;
-                    let mut left = mask;
-                    while left != 0 {
-                        words[m % BLOCK] = block[left.trailing_zeros() as usize % BLOCK];
-                        left &= left - 1;
-                        m += 1;
-                    }
-                    for p in 0..W {
-                        for (y, x) in plane.iter_mut().zip(&words[..m]) {
-                            *y = (x >> (8 * p)) as u8;
-                        }
-                        rest[p * k + j..p * k + j + m].copy_from_slice(&plane[..m]);
-                    }
-                    j += m;
+                if bits.len() < n.div_ceil(8) {
+                    bits.resize(n.div_ceil(8), 0);
                 }
+                if words.len() < n + BLOCK {
+                    words.resize(n + BLOCK, 0);
+                }
+                let mut block = [0 as $t; BLOCK];
+                let mut k = 0;
+                for (b, chunk) in values.chunks(BLOCK * W).enumerate() {
+                    let nb = (chunk.len() / W).div_ceil(8);
+                    let out_bits = &mut bits[b * BLOCK / 8..b * BLOCK / 8 + nb];
+                    if chunk.iter().fold(0, |a, &x| a | x) == 0 {
+                        put_mask(0, out_bits);
+                        continue;
+                    }
+                    load(chunk, &mut block);
+                    let mask = nonzero_mask(&block);
+                    put_mask(mask, out_bits);
+                    let out: &mut [$t; BLOCK] = (&mut words[k..k + BLOCK]).try_into().expect("BLOCK words");
+                    if mask == u64::MAX {
+                        *out = block;
+                        k += BLOCK;
+                        continue;
+                    }
+                    let mut left = mask;
+                    let mut j = 0;
+                    while left != 0 {
+                        out[j % BLOCK] = block[left.trailing_zeros() as usize % BLOCK];
+                        left &= left - 1;
+                        j += 1;
+                    }
+                    k += j;
+                }
+                k
+            }
+
+            /// The sparse form of `values` into `dst` (of the length it takes): bitmap,
+            /// then the non-zero values' byte planes.
+            #[cfg(test)]
+            pub(super) fn split_sparse(values: &[u8], dst: &mut [u8]) {
+                let (mut bits, mut words) = (Vec::new(), Vec::new());
+                let k = gather(values, &mut bits, &mut words);
+                let nb = (values.len() / W).div_ceil(8);
+                dst[..nb].copy_from_slice(&bits[..nb]);
+                split_words(&words[..k], &mut dst[nb..nb + k * W]);
             }
 
             /// Undoes `split_sparse`: fills `dst` (all `n` values) from the start of `src`;
@@ -491,40 +625,48 @@ macro_rules! planes_of {
                 if n % 8 != 0 && bits[nb - 1] >> (n % 8) != 0 {
                     return super::bad("snapshot corrupted: a sparse column's bitmap has bits past its values");
                 }
-                let k: usize = bits
-                    .chunks(8)
-                    .map(|c| {
-                        let mut w = [0u8; 8];
-                        w[..c.len()].copy_from_slice(c);
-                        u64::from_le_bytes(w).count_ones() as usize
-                    })
-                    .sum();
+                let whole = bits.chunks_exact(8);
+                let tail = whole
+                    .remainder()
+                    .iter()
+                    .map(|b| b.count_ones() as usize)
+                    .sum::<usize>();
+                let k = tail
+                    + whole
+                        .map(|c| u64::from_le_bytes(c.try_into().expect("8 bytes")).count_ones() as usize)
+                        .sum::<usize>();
                 let Some(rest) = src.get(nb..nb + k * W) else {
                     return super::bad("snapshot corrupted: a sparse column ends early");
                 };
-                let mut words = [0 as $t; BLOCK];
+                let mut packed = [0 as $t; BLOCK];
+                let mut block = [0 as $t; BLOCK];
                 let mut j = 0;
                 for (b, chunk) in dst.chunks_mut(BLOCK * W).enumerate() {
                     let cb = (chunk.len() / W).div_ceil(8);
-                    let mut mask = [0u8; 8];
-                    mask[..cb].copy_from_slice(&bits[b * BLOCK / 8..b * BLOCK / 8 + cb]);
-                    let mask = u64::from_le_bytes(mask);
-                    chunk.fill(0);
+                    let mask = mask_at(&bits[b * BLOCK / 8..b * BLOCK / 8 + cb]);
                     if mask == 0 {
+                        if let Ok(c) = <&mut [u8; BLOCK * W]>::try_from(&mut *chunk) {
+                            *c = [0; BLOCK * W];
+                        } else {
+                            chunk.fill(0);
+                        }
                         continue;
                     }
                     let m = mask.count_ones() as usize;
-                    words[..m].fill(0);
+                    packed.fill(0);
                     for p in 0..W {
-                        for (x, &y) in words[..m].iter_mut().zip(&rest[p * k + j..p * k + j + m]) {
-                            *x |= (y as $t) << (8 * p);
-                        }
+                        plane_in(&rest[p * k + j..p * k + j + m], p, &mut packed);
                     }
-                    let mut left = mask;
-                    for x in &words[..m] {
-                        let i = left.trailing_zeros() as usize;
-                        chunk[i * W..i * W + W].copy_from_slice(&x.to_le_bytes());
-                        left &= left - 1;
+                    if mask == u64::MAX {
+                        store(&packed, chunk);
+                    } else {
+                        block.fill(0);
+                        let mut left = mask;
+                        for &x in &packed[..m] {
+                            block[left.trailing_zeros() as usize % BLOCK] = x;
+                            left &= left - 1;
+                        }
+                        store(&block, chunk);
                     }
                     j += m;
                 }
