@@ -34,6 +34,9 @@ struct WColumn {
     hint: usize,
 }
 
+/// Values `Writer::values` gathers before appending them to their column.
+const BATCH: usize = 32;
+
 /// Appends little-endian values to the columns of a payload.
 pub struct Writer {
     /// The payload's columns are `columns[..used]`; the rest are columns of an earlier
@@ -200,8 +203,19 @@ impl Writer {
         let c = &mut self.columns[self.cur as usize];
         let start = c.bytes.len();
         // Internal iteration: the chains of maps, filters and flat maps that lead here fold
-        // far faster than they step.
-        values.for_each(|v| c.bytes.extend_from_slice(&v));
+        // far faster than they step. The values are gathered in a small array and appended
+        // `BATCH` at a time, so each costs a store rather than a check of the column's room.
+        let mut batch = [[0u8; W]; BATCH];
+        let mut k = 0;
+        values.for_each(|v| {
+            batch[k % BATCH] = v;
+            k += 1;
+            if k == BATCH {
+                c.bytes.extend_from_slice(batch.as_flattened());
+                k = 0;
+            }
+        });
+        c.bytes.extend_from_slice(batch[..k].as_flattened());
         if c.bytes.len() > start && c.width != W as u8 {
             c.width = if c.width == 0 { W as u8 } else { MIXED };
         }
@@ -214,7 +228,17 @@ impl Writer {
     pub fn value_groups<const W: usize, const B: usize>(&mut self, groups: impl Iterator<Item = [u8; B]>) {
         let c = &mut self.columns[self.cur as usize];
         let start = c.bytes.len();
-        groups.for_each(|v| c.bytes.extend_from_slice(&v));
+        let mut batch = [[0u8; B]; BATCH];
+        let mut k = 0;
+        groups.for_each(|v| {
+            batch[k % BATCH] = v;
+            k += 1;
+            if k == BATCH {
+                c.bytes.extend_from_slice(batch.as_flattened());
+                k = 0;
+            }
+        });
+        c.bytes.extend_from_slice(batch[..k].as_flattened());
         if c.bytes.len() > start && c.width != W as u8 {
             c.width = if c.width == 0 { W as u8 } else { MIXED };
         }
@@ -707,6 +731,9 @@ pub struct Reader<'a> {
     left: usize,
     /// The target world's tag, put into the top bits of every id read.
     pub(crate) tag: u32,
+    /// Emptied vectors of ids and of `u32` to fill (`get_vecs`) before allocating new
+    /// ones.
+    pub(crate) spare: super::read::Spare,
 }
 
 /// Splits a payload into its column table and its columns, undoing the byte planes into
@@ -794,6 +821,7 @@ impl<'a> Reader<'a> {
             cur: 0,
             left: data.len(),
             tag,
+            spare: Default::default(),
         }
     }
 

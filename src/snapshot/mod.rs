@@ -183,6 +183,14 @@ pub trait Snap: Sized {
         }
         Ok(())
     }
+
+    /// Vectors of `lens[i]` values each, as `Vec::<Self>::get` on each would read them
+    /// (the counts already read). The default reads them all, then moves them into their
+    /// vectors; `u32` fills vectors kept from the last restore (`Reader::spare`).
+    fn get_vecs(lens: &[usize], r: &mut Reader) -> ReadResult<Vec<Vec<Self>>> {
+        let mut all = Self::get_all(lens.iter().sum(), r)?.into_iter();
+        Ok(lens.iter().map(|&k| all.by_ref().take(k).collect()).collect())
+    }
 }
 
 /// A value for `get_all` to read a struct into in place: `get_into` overwrites every
@@ -323,7 +331,7 @@ macro_rules! snap_struct {
 pub use snap_struct;
 
 macro_rules! snap_num {
-    ($($t:ty),*) => {$(
+    ($($t:ty $(: $vecs:ident)?),*) => {$(
         impl Snap for $t {
             #[inline]
             fn put(&self, w: &mut Writer) {
@@ -361,10 +369,36 @@ macro_rules! snap_num {
                 }
                 Ok(())
             }
+            $(
+            fn get_vecs(lens: &[usize], r: &mut Reader) -> ReadResult<Vec<Vec<Self>>> {
+                $vecs(lens, r)
+            }
+            )?
         }
     )*};
 }
-snap_num!(u8, u16, u32, u64, i8, i32, f32, f64);
+snap_num!(u8, u16, u32: get_u32_vecs, u64, i8, i32, f32, f64);
+
+/// `u32` vectors (the bodies' shape and contact lists) are filled into vectors the last
+/// restore on this thread freed (`Reader::spare`), so a restore does not allocate them
+/// one by one again.
+pub(crate) fn get_u32_vecs(lens: &[usize], r: &mut Reader) -> ReadResult<Vec<Vec<u32>>> {
+    let b = r.take_values(lens.iter().sum(), 4)?;
+    let mut values = b
+        .chunks_exact(4)
+        .map(|c| u32::from_le_bytes(c.try_into().expect("4 bytes")));
+    let mut out = Vec::with_capacity(lens.len());
+    for &k in lens {
+        let mut v = match k {
+            0 => Vec::new(),
+            _ => r.spare.1.pop().unwrap_or_default(),
+        };
+        v.clear();
+        v.extend(values.by_ref().take(k));
+        out.push(v);
+    }
+    Ok(out)
+}
 
 impl Snap for usize {
     fn put(&self, w: &mut Writer) {
@@ -445,9 +479,7 @@ impl<T: Snap> Snap for Vec<T> {
     }
     fn get_all(n: usize, r: &mut Reader) -> ReadResult<Vec<Self>> {
         let lens = r.counts(n)?;
-        let total = lens.iter().sum();
-        let mut all = T::get_all(total, r)?.into_iter();
-        Ok(lens.iter().map(|&k| all.by_ref().take(k).collect()).collect())
+        T::get_vecs(&lens, r)
     }
 }
 

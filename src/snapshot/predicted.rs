@@ -47,51 +47,149 @@ impl SameBits for Aabb {
     }
 }
 
-/// Writes `v` under `name`: only a flag when it equals `predicted` bit for bit.
-fn put<T: Snap + SameBits>(w: &mut Writer, name: &'static str, v: &T, predicted: &T) {
-    w.within(name, |w| {
-        let given = !v.same_bits(predicted);
-        w.within("#given", |w| given.put(w));
-        if given {
-            v.put(w);
+/// Writes the flags of `given` into the current column's `#given`.
+fn put_flags(w: &mut Writer, given: &[bool]) {
+    w.within("#given", |w| w.values(given.iter().map(|&g| [g as u8])));
+}
+
+/// Reads `n` flags from the current column's `#given`.
+fn get_flags(r: &mut Reader, n: usize) -> ReadResult<Vec<bool>> {
+    r.within("#given", |r| bool::get_all(n, r))
+}
+
+/// The bodies' rebuilt fields, in slot order, after the body pool: each field's flags,
+/// then its stored values, in one pass each (the columns are made in the order value by
+/// value writing would make them: `center`, its flags, `reported_xf`, its flags, then the
+/// transform's `p` and `q` at the first one stored).
+pub(super) fn put_bodies(w: &mut Writer, bodies: &Pool<Body>) {
+    if bodies.is_empty() {
+        return;
+    }
+    let given: Vec<bool> = bodies
+        .iter()
+        .map(|(_, b)| !b.center.same_bits(&b.xf.apply(b.local_center)))
+        .collect();
+    w.within("center", |w| {
+        put_flags(w, &given);
+        let stored: Vec<&Vec3> = (bodies.iter().zip(&given).filter(|(_, &g)| g))
+            .map(|((_, b), _)| &b.center)
+            .collect();
+        Vec3::put_all(stored.iter().copied(), w);
+    });
+    let given: Vec<bool> = bodies.iter().map(|(_, b)| !b.reported_xf.same_bits(&b.xf)).collect();
+    w.within("reported_xf", |w| {
+        put_flags(w, &given);
+        if given.contains(&true) {
+            let stored: Vec<&Transform> = (bodies.iter().zip(&given).filter(|(_, &g)| g))
+                .map(|((_, b), _)| &b.reported_xf)
+                .collect();
+            Transform::put_all(stored.iter().copied(), w);
         }
     });
 }
 
-/// Reads what `put` wrote: the stored value, or `predicted`.
-fn get<T: Snap>(r: &mut Reader, name: &'static str, predicted: impl FnOnce() -> ReadResult<T>) -> ReadResult<T> {
-    r.within(name, |r| {
-        if r.within("#given", bool::get)? {
-            T::get(r)
-        } else {
-            predicted()
+pub(super) fn get_bodies(r: &mut Reader, bodies: &mut Pool<Body>) -> ReadResult<()> {
+    let n = bodies.len();
+    if n == 0 {
+        return Ok(());
+    }
+    r.within("center", |r| {
+        let given = get_flags(r, n)?;
+        let mut stored = Vec3::get_all(given.iter().filter(|&&g| g).count(), r)?.into_iter();
+        for (b, &g) in bodies.values_mut().zip(&given) {
+            b.center = match g {
+                true => stored.next().expect("one per flag"),
+                false => b.xf.apply(b.local_center),
+            };
         }
+        Ok(())
+    })?;
+    r.within("reported_xf", |r| {
+        let given = get_flags(r, n)?;
+        let k = given.iter().filter(|&&g| g).count();
+        let mut stored = match k {
+            0 => Vec::new(),
+            _ => Transform::get_all(k, r)?,
+        }
+        .into_iter();
+        for (b, &g) in bodies.values_mut().zip(&given) {
+            b.reported_xf = match g {
+                true => stored.next().expect("one per flag"),
+                false => b.xf,
+            };
+        }
+        Ok(())
     })
 }
 
-/// The bodies' rebuilt fields, in slot order, after the body pool.
-pub(super) fn put_bodies(w: &mut Writer, bodies: &Pool<Body>) {
-    for (_, b) in bodies.iter() {
-        put(w, "center", &b.center, &b.xf.apply(b.local_center));
-        put(w, "reported_xf", &b.reported_xf, &b.xf);
-    }
-}
-
-pub(super) fn get_bodies(r: &mut Reader, bodies: &mut Pool<Body>) -> ReadResult<()> {
-    for b in bodies.values_mut() {
-        b.center = get(r, "center", || Ok(b.xf.apply(b.local_center)))?;
-        b.reported_xf = get(r, "reported_xf", || Ok(b.xf))?;
-    }
-    Ok(())
-}
-
-/// The shapes' rebuilt boxes, in slot order, after the shape pool.
+/// The shapes' rebuilt boxes, in slot order, after the shape pool: each box's flags, then
+/// its stored values, in one pass each. The columns are made in the order value by value
+/// writing would make them: `aabb` and its flags, `fat_aabb` and its flags, and each box's
+/// `min` and `max` at the first one stored (after the flags of the other box, unless that
+/// is the first shape's; before the other box's `min` and `max` when it comes first in
+/// slot order, or in the same shape: `aabb` before `fat_aabb`).
 pub(super) fn put_shapes(w: &mut Writer, shapes: &Pool<Shape>, bodies: &Pool<Body>, store: &GeometryStore) {
-    for (_, s) in shapes.iter() {
-        let tight = s.geometry.aabb(store, &bodies.at(s.body).xf);
-        put(w, "aabb", &s.aabb, &tight);
-        put(w, "fat_aabb", &s.fat_aabb, &s.aabb.expanded(crate::world::AABB_MARGIN));
+    if shapes.is_empty() {
+        return;
     }
+    let tight: Vec<bool> = shapes
+        .iter()
+        .map(|(_, s)| !s.aabb.same_bits(&s.geometry.aabb(store, &bodies.at(s.body).xf)))
+        .collect();
+    let fat: Vec<bool> = shapes
+        .iter()
+        .map(|(_, s)| !s.fat_aabb.same_bits(&s.aabb.expanded(crate::world::AABB_MARGIN)))
+        .collect();
+    let put_tight = |w: &mut Writer| {
+        w.within("aabb", |w| {
+            let stored: Vec<&Aabb> = (shapes.iter().zip(&tight).filter(|(_, &g)| g))
+                .map(|((_, s), _)| &s.aabb)
+                .collect();
+            Aabb::put_all(stored.iter().copied(), w)
+        })
+    };
+    let put_fat = |w: &mut Writer| {
+        w.within("fat_aabb", |w| {
+            let stored: Vec<&Aabb> = (shapes.iter().zip(&fat).filter(|(_, &g)| g))
+                .map(|((_, s), _)| &s.fat_aabb)
+                .collect();
+            Aabb::put_all(stored.iter().copied(), w)
+        })
+    };
+    let (first_tight, first_fat) = (first(&tight), first(&fat));
+    w.within("aabb", |w| put_flags(w, &tight));
+    if first_tight == Some(0) {
+        put_tight(w);
+    }
+    w.within("fat_aabb", |w| put_flags(w, &fat));
+    if first_fat == Some(0) {
+        put_fat(w);
+    }
+    match later(first_tight, first_fat) {
+        (Some(t), Some(f)) if f < t => {
+            put_fat(w);
+            put_tight(w);
+        }
+        (t, f) => {
+            if t.is_some() {
+                put_tight(w);
+            }
+            if f.is_some() {
+                put_fat(w);
+            }
+        }
+    }
+}
+
+/// The index of the first set flag.
+fn first(given: &[bool]) -> Option<usize> {
+    given.iter().position(|&g| g)
+}
+
+/// The first stored indices of the two boxes, without those of the first shape (written
+/// right after their flags).
+fn later(t: Option<usize>, f: Option<usize>) -> (Option<usize>, Option<usize>) {
+    (t.filter(|&i| i > 0), f.filter(|&i| i > 0))
 }
 
 pub(super) fn get_shapes(
@@ -100,13 +198,51 @@ pub(super) fn get_shapes(
     bodies: &Pool<Body>,
     store: &GeometryStore,
 ) -> ReadResult<()> {
-    for s in shapes.values_mut() {
-        s.aabb = get(r, "aabb", || match bodies.handle_at(s.body) {
-            Some(_) if store.check(&s.geometry).is_ok() => Ok(s.geometry.aabb(store, &bodies.at(s.body).xf)),
-            _ => bad("snapshot corrupted: a shape names a body or geometry that is not there"),
-        })?;
-        let fat = s.aabb.expanded(crate::world::AABB_MARGIN);
-        s.fat_aabb = get(r, "fat_aabb", || Ok(fat))?;
+    let n = shapes.len();
+    if n == 0 {
+        return Ok(());
+    }
+    let boxes = |r: &mut Reader, name: &'static str, given: &[bool]| {
+        let k = given.iter().filter(|&&g| g).count();
+        r.within(name, |r| Aabb::get_all(k, r))
+    };
+    let tight = r.within("aabb", |r| get_flags(r, n))?;
+    let mut tight_boxes = Vec::new();
+    if first(&tight) == Some(0) {
+        tight_boxes = boxes(r, "aabb", &tight)?;
+    }
+    let fat = r.within("fat_aabb", |r| get_flags(r, n))?;
+    let mut fat_boxes = Vec::new();
+    if first(&fat) == Some(0) {
+        fat_boxes = boxes(r, "fat_aabb", &fat)?;
+    }
+    match later(first(&tight), first(&fat)) {
+        (Some(t), Some(f)) if f < t => {
+            fat_boxes = boxes(r, "fat_aabb", &fat)?;
+            tight_boxes = boxes(r, "aabb", &tight)?;
+        }
+        (t, f) => {
+            if t.is_some() {
+                tight_boxes = boxes(r, "aabb", &tight)?;
+            }
+            if f.is_some() {
+                fat_boxes = boxes(r, "fat_aabb", &fat)?;
+            }
+        }
+    }
+    let (mut tight_boxes, mut fat_boxes) = (tight_boxes.into_iter(), fat_boxes.into_iter());
+    for ((s, &t), &f) in shapes.values_mut().zip(&tight).zip(&fat) {
+        s.aabb = match t {
+            true => tight_boxes.next().expect("one per flag"),
+            false => match bodies.handle_at(s.body) {
+                Some(_) if store.check(&s.geometry).is_ok() => s.geometry.aabb(store, &bodies.at(s.body).xf),
+                _ => return bad("snapshot corrupted: a shape names a body or geometry that is not there"),
+            },
+        };
+        s.fat_aabb = match f {
+            true => fat_boxes.next().expect("one per flag"),
+            false => s.aabb.expanded(crate::world::AABB_MARGIN),
+        };
     }
     Ok(())
 }

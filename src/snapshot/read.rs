@@ -83,6 +83,23 @@ struct Scratch {
     zstd: zstd::bulk::Decompressor<'static>,
     raw: Vec<u8>,
     plain: Vec<u8>,
+    /// The replaced bodies' shape and contact lists, emptied, for the next restore to fill
+    /// (at most `SPARE` of them).
+    spare: Spare,
+}
+
+/// Emptied vectors of ids and of indices a restore keeps for the next one.
+pub(crate) type Spare = (Vec<Vec<crate::pool::Handle>>, Vec<Vec<u32>>);
+
+/// Emptied vectors of each kind a restore keeps for the next one, at most.
+const SPARE: usize = 1 << 16;
+
+/// Keeps `v`'s buffer in `spare`, emptied, when it has one and there is room.
+fn keep<T>(spare: &mut Vec<Vec<T>>, v: &mut Vec<T>) {
+    if v.capacity() > 0 && spare.len() < SPARE {
+        v.clear();
+        spare.push(std::mem::take(v));
+    }
 }
 
 /// Restores `world` from `bytes` (see the module docs of `snapshot`). On error the world is
@@ -99,20 +116,42 @@ pub fn restore(world: &mut World, bytes: &[u8]) -> Result<(), SnapshotError> {
                 zstd: zstd::bulk::Decompressor::new().expect("a zstd context"),
                 raw: Vec::new(),
                 plain: Vec::new(),
+                spare: Default::default(),
             });
         }
-        let Scratch { zstd, raw, plain } = s.as_mut().expect("made above");
+        let Scratch {
+            zstd,
+            raw,
+            plain,
+            spare,
+        } = s.as_mut().expect("made above");
         decompress(payload, zstd, raw)?;
         let spans = super::columns::unpack(raw, plain)?;
-        decode(world, plain, &spans)
+        decode(world, plain, &spans, spare)
     })
 }
 
 /// Decodes the columns `plain` (with their `spans`) into a new world state and swaps it
 /// into `world`.
-fn decode(world: &mut World, plain: &[u8], spans: &[(usize, usize)]) -> Result<(), SnapshotError> {
+fn decode(world: &mut World, plain: &[u8], spans: &[(usize, usize)], spare: &mut Spare) -> Result<(), SnapshotError> {
     let mut r = Reader::new(plain, spans, world.tag());
-    let r = &mut r;
+    r.spare = std::mem::take(spare);
+    let result = decode_with(world, &mut r);
+    *spare = std::mem::take(&mut r.spare);
+    // The replaced bodies' lists are kept for the next restore to fill.
+    let mut old = result?;
+    for b in old.values_mut() {
+        keep(&mut spare.0, &mut b.shapes);
+        keep(&mut spare.1, &mut b.contacts);
+    }
+    Ok(())
+}
+
+/// `decode` with its reader; returns the body pool it replaced.
+fn decode_with(
+    world: &mut World,
+    r: &mut Reader,
+) -> Result<crate::pool::Pool<crate::dynamics::body::Body>, SnapshotError> {
     use section::*;
     let mut settings: WorldSettings = get_section(r, SETTINGS, Snap::get)?;
     // Threads are the target world's own: results do not depend on them.
@@ -219,7 +258,7 @@ fn decode(world: &mut World, plain: &[u8], spans: &[(usize, usize)]) -> Result<(
     let lanes_changed = world.settings.lane_width != settings.lane_width;
     world.settings = settings;
     world.geometry = geometry;
-    world.bodies = bodies;
+    let old_bodies = std::mem::replace(&mut world.bodies, bodies);
     world.shapes = shapes;
     world.contacts = contacts;
     world.awake_contacts = awake_contacts;
@@ -247,5 +286,5 @@ fn decode(world: &mut World, plain: &[u8], spans: &[(usize, usize)]) -> Result<(
     if lanes_changed {
         world.solver.batches = crate::dynamics::contact_wide::Batches::new(settings.lane_width);
     }
-    Ok(())
+    Ok(old_bodies)
 }

@@ -66,14 +66,38 @@ impl Snap for Handle {
         let b = r.take_values(n, 8)?;
         let tag = r.tag;
         for (i, c) in b.chunks_exact(8).enumerate() {
-            let index = u32::from_le_bytes(c[..4].try_into().expect("4 bytes"));
-            let counter = u32::from_le_bytes(c[4..].try_into().expect("4 bytes"));
-            match crate::pool::handle_with_tag(index, counter, tag) {
-                Some(h) => *at(dst, i) = h,
-                None => return bad(format!("snapshot corrupted: id counter {counter} out of range")),
-            }
+            *at(dst, i) = handle_from(c, tag)?;
         }
         Ok(())
+    }
+    /// Filled into vectors the last restore on this thread freed (`Reader::spare`).
+    fn get_vecs(lens: &[usize], r: &mut Reader) -> ReadResult<Vec<Vec<Self>>> {
+        let b = r.take_values(lens.iter().sum(), 8)?;
+        let mut values = b.chunks_exact(8);
+        let mut out = Vec::with_capacity(lens.len());
+        for &k in lens {
+            let mut v = match k {
+                0 => Vec::new(),
+                _ => r.spare.0.pop().unwrap_or_default(),
+            };
+            v.clear();
+            for c in values.by_ref().take(k) {
+                v.push(handle_from(c, r.tag)?);
+            }
+            out.push(v);
+        }
+        Ok(out)
+    }
+}
+
+/// The id stored in `c` (index, counter), with the world tag `tag`.
+#[inline(always)]
+fn handle_from(c: &[u8], tag: u32) -> ReadResult<Handle> {
+    let index = u32::from_le_bytes(c[..4].try_into().expect("4 bytes"));
+    let counter = u32::from_le_bytes(c[4..].try_into().expect("4 bytes"));
+    match crate::pool::handle_with_tag(index, counter, tag) {
+        Some(h) => Ok(h),
+        None => bad(format!("snapshot corrupted: id counter {counter} out of range")),
     }
 }
 
@@ -606,11 +630,24 @@ snap_unit_enum!(BodyType, "body type": BodyType::Static, BodyType::Kinematic, Bo
 snap_unit_enum!(Integrator, "integrator": Integrator::SemiImplicitEuler, Integrator::Rk4);
 snap_unit_enum!(LaneWidth, "lane width": LaneWidth::Auto, LaneWidth::Four);
 
-impl Snap for Geometry {
-    fn put(&self, w: &mut Writer) {
+impl Geometry {
+    /// The variant's tag.
+    fn tag(&self) -> u8 {
+        match self {
+            Geometry::Sphere { .. } => 0,
+            Geometry::Box { .. } => 1,
+            Geometry::Capsule { .. } => 2,
+            Geometry::Plane { .. } => 3,
+            Geometry::Hull { .. } => 4,
+            Geometry::Mesh { .. } => 5,
+            Geometry::Heightfield { .. } => 6,
+        }
+    }
+
+    /// The variant's fields (its tag is written apart).
+    fn put_fields(&self, w: &mut Writer) {
         match self {
             Geometry::Sphere { center, radius } => {
-                w.put_tag(0);
                 center.put(w);
                 radius.put(w);
             }
@@ -619,30 +656,25 @@ impl Snap for Geometry {
                 rotation,
                 half_extents,
             } => {
-                w.put_tag(1);
                 center.put(w);
                 rotation.put(w);
                 half_extents.put(w);
             }
             Geometry::Capsule { a, b, radius } => {
-                w.put_tag(2);
                 a.put(w);
                 b.put(w);
                 radius.put(w);
             }
             Geometry::Plane { normal, offset } => {
-                w.put_tag(3);
                 normal.put(w);
                 offset.put(w);
             }
             Geometry::Hull { hull, local, scale } => {
-                w.put_tag(4);
                 hull.put(w);
                 local.put(w);
                 scale.put(w);
             }
             Geometry::Mesh { mesh, local, scale } => {
-                w.put_tag(5);
                 mesh.put(w);
                 local.put(w);
                 scale.put(w);
@@ -652,15 +684,16 @@ impl Snap for Geometry {
                 local,
                 scale,
             } => {
-                w.put_tag(6);
                 heightfield.put(w);
                 local.put(w);
                 scale.put(w);
             }
         }
     }
-    fn get(r: &mut Reader) -> ReadResult<Self> {
-        Ok(match r.tag("geometry", 7)? {
+
+    /// The fields of the variant of tag `t` (below 7).
+    fn get_fields(t: u8, r: &mut Reader) -> ReadResult<Self> {
+        Ok(match t {
             0 => Geometry::Sphere {
                 center: Snap::get(r)?,
                 radius: Snap::get(r)?,
@@ -695,6 +728,43 @@ impl Snap for Geometry {
                 scale: Snap::get(r)?,
             },
         })
+    }
+}
+
+/// Each shape's geometry: its tag (in `#tag`), then its variant's fields; `put_all` and
+/// `get_all` write and read all the tags in one pass, then the fields value by value (the
+/// same bytes, in columns made in the same order: `#tag` at the first value).
+impl Snap for Geometry {
+    fn put(&self, w: &mut Writer) {
+        w.put_tag(self.tag());
+        self.put_fields(w);
+    }
+    fn get(r: &mut Reader) -> ReadResult<Self> {
+        let t = r.tag("geometry", 7)?;
+        Self::get_fields(t, r)
+    }
+    fn put_all<'s, I>(items: I, w: &mut Writer)
+    where
+        I: Iterator<Item = &'s Self> + Clone,
+        Self: 's,
+    {
+        if items.clone().next().is_none() {
+            return;
+        }
+        w.within("#tag", |w| w.values(items.clone().map(|g| [g.tag()])));
+        for g in items {
+            g.put_fields(w);
+        }
+    }
+    fn get_all(n: usize, r: &mut Reader) -> ReadResult<Vec<Self>> {
+        if n == 0 {
+            return Ok(Vec::new());
+        }
+        let tags = r.within("#tag", |r| r.take_values(n, 1))?;
+        if let Some(t) = tags.iter().find(|&&t| t >= 7) {
+            return bad(format!("snapshot corrupted: geometry variant {t} unknown"));
+        }
+        tags.iter().map(|&t| Self::get_fields(t, r)).collect()
     }
 }
 
