@@ -408,6 +408,22 @@ impl Snap for usize {
         let v = u64::get(r)?;
         usize::try_from(v).or_else(|_| bad("snapshot corrupted: size out of range"))
     }
+    fn put_all<'s, I>(items: I, w: &mut Writer)
+    where
+        I: Iterator<Item = &'s Self> + Clone,
+        Self: 's,
+    {
+        w.values(items.map(|&x| (x as u64).to_le_bytes()));
+    }
+    fn get_all(n: usize, r: &mut Reader) -> ReadResult<Vec<Self>> {
+        let b = r.take_values(n, 8)?;
+        b.chunks_exact(8)
+            .map(|c| {
+                usize::try_from(u64::from_le_bytes(c.try_into().expect("8 bytes")))
+                    .or_else(|_| bad("snapshot corrupted: size out of range"))
+            })
+            .collect()
+    }
 }
 
 impl Snap for bool {
@@ -472,10 +488,19 @@ impl<T: Snap> Snap for Vec<T> {
         I: Iterator<Item = &'s Self> + Clone,
         Self: 's,
     {
+        let mut total = 0;
         w.within("#len", |w| {
-            w.values(items.clone().map(|v| (v.len() as u64).to_le_bytes()))
+            w.values(items.clone().map(|v| {
+                total += v.len();
+                (v.len() as u64).to_le_bytes()
+            }))
         });
-        T::put_all(items.flat_map(|v| v.iter()), w);
+        if total == 0 {
+            // The elements' columns are made all the same, with no pass over the vectors.
+            T::put_all(std::iter::empty(), w);
+        } else {
+            T::put_all(items.flat_map(|v| v.iter()), w);
+        }
     }
     fn get_all(n: usize, r: &mut Reader) -> ReadResult<Vec<Self>> {
         let lens = r.counts(n)?;

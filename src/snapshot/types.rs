@@ -768,33 +768,71 @@ impl Snap for Geometry {
     }
 }
 
+/// The SAT cache's deciding feature: its tag (in `#tag`), then its face or edges, in the
+/// feature's own column; `put_all` and `get_all` move all the tags in one pass, then the
+/// fields (the same bytes, in columns made in the same order: `#tag` at the first value).
 impl Snap for SatFeature {
     fn put(&self, w: &mut Writer) {
-        match *self {
-            SatFeature::None => w.put_tag(0),
-            SatFeature::FaceA(f) => {
-                w.put_tag(1);
-                f.put(w)
-            }
-            SatFeature::FaceB(f) => {
-                w.put_tag(2);
-                f.put(w)
-            }
-            SatFeature::Edges(a, b) => {
-                w.put_tag(3);
-                a.put(w);
-                b.put(w)
-            }
-        }
+        w.put_tag(sat_tag(self));
+        put_sat_fields(self, w);
     }
     fn get(r: &mut Reader) -> ReadResult<Self> {
-        Ok(match r.tag("SAT feature", 4)? {
-            0 => SatFeature::None,
-            1 => SatFeature::FaceA(Snap::get(r)?),
-            2 => SatFeature::FaceB(Snap::get(r)?),
-            _ => SatFeature::Edges(Snap::get(r)?, Snap::get(r)?),
-        })
+        let t = r.tag("SAT feature", 4)?;
+        get_sat_fields(t, r)
     }
+    fn put_all<'s, I>(items: I, w: &mut Writer)
+    where
+        I: Iterator<Item = &'s Self> + Clone,
+        Self: 's,
+    {
+        if items.clone().next().is_none() {
+            return;
+        }
+        w.within("#tag", |w| w.values(items.clone().map(|f| [sat_tag(f)])));
+        for f in items {
+            put_sat_fields(f, w);
+        }
+    }
+    fn get_all(n: usize, r: &mut Reader) -> ReadResult<Vec<Self>> {
+        if n == 0 {
+            return Ok(Vec::new());
+        }
+        let tags = r.within("#tag", |r| r.take_values(n, 1))?;
+        if let Some(t) = tags.iter().find(|&&t| t >= 4) {
+            return bad(format!("snapshot corrupted: SAT feature variant {t} unknown"));
+        }
+        tags.iter().map(|&t| get_sat_fields(t, r)).collect()
+    }
+}
+
+fn sat_tag(f: &SatFeature) -> u8 {
+    match f {
+        SatFeature::None => 0,
+        SatFeature::FaceA(_) => 1,
+        SatFeature::FaceB(_) => 2,
+        SatFeature::Edges(..) => 3,
+    }
+}
+
+fn put_sat_fields(f: &SatFeature, w: &mut Writer) {
+    match *f {
+        SatFeature::None => {}
+        SatFeature::FaceA(f) | SatFeature::FaceB(f) => f.put(w),
+        SatFeature::Edges(a, b) => {
+            a.put(w);
+            b.put(w)
+        }
+    }
+}
+
+/// The fields of the feature of tag `t` (below 4).
+fn get_sat_fields(t: u8, r: &mut Reader) -> ReadResult<SatFeature> {
+    Ok(match t {
+        0 => SatFeature::None,
+        1 => SatFeature::FaceA(Snap::get(r)?),
+        2 => SatFeature::FaceB(Snap::get(r)?),
+        _ => SatFeature::Edges(Snap::get(r)?, Snap::get(r)?),
+    })
 }
 
 snap_struct!(FaceHold {
@@ -1168,6 +1206,63 @@ mod tests {
                 .map(|_| [BodyType::Static, BodyType::Kinematic, BodyType::Dynamic][rng.next_u64() as usize % 3])
                 .collect();
             bulk_matches_one_by_one(&types, true);
+            // Enums with fields: every variant, the tags in one pass, the fields after.
+            let v3 = |r: &mut crate::math::test_rnd::Rnd| Vec3::new(grid(r), grid(r), grid(r));
+            let geometries: Vec<Geometry> = (0..n)
+                .map(|_| match rng.next_u64() % 4 {
+                    0 => Geometry::Sphere {
+                        center: v3(&mut rng),
+                        radius: grid(&mut rng),
+                    },
+                    1 => Geometry::Box {
+                        center: v3(&mut rng),
+                        rotation: glam::Quat::from_xyzw(grid(&mut rng), grid(&mut rng), grid(&mut rng), grid(&mut rng)),
+                        half_extents: v3(&mut rng),
+                    },
+                    2 => Geometry::Capsule {
+                        a: v3(&mut rng),
+                        b: v3(&mut rng),
+                        radius: grid(&mut rng),
+                    },
+                    _ => Geometry::Plane {
+                        normal: v3(&mut rng),
+                        offset: grid(&mut rng),
+                    },
+                })
+                .collect();
+            bulk_matches_one_by_one(&geometries, true);
+            let features: Vec<SatFeature> = (0..n)
+                .map(|_| {
+                    let (a, b) = (rng.next_u64() as u16, rng.next_u64() as u16);
+                    [
+                        SatFeature::None,
+                        SatFeature::FaceA(a),
+                        SatFeature::FaceB(b),
+                        SatFeature::Edges(a, b),
+                    ][rng.next_u64() as usize % 4]
+                })
+                .collect();
+            bulk_matches_one_by_one(&features, true);
+            // Lists of indices and ids (filled into kept vectors on restore), all empty
+            // in every other round.
+            let long = if n % 2 == 0 { 4 } else { 1 };
+            let lists: Vec<Vec<u32>> = (0..n)
+                .map(|_| (0..rng.next_u64() % long).map(|_| rng.next_u64() as u32).collect())
+                .collect();
+            bulk_matches_one_by_one(&lists, false);
+            let id_lists: Vec<Vec<Handle>> = (0..n)
+                .map(|_| {
+                    (0..rng.next_u64() % long)
+                        .map(|_| {
+                            handles
+                                .get(rng.next_u64() as usize % n.max(1))
+                                .copied()
+                                .unwrap_or(Handle::NULL)
+                        })
+                        .collect()
+                })
+                .collect();
+            bulk_matches_one_by_one(&id_lists, false);
             let maps: Vec<crate::hash::IntMap<u64, u32>> = (0..n.min(20))
                 .map(|k| {
                     (0..k * 7)
