@@ -21,7 +21,10 @@
 //!    axis is the cross product, oriented out of A, and the separation is measured between
 //!    the two edges. When the cores overlap, only edges that reach near the other hull
 //!    across the best face's plane can make the deciding pair (the pair of the deepest
-//!    axis crosses within the penetration depth); the others are left out.
+//!    axis crosses within the penetration depth); the others are left out. When they are
+//!    apart, only edges whose arcs come near GJK's direction can (an axis separates the
+//!    cores by at most its cosine with that direction times GJK's distance, and the pair
+//!    must beat the margins and the last test's pair: `apart_cone`).
 //!
 //! Every axis whose separation exceeds the speculative distance (plus the radii) ends the
 //! test early. The least separated axis, biased toward faces (and toward A's faces over
@@ -207,6 +210,7 @@ fn hull_hull_with(a: &Poly, b: &Poly, speculative: f32, cache: &mut SatCache, pr
     let rel = Relative::new(a, b);
     let r = a.radius + b.radius;
     let limit = speculative + r;
+    let previous = cache.feature;
     let mut held = None;
     if let Some(s) = cached_separation(a, b, &rel, cache.feature) {
         if s > limit {
@@ -316,6 +320,20 @@ fn hull_hull_with(a: &Poly, b: &Poly, speculative: f32, cache: &mut SatCache, pr
             h0.min(h1) <= po + reach
         }
     };
+    //
+    // When the cores are apart, a pair's axis `m` (a face normal of the Minkowski difference
+    // B − A) separates them by at most `m · v`, `v` GJK's point of that difference (`|v| =
+    // D`): a pair can end the test (more than `limit`) or decide (more than `edge_margin`,
+    // and at least the pair of last test, if its arcs still cross: the best pair is at
+    // least as good) only if `m · v̂` reaches `floor / D`. `m` lies on both edges' arcs on
+    // the Gauss map (A's, and B's negated), so an edge whose arc stays outside that cone
+    // about `v̂` builds no such pair and is left out: the same pair decides, or ends the
+    // test, in a fraction of the pairs.
+    let cone = if prune_edges && edges_can_matter && !g.overlap && a.hull.edge_lanes.len() <= MAX_EDGE_BLOCKS {
+        apart_cone(a, b, &rel, previous, edge_margin, limit, &g)
+    } else {
+        None
+    };
     // A's edges left in, four lanes per block as `edge_lanes` (bit k: lane k).
     let mut a_lanes = [0x0fu8; MAX_EDGE_BLOCKS];
     if prune {
@@ -324,18 +342,27 @@ fn hull_hull_with(a: &Poly, b: &Poly, speculative: f32, cache: &mut SatCache, pr
                 a_lanes[ka / 4] &= !(1u8 << (ka % 4));
             }
         }
+    } else if let Some(cone) = cone {
+        for (ka, ga) in a.hull.edge_gauss.iter().enumerate() {
+            if !cone.meets_arc(ga.n1, ga.n2) {
+                a_lanes[ka / 4] &= !(1u8 << (ka % 4));
+            }
+        }
     }
     let (mut sep_e, mut edges, mut edge_dir) = (f32::MIN, (usize::MAX, usize::MAX), Vec3::ZERO);
     let b_edges = if edges_can_matter { &b.hull.edge_gauss[..] } else { &[] };
     for (kb, gb) in b_edges.iter().enumerate() {
+        // B's arc, negated (Minkowski difference A − B), in A's frame.
+        let c = -(rel.r * gb.n1);
+        let d = -(rel.r * gb.n2);
+        if cone.is_some_and(|cone| !cone.meets_arc(c, d)) {
+            continue;
+        }
         let pb0 = rel.r * b.vertex(gb.v0 as usize) + rel.t;
         let pb1 = rel.r * b.vertex(gb.v1 as usize) + rel.t;
         if prune && !keep(pb0, pb1, use_b) {
             continue;
         }
-        // B's arc, negated (Minkowski difference A − B), in A's frame.
-        let c = -(rel.r * gb.n1);
-        let d = -(rel.r * gb.n2);
         let d_x_c = rel.r * gb.n2_x_n1;
         // Four of A's edges at a time (`EdgeLanes`, in `F4` lanes): the arc test's dot
         // products lane by lane, in the scalar form's order of operations, so the same pairs
@@ -459,6 +486,96 @@ fn hull_hull_with(a: &Poly, b: &Poly, speculative: f32, cache: &mut SatCache, pr
     } else {
         face_contact(a, b, &rel, face_a, speculative, false)
     }
+}
+
+/// Angular slack of the cone test (on the cosine): an axis computed from the edges may lie
+/// off the arcs of the face normals by rounding and by the faces' fit.
+const CONE_SLACK: f32 = 0.02;
+
+/// The directions `m` with `m · axis >= cos`: where the axis of an edge pair that can still
+/// matter lies (see `hull_hull_with`).
+#[derive(Clone, Copy)]
+struct Cone {
+    axis: Vec3,
+    cos: f32,
+}
+
+impl Cone {
+    /// Whether some direction on the great-circle arc from `n1` to `n2` (unit vectors less
+    /// than a half turn apart) lies in the cone: an end does, or the arc's nearest point to
+    /// the axis lies between the ends (`x − k·y` and `y − k·x` not negative) and close
+    /// enough (`|axis projected on the arc's plane|² = (x² − 2kxy + y²)/(1 − k²)`). Arcs
+    /// too short for the division are judged in (nothing is left out that could matter).
+    #[inline(always)]
+    fn meets_arc(&self, n1: Vec3, n2: Vec3) -> bool {
+        let (x, y, k) = (self.axis.dot(n1), self.axis.dot(n2), n1.dot(n2));
+        x >= self.cos
+            || y >= self.cos
+            || (x >= k * y && y >= k * x && x * x - 2.0 * k * x * y + y * y >= self.cos * self.cos * (1.0 - k * k))
+    }
+}
+
+/// The cone of axes that can still matter when the cores are apart (GJK's `g`, not
+/// overlapping): a pair matters when it ends the test (more than `limit`) or when it can
+/// decide: more than `edge_margin` and at least the separation of the previous deciding
+/// pair, if that pair still passes the arc test (the loop's best is at least that). No axis
+/// `m` separates the cores by more than `m · v` (`v`, GJK's point of the Minkowski
+/// difference, `|v| = D`), up to rounding (`slack`). `None` when the cone is too wide to
+/// leave anything out.
+fn apart_cone(
+    a: &Poly,
+    b: &Poly,
+    rel: &Relative,
+    previous: SatFeature,
+    edge_margin: f32,
+    limit: f32,
+    g: &gjk::DistanceOutput,
+) -> Option<Cone> {
+    if !g.distance.is_finite() || g.distance <= GJK_OVERLAP_BOUND {
+        return None;
+    }
+    let mut decides = edge_margin;
+    if let SatFeature::Edges(ea, eb) = previous {
+        if let Some(s) = pair_separation(a, b, rel, ea as usize, eb as usize) {
+            decides = decides.max(s);
+        }
+    }
+    let floor = decides.min(limit);
+    let slack = EDGE_PRUNE_SLACK * (1.0 + a.reach() + b.reach());
+    let cos = ((floor - slack) / g.distance).min(1.0) - CONE_SLACK;
+    (cos > 0.0).then_some(Cone { axis: g.normal, cos })
+}
+
+/// The separation the edge loop of `hull_hull_with` gives edge pair (`ea`, `eb`) — the arc
+/// test as its lanes compute it, the axis, and the edge gap capped by the support functions
+/// — or `None` when the loop would not take the pair.
+fn pair_separation(a: &Poly, b: &Poly, rel: &Relative, ea: usize, eb: usize) -> Option<f32> {
+    if ea >= a.hull.edge_gauss.len() || eb >= b.hull.edge_gauss.len() {
+        return None;
+    }
+    let gb = b.hull.edge_gauss[eb];
+    let c = -(rel.r * gb.n1);
+    let d = -(rel.r * gb.n2);
+    let d_x_c = rel.r * gb.n2_x_n1;
+    let (l, k) = (&a.hull.edge_lanes[ea / 4], ea % 4);
+    // The lanes' products and sums in their order: `(x·n_x + y·n_y) + z·n_z`.
+    let dot = |p: Vec3, n: &[[f32; 4]; 3]| p.x * n[0][k] + p.y * n[1][k] + p.z * n[2][k];
+    let (cba, dba) = (dot(c, &l.n2_x_n1), dot(d, &l.n2_x_n1));
+    let (adc, bdc) = (dot(d_x_c, &l.n1), dot(d_x_c, &l.n2));
+    if !(0.0 > cba * dba && 0.0 > adc * bdc && cba * bdc > 0.0) {
+        return None;
+    }
+    let ga = a.hull.edge_gauss[ea];
+    let pb0 = rel.r * b.vertex(gb.v0 as usize) + rel.t;
+    let pb1 = rel.r * b.vertex(gb.v1 as usize) + rel.t;
+    let (axis, s) = edge_axis(
+        a.vertex(ga.v0 as usize),
+        a.vertex(ga.v1 as usize),
+        ga.n1 + ga.n2,
+        pb0,
+        pb1,
+    )?;
+    Some(s.min(support_separation(a, b, rel, axis)))
 }
 
 /// Clips the incident face of `inc` against face `face` of `refp`, in `refp`'s frame
@@ -762,6 +879,74 @@ mod tests {
         assert!(
             overlapping > 2000 && edge_contacts > 300,
             "{overlapping} overlapping, {edge_contacts} edge contacts"
+        );
+    }
+
+    /// The cone of axes that can still matter when the cores are apart changes nothing:
+    /// random hull pairs (and boxes against hulls; some clouds with near-duplicate points,
+    /// so short edges and welded faces), from touching to 4 cm apart, moved in small random
+    /// steps with the pair's cache kept, give the same manifold and the same cache bit for
+    /// bit with the cone and without it (the loop over every pair); in many of the tests
+    /// the cores are apart and an edge pair decides (where the cone leaves edges out).
+    #[test]
+    fn apart_cone_keeps_the_deciding_pair() {
+        let mut rnd = Rnd(0x51c3_a0d2_77e9_4b15);
+        let (mut tests, mut apart_edges, mut edge_contacts) = (0, 0, 0);
+        for trial in 0..400 {
+            let mut cloud = rnd.cloud(8, 20.0, 0.2, 0.3);
+            if trial % 3 == 0 {
+                // Near-duplicates: short edges whose faces' normals fit them loosely.
+                for i in 0..cloud.len() / 3 {
+                    let p = cloud[i] + rnd.point(Vec3::splat(2.0e-3));
+                    cloud.push(p);
+                }
+            }
+            let ha = build(&cloud, &HullSettings::default()).unwrap();
+            let hb = build(&rnd.cloud(8, 20.0, 0.2, 0.3), &HullSettings::default()).unwrap();
+            let xa = Transform::new(Vec3::ZERO, rnd.quat());
+            let half = Vec3::new(0.1 + 0.4 * rnd.f(), 0.1 + 0.4 * rnd.f(), 0.1 + 0.4 * rnd.f());
+            let dir = Vec3::new(rnd.f() - 0.5, rnd.f() - 0.5, rnd.f() - 0.5).normalize();
+            let mut xb = Transform::new(dir * 3.0, rnd.quat());
+            let place = |xb: &Transform| {
+                let a = if trial % 5 == 0 {
+                    Poly::boxed(Vec3::ZERO, Quat::IDENTITY, half, &xa)
+                } else {
+                    Poly::hull(&ha, &Transform::IDENTITY, 1.0, &xa)
+                };
+                (a, Poly::hull(&hb, &Transform::IDENTITY, 1.0, xb))
+            };
+            // B moved in from far along a random direction to a gap of 0 to 4 cm.
+            let gap = 0.04 * rnd.f();
+            for _ in 0..40 {
+                let (a, b) = place(&xb);
+                let g = gjk_of(&a, &b);
+                if g.overlap || (g.distance - gap).abs() < 1.0e-4 {
+                    break;
+                }
+                xb.p -= dir * (g.distance - gap);
+            }
+            let mut cache = SatCache::default();
+            for _ in 0..30 {
+                let dp = Vec3::new(rnd.f() - 0.5, rnd.f() - 0.5, rnd.f() - 0.5) * 0.004;
+                let axis = Vec3::new(rnd.f() - 0.5, rnd.f() - 0.5, rnd.f() - 0.5).normalize();
+                xb.p += dp;
+                xb.q = (Quat::from_axis_angle(axis, 0.02 * (rnd.f() - 0.5)) * xb.q).normalize();
+                let (a, b) = place(&xb);
+                let apart = !gjk_of(&a, &b).overlap;
+                let mut full_cache = cache;
+                let kept = hull_hull_with(&a, &b, 0.02, &mut cache, true);
+                let full = hull_hull_with(&a, &b, 0.02, &mut full_cache, false);
+                assert_eq!(format!("{kept:?}"), format!("{full:?}"), "trial {trial}");
+                assert_eq!(cache, full_cache, "trial {trial}");
+                tests += 1;
+                let by_edges = matches!(cache.feature, SatFeature::Edges(..));
+                apart_edges += (apart && by_edges) as usize;
+                edge_contacts += (by_edges && kept.count > 0) as usize;
+            }
+        }
+        assert!(
+            apart_edges > tests / 5 && edge_contacts > tests / 10,
+            "{tests} tests, {apart_edges} apart and decided by edges, {edge_contacts} edge contacts"
         );
     }
 
