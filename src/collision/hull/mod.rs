@@ -24,6 +24,7 @@ pub mod mass;
 
 use crate::collision::shape::MassProperties;
 use crate::math::{Mat3, Vec3};
+use crate::simd::{Lanes, F4};
 
 /// Most vertices a hull keeps (indices fit a byte, as in Box2D's and Jolt's hulls).
 pub const MAX_HULL_VERTICES: usize = 255;
@@ -360,19 +361,23 @@ impl ConvexHull {
     /// lower index: the same vertex as one vertex at a time in index order, with the same
     /// products (`x·dx + y·dy + z·dz`, no FMA). The last block's padding lanes copy the
     /// last vertex, so they tie with it and lose to its lower index.
+    ///
+    /// The lanes are `F4` registers, the indices too (as floats, exact below 2²⁴): the same
+    /// products and comparisons, one select per block for the indices.
     #[inline]
     pub fn support_index(&self, d: Vec3) -> usize {
-        let mut m = [f32::MIN; 4];
-        let mut at = [0u32, 1, 2, 3];
-        for (i, b) in self.lanes.iter().enumerate() {
-            let base = 4 * i as u32;
-            for k in 0..4 {
-                let x = d.x * b.x[k] + d.y * b.y[k] + d.z * b.z[k];
-                let more = x > m[k];
-                m[k] = if more { x } else { m[k] };
-                at[k] = if more { base + k as u32 } else { at[k] };
-            }
+        let (dx, dy, dz) = (F4::splat(d.x), F4::splat(d.y), F4::splat(d.z));
+        let (mut m, mut at) = (F4::splat(f32::MIN), F4::load(&[0.0, 1.0, 2.0, 3.0]));
+        let mut base = at;
+        for b in &self.lanes {
+            let x = dx * F4::load(&b.x) + dy * F4::load(&b.y) + dz * F4::load(&b.z);
+            let more = x.gt(m);
+            // `x` where `x > m`, else `m` (also for NaN): the select by `more`.
+            m = x.max(m);
+            at = F4::select(more, base, at);
+            base = base + F4::splat(4.0);
         }
+        let (m, at) = (m.to_floats(), at.to_floats().map(|i| i as u32));
         let pick = |(ma, ia): (f32, u32), (mb, ib): (f32, u32)| {
             if mb > ma || (mb == ma && ib < ia) {
                 (mb, ib)
