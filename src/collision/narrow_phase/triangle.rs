@@ -508,7 +508,9 @@ pub fn polytope_triangle<P: Polytope>(
     while j0 < pairs {
         let live = (pairs - j0).min(4);
         // Lane k: pair j0 + k (padding lanes repeat the last pair and are masked out).
-        let pair = |k: usize| ((j0 + k.min(live - 1)) / 3, (j0 + k.min(live - 1)) % 3);
+        let pairs4: [(usize, usize); 4] =
+            [0, 1, 2, 3].map(|k| ((j0 + k.min(live - 1)) / 3, (j0 + k.min(live - 1)) % 3));
+        let pair = |k: usize| pairs4[k];
         let d: [Vec3; 4] = [0, 1, 2, 3].map(|k| p.edge_direction(pair(k).0));
         let (dx, dy, dz) = (
             F4::from_fn(|k| d[k].x),
