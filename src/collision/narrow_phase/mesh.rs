@@ -345,8 +345,12 @@ pub fn collide_triangles(
             // Mesh frame (unscaled) to target frame.
             let to_target = target.rot_t * place.r * Mat3::from_diagonal(place.scale);
             let offset = target.rot_t * (place.p - target.origin);
+            // Element by element rather than `array::map`, whose closure the compiler may
+            // leave out of line (a call per vertex); the same arithmetic.
+            let placed =
+                |[a, b, c]: [Vec3; 3]| [to_target * a + offset, to_target * b + offset, to_target * c + offset];
             m.query(&local_box(&query, &place), |t| {
-                let v = m.triangle(t).map(|x| to_target * x + offset);
+                let v = placed(m.triangle(t));
                 let n = (v[1] - v[0]).cross(v[2] - v[0]).normalize();
                 if !n.is_finite() {
                     return true;
@@ -374,11 +378,13 @@ pub fn collide_triangles(
             let to_target = target.rot_t * place.r;
             let offset = target.rot_t * (place.p - target.origin);
             let columns = hf.columns() - 1;
+            let placed =
+                |[a, b, c]: [Vec3; 3]| [to_target * a + offset, to_target * b + offset, to_target * c + offset];
             hf.query(&local_box(&query, &place), |row, column| {
                 for k in 0..2 {
                     let (v, n, flags) = hf.triangle(row, column, k, place.scale);
                     let tri = Triangle {
-                        v: v.map(|x| to_target * x + offset),
+                        v: placed(v),
                         n: to_target * n,
                         flags,
                         index: 2 * (row * columns + column) + k,
