@@ -74,6 +74,8 @@ pub fn checksum64(bytes: &[u8]) -> u64 {
     step(h, bytes.len() as u64)
 }
 
+#[cfg(test)]
+pub(crate) use columns::unpack;
 pub use columns::{Reader, Writer};
 
 impl Writer {

@@ -848,6 +848,20 @@ const SNAP_PARENT: u8 = 2;
 /// step's narrow phase, so the mark decides the tree's future shape).
 const SNAP_ENLARGED: u8 = 4;
 
+/// The columns of the tree's nodes after `flags` and `height` that some nodes have and others
+/// do not, by kind.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum SnapColumns {
+    /// `child1` and `child2`, of the internal nodes.
+    Children,
+    /// `user_data`, of the leaves.
+    UserData,
+    /// `parent`, of the nodes whose parent is stored.
+    Parent,
+    /// `aabb` (`min`, `max`), of the nodes whose box is stored.
+    Box,
+}
+
 impl DynamicTree {
     /// The parent each node would have from the child links alone: the internal node that
     /// lists it, `NULL_NODE` for the root, free nodes and nodes no one lists.
@@ -865,11 +879,31 @@ impl DynamicTree {
         p
     }
 
-    /// Writes the tree node for node (its shape decides the order pairs are found in). A
-    /// box or parent equal bit for bit to its prediction is not stored, only a flag: a
-    /// leaf's box is predicted by `leaf_box(user_data)` (the shape's fat box), an internal
-    /// node's as the union of its children's, a free node's as empty; a parent from the
-    /// child links (`predicted_parents`).
+    /// The optional columns some node has, in the order node-by-node writing makes them (the
+    /// order of the first node having each, and within a node children or user data, then
+    /// parent, then box), so that writing and reading them column by column keeps the
+    /// payload's column list as it was. From the nodes' heights and `flags` alone, which
+    /// the reader has when it needs this.
+    fn snapshot_columns(nodes: &[Node], flags: &[u8]) -> impl Iterator<Item = SnapColumns> {
+        let first = |at: Option<usize>, within: u8, c: SnapColumns| at.map(|i| (i, within, c));
+        let mut order = [
+            first(nodes.iter().position(|n| n.height > 0), 0, SnapColumns::Children),
+            first(nodes.iter().position(|n| n.height == 0), 0, SnapColumns::UserData),
+            first(flags.iter().position(|&f| f & SNAP_PARENT != 0), 1, SnapColumns::Parent),
+            first(flags.iter().position(|&f| f & SNAP_BOX != 0), 2, SnapColumns::Box),
+        ];
+        order.sort_unstable_by_key(|c| c.map(|(i, within, _)| (i, within)).unwrap_or((usize::MAX, 0)));
+        order.into_iter().flatten().map(|(_, _, c)| c)
+    }
+
+    /// Writes the tree node for node (its shape decides the order pairs are found in), each
+    /// field of every node in one pass over the nodes (the bytes node-by-node writing
+    /// would make: every column holds the same values in node order, and the columns are
+    /// made in the same order, `snapshot_columns`). A box or parent equal bit for bit to its
+    /// prediction is not stored, only a flag: a leaf's box is predicted by
+    /// `leaf_box(user_data)` (the shape's fat box), an internal node's as the union of its
+    /// children's, a free node's as empty; a parent from the child links
+    /// (`predicted_parents`).
     pub(crate) fn put_snapshot(&self, w: &mut crate::snapshot::Writer, leaf_box: impl Fn(u32) -> Option<Aabb>) {
         use crate::snapshot::Snap;
         let DynamicTree {
@@ -880,43 +914,56 @@ impl DynamicTree {
             proxy_count,
             scratch: _,
         } = self;
-        let parents = Self::predicted_parents(nodes);
         w.put_len(nodes.len());
-        for (i, n) in nodes.iter().enumerate() {
-            let Node {
-                aabb,
-                parent,
-                child1,
-                child2,
-                user_data,
-                height,
-                enlarged,
-            } = n;
-            let predicted = match *height {
-                h if h < 0 => Some(Aabb::EMPTY),
-                0 => leaf_box(*user_data),
-                _ => nodes
-                    .get(*child1 as usize)
-                    .zip(nodes.get(*child2 as usize))
-                    .map(|(a, b)| a.aabb.union(&b.aabb)),
+        if !nodes.is_empty() {
+            let parents = Self::predicted_parents(nodes);
+            let flags: Vec<u8> = nodes
+                .iter()
+                .zip(&parents)
+                .map(|(n, &p)| {
+                    let predicted = match n.height {
+                        h if h < 0 => Some(Aabb::EMPTY),
+                        0 => leaf_box(n.user_data),
+                        _ => nodes
+                            .get(n.child1 as usize)
+                            .zip(nodes.get(n.child2 as usize))
+                            .map(|(a, b)| a.aabb.union(&b.aabb)),
+                    };
+                    let store_box = !predicted.is_some_and(|b| same_box(&b, &n.aabb));
+                    (store_box as u8 * SNAP_BOX)
+                        | ((p != n.parent) as u8 * SNAP_PARENT)
+                        | (n.enlarged as u8 * SNAP_ENLARGED)
+                })
+                .collect();
+            w.within("flags", |w| w.values(flags.iter().map(|&f| [f])));
+            w.within("height", |w| w.values(nodes.iter().map(|n| n.height.to_le_bytes())));
+            let with = |bit: u8| {
+                nodes
+                    .iter()
+                    .zip(&flags)
+                    .filter(move |(_, &f)| f & bit != 0)
+                    .map(|(n, _)| n)
             };
-            let store_box = !predicted.is_some_and(|p| same_box(&p, aabb));
-            let store_parent = parents[i] != *parent;
-            let flags =
-                (store_box as u8 * SNAP_BOX) | (store_parent as u8 * SNAP_PARENT) | (*enlarged as u8 * SNAP_ENLARGED);
-            w.within("flags", |w| flags.put(w));
-            w.within("height", |w| height.put(w));
-            if *height > 0 {
-                w.within("child1", |w| child1.put(w));
-                w.within("child2", |w| child2.put(w));
-            } else if *height == 0 {
-                w.within("user_data", |w| user_data.put(w));
-            }
-            if store_parent {
-                w.within("parent", |w| parent.put(w));
-            }
-            if store_box {
-                w.within("aabb", |w| aabb.put(w));
+            for c in Self::snapshot_columns(nodes, &flags) {
+                match c {
+                    SnapColumns::Children => {
+                        let internal = || nodes.iter().filter(|n| n.height > 0);
+                        w.within("child1", |w| w.values(internal().map(|n| n.child1.to_le_bytes())));
+                        w.within("child2", |w| w.values(internal().map(|n| n.child2.to_le_bytes())));
+                    }
+                    SnapColumns::UserData => w.within("user_data", |w| {
+                        w.values(
+                            nodes
+                                .iter()
+                                .filter(|n| n.height == 0)
+                                .map(|n| n.user_data.to_le_bytes()),
+                        )
+                    }),
+                    SnapColumns::Parent => w.within("parent", |w| {
+                        w.values(with(SNAP_PARENT).map(|n| n.parent.to_le_bytes()))
+                    }),
+                    SnapColumns::Box => w.within("aabb", |w| Aabb::put_all(with(SNAP_BOX).map(|n| &n.aabb), w)),
+                }
             }
         }
         w.within("root", |w| root.put(w));
@@ -925,72 +972,132 @@ impl DynamicTree {
         w.within("proxy_count", |w| proxy_count.put(w));
     }
 
-    /// Reads what `put_snapshot` wrote, rebuilding the boxes and parents it predicted (in
-    /// order of height, so children's boxes come first). A box that cannot be predicted (a
-    /// child out of range or not below its parent, a leaf `leaf_box` knows nothing of) is an
-    /// error; the structure is checked afterwards (`check`).
-    pub(crate) fn get_snapshot(
-        r: &mut crate::snapshot::Reader,
+    /// Reads what `put_snapshot` wrote, column by column, rebuilding the boxes and parents
+    /// it predicted (in order of height, so children's boxes come first). A flags byte with
+    /// unknown bits or an enlarged mark on a leaf or free node, a height below -1 or not
+    /// below the node count (which no valid tree has), a column shorter than its nodes need,
+    /// or a box that cannot be predicted (a child out of range or not below its parent, a
+    /// leaf `leaf_box` knows nothing of) is an error; the structure is checked afterwards
+    /// (`check`).
+    pub(crate) fn get_snapshot<'a>(
+        r: &mut crate::snapshot::Reader<'a>,
         leaf_box: impl Fn(u32) -> Option<Aabb>,
     ) -> crate::snapshot::ReadResult<DynamicTree> {
         use crate::snapshot::{bad, Snap};
         let n = r.count()?;
-        let mut nodes = Vec::with_capacity(n);
-        let mut given = Vec::with_capacity(n);
-        for _ in 0..n {
-            let flags = r.within("flags", u8::get)?;
-            if flags & !(SNAP_BOX | SNAP_PARENT | SNAP_ENLARGED) != 0 {
-                return bad(format!("snapshot corrupted: tree node flags {flags}"));
+        let mut nodes = Vec::new();
+        if n > 0 {
+            let flags = r.within("flags", |r| r.take_values(n, 1))?;
+            if let Some(f) = flags
+                .iter()
+                .find(|&&f| f & !(SNAP_BOX | SNAP_PARENT | SNAP_ENLARGED) != 0)
+            {
+                return bad(format!("snapshot corrupted: tree node flags {f}"));
             }
-            let mut node = Node::FREE;
-            node.height = r.within("height", i32::get)?;
-            node.enlarged = flags & SNAP_ENLARGED != 0;
-            if node.enlarged && node.height <= 0 {
-                return bad(format!(
-                    "snapshot corrupted: tree node flags {flags} on a leaf or free node"
-                ));
+            let heights = r.within("height", |r| r.take_values(n, 4))?;
+            nodes.reserve_exact(n);
+            for (&f, h) in flags.iter().zip(heights.chunks_exact(4)) {
+                let height = i32::from_le_bytes(h.try_into().expect("4 bytes"));
+                let enlarged = f & SNAP_ENLARGED != 0;
+                if enlarged && height <= 0 {
+                    return bad(format!(
+                        "snapshot corrupted: tree node flags {f} on a leaf or free node"
+                    ));
+                }
+                if height < -1 || height as i64 >= n as i64 {
+                    return bad(format!("snapshot corrupted: tree node height {height} of {n} nodes"));
+                }
+                nodes.push(Node {
+                    height,
+                    enlarged,
+                    ..Node::FREE
+                });
             }
-            if node.height > 0 {
-                node.child1 = r.within("child1", u32::get)?;
-                node.child2 = r.within("child2", u32::get)?;
-            } else if node.height == 0 {
-                node.user_data = r.within("user_data", u32::get)?;
-            }
-            if flags & SNAP_PARENT != 0 {
-                node.parent = r.within("parent", u32::get)?;
-            }
-            if flags & SNAP_BOX != 0 {
-                node.aabb = r.within("aabb", Aabb::get)?;
-            }
-            given.push(flags);
-            nodes.push(node);
-        }
-        let parents = Self::predicted_parents(&nodes);
-        let mut order: Vec<u32> = (0..n as u32).collect();
-        order.sort_by_key(|&i| nodes[i as usize].height);
-        for i in order {
-            let (flags, node) = (given[i as usize], nodes[i as usize]);
-            if flags & SNAP_PARENT == 0 {
-                nodes[i as usize].parent = parents[i as usize];
-            }
-            if flags & SNAP_BOX != 0 {
-                continue;
-            }
-            let child = |c: u32| {
-                nodes
-                    .get(c as usize)
-                    .filter(|k| k.height >= 0 && k.height < node.height)
+            let u32s = |b: &'a [u8]| {
+                b.chunks_exact(4)
+                    .map(|c| u32::from_le_bytes(c.try_into().expect("4 bytes")))
             };
-            let predicted = match node.height {
-                h if h < 0 => Some(Aabb::EMPTY),
-                0 => leaf_box(node.user_data),
-                _ => child(node.child1)
-                    .zip(child(node.child2))
-                    .map(|(a, b)| a.aabb.union(&b.aabb)),
-            };
-            match predicted {
-                Some(b) => nodes[i as usize].aabb = b,
-                None => return bad(format!("snapshot corrupted: tree node {i}'s box cannot be rebuilt")),
+            let with = |bit: u8| flags.iter().filter(|&&f| f & bit != 0).count();
+            for c in Self::snapshot_columns(&nodes, flags) {
+                match c {
+                    SnapColumns::Children => {
+                        let k = nodes.iter().filter(|n| n.height > 0).count();
+                        let c1 = r.within("child1", |r| r.take_values(k, 4))?;
+                        let c2 = r.within("child2", |r| r.take_values(k, 4))?;
+                        let internal = nodes.iter_mut().filter(|n| n.height > 0);
+                        for ((node, a), b) in internal.zip(u32s(c1)).zip(u32s(c2)) {
+                            (node.child1, node.child2) = (a, b);
+                        }
+                    }
+                    SnapColumns::UserData => {
+                        let k = nodes.iter().filter(|n| n.height == 0).count();
+                        let u = r.within("user_data", |r| r.take_values(k, 4))?;
+                        for (node, u) in nodes.iter_mut().filter(|n| n.height == 0).zip(u32s(u)) {
+                            node.user_data = u;
+                        }
+                    }
+                    SnapColumns::Parent => {
+                        let p = r.within("parent", |r| r.take_values(with(SNAP_PARENT), 4))?;
+                        let given = nodes.iter_mut().zip(flags).filter(|(_, &f)| f & SNAP_PARENT != 0);
+                        for ((node, _), p) in given.zip(u32s(p)) {
+                            node.parent = p;
+                        }
+                    }
+                    SnapColumns::Box => {
+                        let boxes = r.within("aabb", |r| Aabb::get_all(with(SNAP_BOX), r))?;
+                        let given = nodes.iter_mut().zip(flags).filter(|(_, &f)| f & SNAP_BOX != 0);
+                        for ((node, _), b) in given.zip(boxes) {
+                            node.aabb = b;
+                        }
+                    }
+                }
+            }
+            let parents = Self::predicted_parents(&nodes);
+            for ((node, &f), p) in nodes.iter_mut().zip(flags).zip(parents) {
+                if f & SNAP_PARENT == 0 {
+                    node.parent = p;
+                }
+            }
+            // The boxes to rebuild, leaves' now and internal nodes' in order of height
+            // (counting sort; heights are below `n`), so that children's come first. Free
+            // nodes' predicted box is the empty one they have.
+            let mut at = vec![0u32; n + 1];
+            for (i, (node, &f)) in nodes.iter_mut().zip(flags).enumerate() {
+                if f & SNAP_BOX != 0 {
+                    continue;
+                }
+                if node.height == 0 {
+                    match leaf_box(node.user_data) {
+                        Some(b) => node.aabb = b,
+                        None => return bad(format!("snapshot corrupted: tree node {i}'s box cannot be rebuilt")),
+                    }
+                } else if node.height > 0 {
+                    at[node.height as usize] += 1;
+                }
+            }
+            let mut sum = 0;
+            for a in &mut at {
+                (*a, sum) = (sum, sum + *a);
+            }
+            let mut order = vec![0u32; sum as usize];
+            for (i, (node, &f)) in nodes.iter().zip(flags).enumerate() {
+                if f & SNAP_BOX == 0 && node.height > 0 {
+                    let slot = &mut at[node.height as usize];
+                    order[*slot as usize] = i as u32;
+                    *slot += 1;
+                }
+            }
+            for i in order {
+                let node = nodes[i as usize];
+                let child = |c: u32| {
+                    nodes
+                        .get(c as usize)
+                        .filter(|k| k.height >= 0 && k.height < node.height)
+                };
+                match child(node.child1).zip(child(node.child2)) {
+                    Some((a, b)) => nodes[i as usize].aabb = a.aabb.union(&b.aabb),
+                    None => return bad(format!("snapshot corrupted: tree node {i}'s box cannot be rebuilt")),
+                }
             }
         }
         Ok(DynamicTree {
@@ -1001,5 +1108,226 @@ impl DynamicTree {
             proxy_count: r.within("proxy_count", u32::get)?,
             scratch: Default::default(),
         })
+    }
+}
+
+#[cfg(test)]
+mod snapshot_tests {
+    use super::*;
+    use crate::math::test_rnd::Rnd;
+    use crate::snapshot::{unpack, ReadResult, Reader, Snap, Writer};
+
+    /// The tree written node by node, every field of a node before the next node's (how
+    /// `put_snapshot` wrote it before it wrote column by column): the reference its bytes
+    /// are compared with.
+    fn put_by_node(t: &DynamicTree, w: &mut Writer, leaf_box: impl Fn(u32) -> Option<Aabb>) {
+        let parents = DynamicTree::predicted_parents(&t.nodes);
+        w.put_len(t.nodes.len());
+        for (i, n) in t.nodes.iter().enumerate() {
+            let predicted = match n.height {
+                h if h < 0 => Some(Aabb::EMPTY),
+                0 => leaf_box(n.user_data),
+                _ => t
+                    .nodes
+                    .get(n.child1 as usize)
+                    .zip(t.nodes.get(n.child2 as usize))
+                    .map(|(a, b)| a.aabb.union(&b.aabb)),
+            };
+            let store_box = !predicted.is_some_and(|p| same_box(&p, &n.aabb));
+            let store_parent = parents[i] != n.parent;
+            let flags =
+                (store_box as u8 * SNAP_BOX) | (store_parent as u8 * SNAP_PARENT) | (n.enlarged as u8 * SNAP_ENLARGED);
+            w.within("flags", |w| flags.put(w));
+            w.within("height", |w| n.height.put(w));
+            if n.height > 0 {
+                w.within("child1", |w| n.child1.put(w));
+                w.within("child2", |w| n.child2.put(w));
+            } else if n.height == 0 {
+                w.within("user_data", |w| n.user_data.put(w));
+            }
+            if store_parent {
+                w.within("parent", |w| n.parent.put(w));
+            }
+            if store_box {
+                w.within("aabb", |w| n.aabb.put(w));
+            }
+        }
+        w.within("root", |w| t.root.put(w));
+        w.within("free_list", |w| t.free_list.put(w));
+        w.within("node_count", |w| t.node_count.put(w));
+        w.within("proxy_count", |w| t.proxy_count.put(w));
+    }
+
+    fn payload(f: impl FnOnce(&mut Writer)) -> Vec<u8> {
+        let mut w = Writer::new();
+        w.within("tree", f);
+        let mut out = Vec::new();
+        w.finish(&mut out);
+        out
+    }
+
+    /// The tree read from the columns `plain[spans]`, every byte of them read.
+    fn read(plain: &[u8], spans: &[(usize, usize)], leaf_box: impl Fn(u32) -> Option<Aabb>) -> ReadResult<DynamicTree> {
+        let mut r = Reader::new(plain, spans, 0);
+        let t = r.within("tree", |r| DynamicTree::get_snapshot(r, leaf_box))?;
+        r.finish()?;
+        Ok(t)
+    }
+
+    /// Moves the nodes to randomly shuffled indices (links renamed to match): the same
+    /// tree with its leaves, internal and free nodes in any order, so that the first node
+    /// of each kind (which decides the column order) falls anywhere.
+    fn relabel(t: &mut DynamicTree, rng: &mut Rnd) {
+        let n = t.nodes.len();
+        let mut to: Vec<u32> = (0..n as u32).collect();
+        for i in (1..n).rev() {
+            to.swap(i, (rng.next_u64() % (i as u64 + 1)) as usize);
+        }
+        let map = |i: u32| if i == NULL_NODE { i } else { to[i as usize] };
+        let mut nodes = vec![Node::FREE; n];
+        for (i, node) in t.nodes.iter().enumerate() {
+            let mut m = *node;
+            m.parent = map(m.parent);
+            if m.height > 0 {
+                (m.child1, m.child2) = (map(m.child1), map(m.child2));
+            }
+            nodes[to[i] as usize] = m;
+        }
+        t.nodes = nodes;
+        t.root = map(t.root);
+        t.free_list = map(t.free_list);
+    }
+
+    fn assert_same(a: &DynamicTree, b: &DynamicTree, what: &str) {
+        assert_eq!(a.nodes.len(), b.nodes.len(), "{what}");
+        for (i, (x, y)) in a.nodes.iter().zip(&b.nodes).enumerate() {
+            assert!(same_box(&x.aabb, &y.aabb), "{what}: node {i} box");
+            let fields = |n: &Node| (n.parent, n.child1, n.child2, n.user_data, n.height, n.enlarged);
+            assert_eq!(fields(x), fields(y), "{what}: node {i}");
+        }
+        let top = |t: &DynamicTree| (t.root, t.free_list, t.node_count, t.proxy_count);
+        assert_eq!(top(a), top(b), "{what}");
+    }
+
+    /// Seeded random trees (inserts, removals, moves and in-place enlargements, so with
+    /// free nodes, enlarged marks, boxes that are not their children's union and leaves
+    /// whose shape box differs or is unknown): column-by-column writing gives the bytes
+    /// node-by-node writing gave, the reader gives back the same tree, and a column cut
+    /// short or a changed byte is refused or read without a panic.
+    #[test]
+    fn snapshot_columns_match_node_by_node_and_round_trip() {
+        let mut rng = Rnd(0x7e1e_5eed_0bad_cafe);
+        let mut seen = [false; 3];
+        let mut first_kinds = [false; 2];
+        for round in 0..300 {
+            let mut t = DynamicTree::new();
+            // What `leaf_box` answers per user data: the box given, another one, or nothing.
+            let mut known: Vec<Option<Aabb>> = Vec::new();
+            let mut live: Vec<u32> = Vec::new();
+            let random_box = |rng: &mut Rnd| {
+                let c = rng.point(Vec3::splat(20.0));
+                let h = rng.point(Vec3::splat(2.0)).abs() + Vec3::splat(0.05);
+                Aabb::new(c - h, c + h)
+            };
+            let ops = rng.next_u64() % 80;
+            for _ in 0..ops {
+                let roll = rng.next_u64() % 20;
+                if live.is_empty() || roll < 10 {
+                    let b = random_box(&mut rng);
+                    let u = known.len() as u32;
+                    known.push(match rng.next_u64() % 8 {
+                        0 => None,
+                        1 => Some(b.expanded(0.25)),
+                        _ => Some(b),
+                    });
+                    live.push(t.create_proxy(b, u));
+                } else {
+                    let k = (rng.next_u64() % live.len() as u64) as usize;
+                    let p = live[k];
+                    match roll {
+                        10..=12 => {
+                            t.destroy_proxy(p);
+                            live.swap_remove(k);
+                        }
+                        13..=16 => t.move_proxy(p, random_box(&mut rng)),
+                        17 | 18 => {
+                            let grown = t.fat_aabb(p).union(&random_box(&mut rng));
+                            t.enlarge_proxy(p, grown);
+                        }
+                        _ => {
+                            // Shrunk in place: the ancestors keep their larger boxes, which
+                            // are then not their children's union (stored, not rebuilt).
+                            let b = t.fat_aabb(p);
+                            let q = (b.max - b.min) * 0.25;
+                            t.enlarge_proxy(p, Aabb::new(b.min + q, b.max - q));
+                        }
+                    }
+                }
+            }
+            if round % 2 == 1 {
+                relabel(&mut t, &mut rng);
+            }
+            if round % 4 == 3 {
+                // Free nodes with boxes (which no tree operation leaves, but the writer
+                // stores as they are): a node whose parent and box are both stored.
+                for node in t.nodes.iter_mut().filter(|n| n.height < 0) {
+                    node.aabb = random_box(&mut rng);
+                }
+            }
+            t.validate();
+            let leaf_box = |u: u32| known.get(u as usize).copied().flatten();
+            let bytes = payload(|w| t.put_snapshot(w, leaf_box));
+            assert_eq!(bytes, payload(|w| put_by_node(&t, w, leaf_box)), "round {round}: bytes");
+            let mut plain = Vec::new();
+            let spans = unpack(&bytes, &mut plain).expect("unpacks");
+            let back = read(&plain, &spans, leaf_box).expect("reads back");
+            assert_same(&t, &back, &format!("round {round}"));
+            assert!(back.check().is_ok(), "round {round}");
+            // What the rounds covered: stored boxes, stored parents, enlarged marks, and
+            // trees whose first node is a leaf or an internal node (other column orders).
+            let parents = DynamicTree::predicted_parents(&t.nodes);
+            for (n, &p) in t.nodes.iter().zip(&parents) {
+                seen[0] |= n.height > 0
+                    && !same_box(
+                        &n.aabb,
+                        &t.nodes[n.child1 as usize].aabb.union(&t.nodes[n.child2 as usize].aabb),
+                    );
+                seen[1] |= n.parent != p;
+                seen[2] |= n.enlarged;
+            }
+            if let Some(n) = t.nodes.first() {
+                first_kinds[(n.height > 0) as usize] = true;
+            }
+            // A column one byte short is refused; a byte changed anywhere is refused or
+            // read (and then checked) without a panic.
+            for (k, &(at, end)) in spans.iter().enumerate() {
+                if end > at {
+                    let mut cut = plain.clone();
+                    cut.remove(end - 1);
+                    let mut short = spans.clone();
+                    short[k].1 -= 1;
+                    for s in &mut short[k + 1..] {
+                        (s.0, s.1) = (s.0 - 1, s.1 - 1);
+                    }
+                    assert!(
+                        read(&cut, &short, leaf_box).is_err(),
+                        "round {round}: column {k} cut short"
+                    );
+                }
+            }
+            for _ in 0..8 {
+                if plain.is_empty() {
+                    break;
+                }
+                let mut bent = plain.clone();
+                let at = (rng.next_u64() % bent.len() as u64) as usize;
+                bent[at] ^= 1 << (rng.next_u64() % 8);
+                if let Ok(t) = read(&bent, &spans, leaf_box) {
+                    let _ = t.check();
+                }
+            }
+        }
+        assert_eq!(seen, [true; 3], "stored boxes, stored parents, enlarged marks");
+        assert_eq!(first_kinds, [true; 2], "first node a leaf, first node internal");
     }
 }
