@@ -352,12 +352,18 @@ impl From<&Aabb> for BinBox {
 /// them along all three axes.
 fn partition(order: &mut [u32], boxes: &[BinBox], centers: &[Vec3A], weights: &[f32]) -> usize {
     let n = order.len();
-    let (total, cmin, scale, valid) = bin_frame(order, centers, weights);
-    let best = if n <= SMALL_RANGE {
-        best_split_small(order, boxes, centers, weights, total, cmin, scale, valid)
-    } else {
-        best_split_binned(order, boxes, centers, weights, total, cmin, scale, valid)
+    let frame = bin_frame(order, centers, weights);
+    let units = Units {
+        boxes,
+        centers,
+        weights,
     };
+    let best = if n <= SMALL_RANGE {
+        best_split_small(units, order, &frame)
+    } else {
+        best_split_binned(units, order, &frame)
+    };
+    let BinFrame { cmin, scale, .. } = frame;
     let Some((axis, split)) = best else {
         // All centres coincide: split by count.
         return n / 2;
@@ -377,7 +383,7 @@ fn partition(order: &mut [u32], boxes: &[BinBox], centers: &[Vec3A], weights: &[
 /// The binning of `order`'s units: their total weight, the least corner of their centres,
 /// the scale from a centre's offset to its bin along each axis, and which axes the centres
 /// spread along.
-fn bin_frame(order: &[u32], centers: &[Vec3A], weights: &[f32]) -> (f32, Vec3A, Vec3A, [bool; 3]) {
+fn bin_frame(order: &[u32], centers: &[Vec3A], weights: &[f32]) -> BinFrame {
     let mut total = 0.0f32;
     let mut cmin = Vec3A::splat(f32::MAX);
     let mut cmax = Vec3A::splat(-f32::MAX);
@@ -391,7 +397,29 @@ fn bin_frame(order: &[u32], centers: &[Vec3A], weights: &[f32]) -> (f32, Vec3A, 
     // scale of 0 puts every unit in bin 0.
     let valid = [0, 1, 2].map(|a| extent[a] > 0.0);
     let scale = Vec3A::from_array([0, 1, 2].map(|a| if valid[a] { BIN_COUNT as f32 / extent[a] } else { 0.0 }));
-    (total, cmin, scale, valid)
+    BinFrame {
+        total,
+        cmin,
+        scale,
+        valid,
+    }
+}
+
+/// What `bin_frame` finds.
+#[derive(Clone, Copy, Debug)]
+struct BinFrame {
+    total: f32,
+    cmin: Vec3A,
+    scale: Vec3A,
+    valid: [bool; 3],
+}
+
+/// The gathered per-unit data `partition` reads.
+#[derive(Clone, Copy)]
+struct Units<'a> {
+    boxes: &'a [BinBox],
+    centers: &'a [Vec3A],
+    weights: &'a [f32],
 }
 
 /// Ranges of at most this many units are split by `best_split_small`.
@@ -399,17 +427,20 @@ const SMALL_RANGE: usize = 12;
 
 /// The (axis, split bin) of least SAH cost over the bins of `order`'s centres, or `None`
 /// when no axis separates them. Bins every unit along all three axes in one pass.
-#[allow(clippy::too_many_arguments)]
-fn best_split_binned(
-    order: &[u32],
-    boxes: &[BinBox],
-    centers: &[Vec3A],
-    weights: &[f32],
-    total: f32,
-    cmin: Vec3A,
-    scale: Vec3A,
-    valid: [bool; 3],
-) -> Option<(usize, usize)> {
+fn best_split_binned(units: Units, order: &[u32], frame: &BinFrame) -> Option<(usize, usize)> {
+    let (
+        Units {
+            boxes,
+            centers,
+            weights,
+        },
+        BinFrame {
+            total,
+            cmin,
+            scale,
+            valid,
+        },
+    ) = (units, *frame);
     let n = order.len();
     let mut boxes_b = [[BinBox::EMPTY; BIN_COUNT]; 3];
     let mut counts = [[0u32; BIN_COUNT]; 3];
@@ -461,17 +492,20 @@ fn best_split_binned(
 /// weights built in the binned sweep's order of operations: a bin's box and weight from its
 /// units in `order`'s order, the left side from the lowest bin up, the right side from the
 /// highest down.
-#[allow(clippy::too_many_arguments)]
-fn best_split_small(
-    order: &[u32],
-    boxes: &[BinBox],
-    centers: &[Vec3A],
-    weights: &[f32],
-    total: f32,
-    cmin: Vec3A,
-    scale: Vec3A,
-    valid: [bool; 3],
-) -> Option<(usize, usize)> {
+fn best_split_small(units: Units, order: &[u32], frame: &BinFrame) -> Option<(usize, usize)> {
+    let (
+        Units {
+            boxes,
+            centers,
+            weights,
+        },
+        BinFrame {
+            total,
+            cmin,
+            scale,
+            valid,
+        },
+    ) = (units, *frame);
     let n = order.len();
     debug_assert!(n <= SMALL_RANGE);
     let mut bins = [[0usize; 3]; SMALL_RANGE];
@@ -622,9 +656,14 @@ mod tests {
                 weights.push((1u32 << (rnd.next_u64() % 25)) as f32);
             }
             let order: Vec<u32> = (0..n as u32).rev().collect();
-            let (total, cmin, scale, valid) = bin_frame(&order, &centers, &weights);
-            let small = best_split_small(&order, &boxes, &centers, &weights, total, cmin, scale, valid);
-            let binned = best_split_binned(&order, &boxes, &centers, &weights, total, cmin, scale, valid);
+            let frame = bin_frame(&order, &centers, &weights);
+            let units = Units {
+                boxes: &boxes,
+                centers: &centers,
+                weights: &weights,
+            };
+            let small = best_split_small(units, &order, &frame);
+            let binned = best_split_binned(units, &order, &frame);
             assert_eq!(small, binned, "case {case}: {n} units");
             chosen += small.is_some() as usize;
         }

@@ -836,6 +836,27 @@ mod tests {
         )
     }
 
+    /// A of the random pair tests: a box every fifth trial, else hull `ha`, at `xa`.
+    fn shape_a<'h>(ha: &'h crate::ConvexHull, half: Vec3, xa: &Transform, trial: usize) -> Poly<'h> {
+        if trial % 5 == 0 {
+            Poly::boxed(Vec3::ZERO, Quat::IDENTITY, half, xa)
+        } else {
+            Poly::hull(ha, &Transform::IDENTITY, 1.0, xa)
+        }
+    }
+
+    /// Moves `xb` (hull `hb`) along `-dir` until its GJK gap to `a` is `gap` (within
+    /// 0.1 mm) or the two overlap.
+    fn approach(a: &Poly, hb: &crate::ConvexHull, dir: Vec3, xb: &mut Transform, gap: f32) {
+        for _ in 0..40 {
+            let g = gjk_of(a, &Poly::hull(hb, &Transform::IDENTITY, 1.0, xb));
+            if g.overlap || (g.distance - gap).abs() < 1.0e-4 {
+                break;
+            }
+            xb.p -= dir * (g.distance - gap);
+        }
+    }
+
     /// `edge_lanes` holds `edge_gauss`'s arcs lane for lane, and its padding lanes (zero
     /// normals) fail the arc test against any arc, so the four-at-a-time loop visits the
     /// same pairs as one edge at a time.
@@ -941,23 +962,12 @@ mod tests {
             let hb = build(&cloud(&mut rnd), &HullSettings::default()).unwrap();
             let xa = Transform::new(Vec3::ZERO, rnd.quat());
             let half = Vec3::new(0.1 + 0.4 * rnd.f(), 0.1 + 0.4 * rnd.f(), 0.1 + 0.4 * rnd.f());
-            let a = if trial % 5 == 0 {
-                Poly::boxed(Vec3::ZERO, Quat::IDENTITY, half, &xa)
-            } else {
-                Poly::hull(&ha, &Transform::IDENTITY, 1.0, &xa)
-            };
+            let a = shape_a(&ha, half, &xa, trial);
             // B moved in from far along a random direction until it touches, then pushed
             // in by up to 6 cm.
             let dir = Vec3::new(rnd.f() - 0.5, rnd.f() - 0.5, rnd.f() - 0.5).normalize();
             let mut xb = Transform::new(dir * 3.0, rnd.quat());
-            for _ in 0..40 {
-                let b = Poly::hull(&hb, &Transform::IDENTITY, 1.0, &xb);
-                let g = gjk_of(&a, &b);
-                if g.overlap || g.distance < 1.0e-4 {
-                    break;
-                }
-                xb.p -= dir * g.distance;
-            }
+            approach(&a, &hb, dir, &mut xb, 0.0);
             xb.p -= dir * 0.06 * rnd.f();
             let b = Poly::hull(&hb, &Transform::IDENTITY, 1.0, &xb);
             let pruned = hull_hull_with(&a, &b, 0.02, &mut SatCache::default(), true, true);
@@ -999,23 +1009,14 @@ mod tests {
             let dir = Vec3::new(rnd.f() - 0.5, rnd.f() - 0.5, rnd.f() - 0.5).normalize();
             let mut xb = Transform::new(dir * 3.0, rnd.quat());
             let place = |xb: &Transform| {
-                let a = if trial % 5 == 0 {
-                    Poly::boxed(Vec3::ZERO, Quat::IDENTITY, half, &xa)
-                } else {
-                    Poly::hull(&ha, &Transform::IDENTITY, 1.0, &xa)
-                };
-                (a, Poly::hull(&hb, &Transform::IDENTITY, 1.0, xb))
+                (
+                    shape_a(&ha, half, &xa, trial),
+                    Poly::hull(&hb, &Transform::IDENTITY, 1.0, xb),
+                )
             };
             // B moved in from far along a random direction to a gap of 0 to 4 cm.
             let gap = 0.04 * rnd.f();
-            for _ in 0..40 {
-                let (a, b) = place(&xb);
-                let g = gjk_of(&a, &b);
-                if g.overlap || (g.distance - gap).abs() < 1.0e-4 {
-                    break;
-                }
-                xb.p -= dir * (g.distance - gap);
-            }
+            approach(&shape_a(&ha, half, &xa, trial), &hb, dir, &mut xb, gap);
             let mut cache = SatCache::default();
             for _ in 0..30 {
                 let dp = Vec3::new(rnd.f() - 0.5, rnd.f() - 0.5, rnd.f() - 0.5) * 0.004;
@@ -1059,23 +1060,12 @@ mod tests {
             let hb = build(&rnd.cloud(6, 20.0, 0.15, 0.3), &HullSettings::default()).unwrap();
             let xa = Transform::new(Vec3::ZERO, rnd.quat());
             let half = Vec3::new(0.1 + 0.4 * rnd.f(), 0.1 + 0.4 * rnd.f(), 0.1 + 0.4 * rnd.f());
-            let a = if trial % 5 == 0 {
-                Poly::boxed(Vec3::ZERO, Quat::IDENTITY, half, &xa)
-            } else {
-                Poly::hull(&ha, &Transform::IDENTITY, 1.0, &xa)
-            };
+            let a = shape_a(&ha, half, &xa, trial);
             // B moved in from far along a random direction until it touches, then moved
             // by -8 cm to +30 cm.
             let dir = Vec3::new(rnd.f() - 0.5, rnd.f() - 0.5, rnd.f() - 0.5).normalize();
             let mut xb = Transform::new(dir * 3.0, rnd.quat());
-            for _ in 0..40 {
-                let b = Poly::hull(&hb, &Transform::IDENTITY, 1.0, &xb);
-                let g = gjk_of(&a, &b);
-                if g.overlap || g.distance < 1.0e-4 {
-                    break;
-                }
-                xb.p -= dir * g.distance;
-            }
+            approach(&a, &hb, dir, &mut xb, 0.0);
             xb.p += dir * (0.38 * rnd.f() - 0.08);
             let b = Poly::hull(&hb, &Transform::IDENTITY, 1.0, &xb);
             let rel = Relative::new(&a, &b);
