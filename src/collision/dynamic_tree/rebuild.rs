@@ -25,8 +25,9 @@ use glam::Vec3A;
 const BIN_COUNT: usize = 16;
 
 /// Most units one job builds when the rebuild is shared among workers. Larger ranges are
-/// split on the calling thread first: about a third of a 4,000-unit build's partitioning
-/// then runs there, in exchange for some sixteen jobs to spread over the workers.
+/// split on the calling thread first: the top four levels of a 4,000-unit build (about a
+/// fifth of its instructions) then run there, in exchange for some sixteen jobs to spread
+/// over the workers.
 pub const JOB_UNITS: usize = 256;
 
 /// A job's work stack: (range start, range end, parent, is first child, pre-order slot). It
