@@ -200,25 +200,7 @@ impl Writer {
     /// Appends values of one width (`W` bytes each) to the current column.
     #[inline]
     pub fn values<const W: usize>(&mut self, values: impl Iterator<Item = [u8; W]>) {
-        let c = &mut self.columns[self.cur as usize];
-        let start = c.bytes.len();
-        // Internal iteration: the chains of maps, filters and flat maps that lead here fold
-        // far faster than they step. The values are gathered in a small array and appended
-        // `BATCH` at a time, so each costs a store rather than a check of the column's room.
-        let mut batch = [[0u8; W]; BATCH];
-        let mut k = 0;
-        values.for_each(|v| {
-            batch[k % BATCH] = v;
-            k += 1;
-            if k == BATCH {
-                c.bytes.extend_from_slice(batch.as_flattened());
-                k = 0;
-            }
-        });
-        c.bytes.extend_from_slice(batch[..k].as_flattened());
-        if c.bytes.len() > start && c.width != W as u8 {
-            c.width = if c.width == 0 { W as u8 } else { MIXED };
-        }
+        self.value_groups::<W, W>(values);
     }
 
     /// Appends groups of values of one width (`W` bytes each, `B / W` per group) to the
@@ -228,6 +210,9 @@ impl Writer {
     pub fn value_groups<const W: usize, const B: usize>(&mut self, groups: impl Iterator<Item = [u8; B]>) {
         let c = &mut self.columns[self.cur as usize];
         let start = c.bytes.len();
+        // Internal iteration: the chains of maps, filters and flat maps that lead here fold
+        // far faster than they step. The values are gathered in a small array and appended
+        // `BATCH` at a time, so each costs a store rather than a check of the column's room.
         let mut batch = [[0u8; B]; BATCH];
         let mut k = 0;
         groups.for_each(|v| {

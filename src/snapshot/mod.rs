@@ -90,6 +90,21 @@ impl Writer {
     pub fn put_tag(&mut self, t: u8) {
         self.within("#tag", |w| t.put(w));
     }
+
+    /// Writes the enum values `items` as one pass of their tags (the `#tag` column, made at
+    /// the first value, as `put_tag` one by one makes it), then each value's fields.
+    pub fn put_tagged_all<'s, T: 's, I>(&mut self, items: I, tag: impl Fn(&T) -> u8, fields: impl Fn(&T, &mut Writer))
+    where
+        I: Iterator<Item = &'s T> + Clone,
+    {
+        if items.clone().next().is_none() {
+            return;
+        }
+        self.within("#tag", |w| w.values(items.clone().map(|v| [tag(v)])));
+        for v in items {
+            fields(v, self);
+        }
+    }
 }
 
 impl Reader<'_> {
@@ -131,6 +146,25 @@ impl Reader<'_> {
             return bad(format!("snapshot corrupted: {what} variant {t} unknown"));
         }
         Ok(t)
+    }
+
+    /// Reads `count` enum values written by `Writer::put_tagged_all`: their tags in one
+    /// pass (each below `n`, else an error naming `what`), then each value's fields.
+    pub fn get_tagged_all<T>(
+        &mut self,
+        count: usize,
+        what: &str,
+        n: u8,
+        fields: impl Fn(u8, &mut Self) -> ReadResult<T>,
+    ) -> ReadResult<Vec<T>> {
+        if count == 0 {
+            return Ok(Vec::new());
+        }
+        let tags = self.within("#tag", |r| r.take_values(count, 1))?;
+        if let Some(t) = tags.iter().find(|&&t| t >= n) {
+            return bad(format!("snapshot corrupted: {what} variant {t} unknown"));
+        }
+        tags.iter().map(|&t| fields(t, self)).collect()
     }
 }
 

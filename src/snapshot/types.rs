@@ -748,23 +748,10 @@ impl Snap for Geometry {
         I: Iterator<Item = &'s Self> + Clone,
         Self: 's,
     {
-        if items.clone().next().is_none() {
-            return;
-        }
-        w.within("#tag", |w| w.values(items.clone().map(|g| [g.tag()])));
-        for g in items {
-            g.put_fields(w);
-        }
+        w.put_tagged_all(items, Self::tag, Self::put_fields);
     }
     fn get_all(n: usize, r: &mut Reader) -> ReadResult<Vec<Self>> {
-        if n == 0 {
-            return Ok(Vec::new());
-        }
-        let tags = r.within("#tag", |r| r.take_values(n, 1))?;
-        if let Some(t) = tags.iter().find(|&&t| t >= 7) {
-            return bad(format!("snapshot corrupted: geometry variant {t} unknown"));
-        }
-        tags.iter().map(|&t| Self::get_fields(t, r)).collect()
+        r.get_tagged_all(n, "geometry", 7, Self::get_fields)
     }
 }
 
@@ -785,23 +772,10 @@ impl Snap for SatFeature {
         I: Iterator<Item = &'s Self> + Clone,
         Self: 's,
     {
-        if items.clone().next().is_none() {
-            return;
-        }
-        w.within("#tag", |w| w.values(items.clone().map(|f| [sat_tag(f)])));
-        for f in items {
-            put_sat_fields(f, w);
-        }
+        w.put_tagged_all(items, sat_tag, put_sat_fields);
     }
     fn get_all(n: usize, r: &mut Reader) -> ReadResult<Vec<Self>> {
-        if n == 0 {
-            return Ok(Vec::new());
-        }
-        let tags = r.within("#tag", |r| r.take_values(n, 1))?;
-        if let Some(t) = tags.iter().find(|&&t| t >= 4) {
-            return bad(format!("snapshot corrupted: SAT feature variant {t} unknown"));
-        }
-        tags.iter().map(|&t| get_sat_fields(t, r)).collect()
+        r.get_tagged_all(n, "SAT feature", 4, get_sat_fields)
     }
 }
 

@@ -429,19 +429,17 @@ const SMALL_RANGE: usize = 12;
 /// The (axis, split bin) of least SAH cost over the bins of `order`'s centres, or `None`
 /// when no axis separates them. Bins every unit along all three axes in one pass.
 fn best_split_binned(units: Units, order: &[u32], frame: &BinFrame) -> Option<(usize, usize)> {
-    let (
-        Units {
-            boxes,
-            centers,
-            weights,
-        },
-        BinFrame {
-            total,
-            cmin,
-            scale,
-            valid,
-        },
-    ) = (units, *frame);
+    let Units {
+        boxes,
+        centers,
+        weights,
+    } = units;
+    let BinFrame {
+        total,
+        cmin,
+        scale,
+        valid,
+    } = *frame;
     let n = order.len();
     let mut boxes_b = [[BinBox::EMPTY; BIN_COUNT]; 3];
     let mut counts = [[0u32; BIN_COUNT]; 3];
@@ -494,19 +492,17 @@ fn best_split_binned(units: Units, order: &[u32], frame: &BinFrame) -> Option<(u
 /// units in `order`'s order, the left side from the lowest bin up, the right side from the
 /// highest down.
 fn best_split_small(units: Units, order: &[u32], frame: &BinFrame) -> Option<(usize, usize)> {
-    let (
-        Units {
-            boxes,
-            centers,
-            weights,
-        },
-        BinFrame {
-            total,
-            cmin,
-            scale,
-            valid,
-        },
-    ) = (units, *frame);
+    let Units {
+        boxes,
+        centers,
+        weights,
+    } = units;
+    let BinFrame {
+        total,
+        cmin,
+        scale,
+        valid,
+    } = *frame;
     let n = order.len();
     debug_assert!(n <= SMALL_RANGE);
     let mut bins = [[0usize; 3]; SMALL_RANGE];

@@ -248,19 +248,15 @@ fn hull_hull_with(
         // of its core), which leaves out the faces that cannot be best or runner-up
         // (`best_face_bounded`).
         let slack = HOLD_ROUNDING * (1.0 + a.reach() + b.reach() + rel.t.length());
-        let faces_a = match inner_point(b) {
-            Some(c) if prune_faces => {
-                let c = rel.r * c + rel.t;
-                let bound = |f: usize| {
-                    let pl = a.plane(f);
-                    pl.normal.dot(c) - pl.offset
-                };
-                best_face_bounded(a.hull.planes.len(), limit, slack, bound, |f| {
-                    face_a_separation(a, b, &rel, f)
-                })
-            }
-            _ => best_face(a.hull.planes.len(), limit, |f| face_a_separation(a, b, &rel, f)),
-        };
+        let faces_a = best_face_of(
+            a,
+            b,
+            |c| rel.r * c + rel.t,
+            prune_faces,
+            limit,
+            slack,
+            |f| face_a_separation(a, b, &rel, f),
+        );
         let (sep_a, face_a, second_a) = match faces_a {
             Ok(best) => best,
             Err(f) => {
@@ -268,19 +264,15 @@ fn hull_hull_with(
                 return Manifold::EMPTY;
             }
         };
-        let faces_b = match inner_point(a) {
-            Some(c) if prune_faces => {
-                let c = rel.rt * (c - rel.t);
-                let bound = |f: usize| {
-                    let pl = b.plane(f);
-                    pl.normal.dot(c) - pl.offset
-                };
-                best_face_bounded(b.hull.planes.len(), limit, slack, bound, |f| {
-                    face_b_separation(a, b, &rel, f)
-                })
-            }
-            _ => best_face(b.hull.planes.len(), limit, |f| face_b_separation(a, b, &rel, f)),
-        };
+        let faces_b = best_face_of(
+            b,
+            a,
+            |c| rel.rt * (c - rel.t),
+            prune_faces,
+            limit,
+            slack,
+            |f| face_b_separation(a, b, &rel, f),
+        );
         let (sep_b, face_b, second_b) = match faces_b {
             Ok(best) => best,
             Err(f) => {
@@ -749,6 +741,32 @@ fn face_contact(refp: &Poly, inc: &Poly, rel: &Relative, face: usize, speculativ
 #[inline]
 fn inner_point(p: &Poly) -> Option<Vec3> {
     (p.hull.radius == 0.0).then(|| p.hull.unit_mass.center * p.scale)
+}
+
+/// The best face of `own` against `other` (`best_face`), skipping faces by their bound from
+/// `other`'s inner point (`best_face_bounded`) when `prune` and `other` has one; `to_own`
+/// takes a point of `other`'s frame into `own`'s.
+fn best_face_of(
+    own: &Poly,
+    other: &Poly,
+    to_own: impl Fn(Vec3) -> Vec3,
+    prune: bool,
+    limit: f32,
+    slack: f32,
+    separation: impl Fn(usize) -> f32,
+) -> Result<(f32, usize, f32), usize> {
+    let count = own.hull.planes.len();
+    match inner_point(other) {
+        Some(c) if prune => {
+            let c = to_own(c);
+            let bound = |f: usize| {
+                let pl = own.plane(f);
+                pl.normal.dot(c) - pl.offset
+            };
+            best_face_bounded(count, limit, slack, bound, separation)
+        }
+        _ => best_face(count, limit, separation),
+    }
 }
 
 /// `best_face` (the same answer) that skips the faces whose `bound` (at least their
