@@ -89,3 +89,21 @@ impl Lanes for F4 {
         [0, 1, 2, 3].map(|r| [cols[0].0[r], cols[1].0[r], cols[2].0[r], cols[3].0[r]])
     }
 }
+
+impl F4 {
+    /// Lanes `[2, 3, 0, 1]`: the two halves swapped.
+    #[inline(always)]
+    pub fn swap_halves(self) -> F4 {
+        F4([self.0[2], self.0[3], self.0[0], self.0[1]])
+    }
+    /// Lanes `[1, 0, 3, 2]`: neighbours swapped.
+    #[inline(always)]
+    pub fn swap_pairs(self) -> F4 {
+        F4([self.0[1], self.0[0], self.0[3], self.0[2]])
+    }
+    /// Lane 0.
+    #[inline(always)]
+    pub fn first(self) -> f32 {
+        self.0[0]
+    }
+}

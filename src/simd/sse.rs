@@ -111,3 +111,22 @@ fn transpose(r: [F4; 4]) -> [F4; 4] {
         ]
     }
 }
+
+// SAFETY: as above, SSE2 is always present on x86_64.
+impl F4 {
+    /// Lanes `[2, 3, 0, 1]`: the two halves swapped.
+    #[inline(always)]
+    pub fn swap_halves(self) -> F4 {
+        unsafe { F4(_mm_shuffle_ps::<0b01_00_11_10>(self.0, self.0)) }
+    }
+    /// Lanes `[1, 0, 3, 2]`: neighbours swapped.
+    #[inline(always)]
+    pub fn swap_pairs(self) -> F4 {
+        unsafe { F4(_mm_shuffle_ps::<0b10_11_00_01>(self.0, self.0)) }
+    }
+    /// Lane 0.
+    #[inline(always)]
+    pub fn first(self) -> f32 {
+        unsafe { _mm_cvtss_f32(self.0) }
+    }
+}

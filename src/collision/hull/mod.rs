@@ -377,19 +377,16 @@ impl ConvexHull {
             at = F4::select(more, base, at);
             base = base + F4::splat(4.0);
         }
-        let (m, at) = (m.to_floats(), at.to_floats().map(|i| i as u32));
-        let pick = |(ma, ia): (f32, u32), (mb, ib): (f32, u32)| {
-            if mb > ma || (mb == ma && ib < ia) {
-                (mb, ib)
-            } else {
-                (ma, ia)
-            }
-        };
-        let lo = pick((m[0], at[0]), (m[1], at[1]));
-        let hi = pick((m[2], at[2]), (m[3], at[3]));
-        // A lane that saw nothing above `f32::MIN` (NaN products) keeps its own number,
-        // and such lanes tie: all-NaN gives 0, as one at a time.
-        pick(lo, hi).1 as usize
+        // The lanes merged in the registers: the largest value over the lanes (none holds
+        // NaN: `max` keeps `m` for a NaN product), then the lowest index among the lanes
+        // holding it — the lanes picked by value with ties to the lower index, in any order.
+        // A lane that saw nothing above `f32::MIN` (NaN products) keeps its own number, and
+        // such lanes tie: all-NaN gives 0, as one at a time.
+        let top = m.max(m.swap_halves());
+        let top = top.max(top.swap_pairs());
+        let at = F4::select(m.ge(top), at, F4::splat(f32::MAX));
+        let at = at.min(at.swap_halves());
+        at.min(at.swap_pairs()).first() as usize
     }
 
     /// Smallest `d · v` over the vertices: the support distance along `−d`, negated. The
@@ -398,13 +395,14 @@ impl ConvexHull {
     /// the same on every path.
     #[inline]
     pub(crate) fn min_dot(&self, d: Vec3) -> f32 {
-        let mut m = [f32::MAX; 4];
+        let (dx, dy, dz) = (F4::splat(d.x), F4::splat(d.y), F4::splat(d.z));
+        let mut m = F4::splat(f32::MAX);
         for b in &self.lanes {
-            for (k, mk) in m.iter_mut().enumerate() {
-                let x = d.x * b.x[k] + d.y * b.y[k] + d.z * b.z[k];
-                *mk = if x < *mk { x } else { *mk };
-            }
+            let x = dx * F4::load(&b.x) + dy * F4::load(&b.y) + dz * F4::load(&b.z);
+            // `x` where `x < m`, else `m`.
+            m = x.min(m);
         }
+        let m = m.to_floats();
         let lo = if m[1] < m[0] { m[1] } else { m[0] };
         let hi = if m[3] < m[2] { m[3] } else { m[2] };
         if hi < lo {
@@ -420,14 +418,14 @@ impl ConvexHull {
     /// so the values are those of one vertex at a time (`interval_matches_one_at_a_time`).
     #[inline]
     pub(crate) fn dot_interval(&self, d: Vec3) -> (f32, f32) {
-        let (mut lo, mut hi) = ([f32::MAX; 4], [f32::MIN; 4]);
+        let (dx, dy, dz) = (F4::splat(d.x), F4::splat(d.y), F4::splat(d.z));
+        let (mut lo, mut hi) = (F4::splat(f32::MAX), F4::splat(f32::MIN));
         for b in &self.lanes {
-            for k in 0..4 {
-                let x = b.x[k] * d.x + b.y[k] * d.y + b.z[k] * d.z;
-                lo[k] = if x < lo[k] { x } else { lo[k] };
-                hi[k] = if x > hi[k] { x } else { hi[k] };
-            }
+            let x = F4::load(&b.x) * dx + F4::load(&b.y) * dy + F4::load(&b.z) * dz;
+            lo = x.min(lo);
+            hi = x.max(hi);
         }
+        let (lo, hi) = (lo.to_floats(), hi.to_floats());
         let min = |a: f32, b: f32| if b < a { b } else { a };
         let max = |a: f32, b: f32| if b > a { b } else { a };
         (
@@ -443,24 +441,28 @@ impl ConvexHull {
     /// `transformed_bounds_match_one_at_a_time`).
     #[inline]
     pub(crate) fn transformed_bounds(&self, m: &Mat3) -> (Vec3, Vec3) {
-        let mut out = [(0.0f32, 0.0f32); 3];
-        for (r, o) in out.iter_mut().enumerate() {
-            let (a, b, c) = (m.x_axis[r], m.y_axis[r], m.z_axis[r]);
-            let (mut lo, mut hi) = ([f32::MAX; 4], [f32::MIN; 4]);
-            for l in &self.lanes {
-                for k in 0..4 {
-                    let x = a * l.x[k] + b * l.y[k] + c * l.z[k];
-                    lo[k] = if x < lo[k] { x } else { lo[k] };
-                    hi[k] = if x > hi[k] { x } else { hi[k] };
-                }
+        // The three rows in one pass over the vertices, in `F4` registers (`x < lo` picks
+        // `x`, as `min` does; `x > hi` likewise `max`).
+        let row = |r: usize| (F4::splat(m.x_axis[r]), F4::splat(m.y_axis[r]), F4::splat(m.z_axis[r]));
+        let rows = [row(0), row(1), row(2)];
+        let (mut lo, mut hi) = ([F4::splat(f32::MAX); 3], [F4::splat(f32::MIN); 3]);
+        for l in &self.lanes {
+            let (x, y, z) = (F4::load(&l.x), F4::load(&l.y), F4::load(&l.z));
+            for (r, &(a, b, c)) in rows.iter().enumerate() {
+                let v = a * x + b * y + c * z;
+                lo[r] = v.min(lo[r]);
+                hi[r] = v.max(hi[r]);
             }
-            let min = |a: f32, b: f32| if b < a { b } else { a };
-            let max = |a: f32, b: f32| if b > a { b } else { a };
-            *o = (
+        }
+        let min = |a: f32, b: f32| if b < a { b } else { a };
+        let max = |a: f32, b: f32| if b > a { b } else { a };
+        let out: [(f32, f32); 3] = std::array::from_fn(|r| {
+            let (lo, hi) = (lo[r].to_floats(), hi[r].to_floats());
+            (
                 min(min(lo[0], lo[1]), min(lo[2], lo[3])),
                 max(max(hi[0], hi[1]), max(hi[2], hi[3])),
-            );
-        }
+            )
+        });
         (
             Vec3::new(out[0].0, out[1].0, out[2].0),
             Vec3::new(out[0].1, out[1].1, out[2].1),
