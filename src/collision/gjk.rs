@@ -184,7 +184,9 @@ pub fn distance_until<A: Support + ?Sized, B: Support + ?Sized>(
         if s.v[..s.count].iter().any(|x| x.w == sv.w) {
             break;
         }
-        let saved = s;
+        // The simplex as it was, kept field by field (a whole-struct copy is a `memcpy` call
+        // per iteration).
+        let saved = (s.v[0], s.v[1], s.v[2], s.v[3], s.weights, s.count);
         s.v[s.count] = sv;
         s.count += 1;
         if !solve(&mut s) {
@@ -195,7 +197,10 @@ pub fn distance_until<A: Support + ?Sized, B: Support + ?Sized>(
         let nvv = nv.length_squared();
         if nvv >= vv {
             // Rounding: keep the better simplex.
-            s = saved;
+            let (v0, v1, v2, v3, weights, count) = saved;
+            s.v = [v0, v1, v2, v3];
+            s.weights = weights;
+            s.count = count;
             break;
         }
         v = nv;
@@ -254,9 +259,14 @@ fn solve(s: &mut Simplex) -> bool {
 }
 
 fn reduce(s: &mut Simplex, keep: &[usize], weights: &[f32]) {
-    let old = s.v;
-    for (k, (&i, &w)) in keep.iter().zip(weights).enumerate() {
-        s.v[k] = old[i];
+    // The kept vertices (at most three) gathered first, then written to the front: the
+    // same simplex as from a copy of all four, without copying the fourth.
+    let mut kept = [SimplexVertex::default(); 3];
+    for (k, &i) in keep.iter().enumerate() {
+        kept[k] = s.v[i];
+    }
+    for (k, (&v, &w)) in kept.iter().zip(weights).enumerate() {
+        s.v[k] = v;
         s.weights[k] = w;
     }
     s.count = keep.len();
