@@ -422,7 +422,7 @@ impl Body {
             return;
         }
         let r = Mat3::from_quat(self.xf.q);
-        self.inv_inertia_world = r * self.inv_inertia_local * r.transpose();
+        self.inv_inertia_world = crate::math::turned_inertia(r, self.inv_inertia_local);
     }
 
     /// Moves the origin so the centre of mass sits at `center` with rotation `q`.

@@ -27,6 +27,8 @@ trait L4:
     fn sqrt(self) -> Self;
     /// `a` where `mask`, else `b`, lane by lane.
     fn select(mask: [bool; 4], a: Self, b: Self) -> Self;
+    /// Whether every lane's magnitude is below `bound` (false for a NaN lane).
+    fn all_below(self, bound: f64) -> bool;
 }
 
 /// Four f64 lanes as a plain array (any machine; the compiler vectorises what it can).
@@ -65,6 +67,10 @@ impl L4 for D4 {
     #[inline(always)]
     fn select(mask: [bool; 4], a: D4, b: D4) -> D4 {
         D4([0, 1, 2, 3].map(|k| if mask[k] { a.0[k] } else { b.0[k] }))
+    }
+    #[inline(always)]
+    fn all_below(self, bound: f64) -> bool {
+        self.0.iter().all(|x| x.abs() < bound)
     }
 }
 
@@ -132,6 +138,14 @@ mod y4 {
                     a.0,
                     _mm256_castsi256_pd(_mm256_setr_epi64x(m(0), m(1), m(2), m(3))),
                 ))
+            }
+        }
+        #[inline(always)]
+        fn all_below(self, bound: f64) -> bool {
+            // |x| by clearing the sign bit; the ordered comparison is false for NaN.
+            unsafe {
+                let abs = _mm256_andnot_pd(_mm256_set1_pd(-0.0), self.0);
+                _mm256_movemask_pd(_mm256_cmp_pd::<_CMP_LT_OQ>(abs, _mm256_set1_pd(bound))) == 0b1111
             }
         }
     }
@@ -293,10 +307,11 @@ fn half_turn4<L: L4>(x: L) -> (L, L) {
         pc = pc * x2 + L::splat(C[k]);
     }
     let (s, c) = (x + x * x2 * ps, L::splat(1.0) + x2 * pc);
-    let xs = x.to_array();
-    if !xs.iter().any(|&x| beyond_series(x)) {
+    // No lane beyond the series' range (`beyond_series` false in every lane) in one test.
+    if x.all_below(std::f64::consts::FRAC_PI_4) {
         return (s, c);
     }
+    let xs = x.to_array();
     let (mut sa, mut ca) = (s.to_array(), c.to_array());
     for k in 0..4 {
         if beyond_series(xs[k]) {
@@ -325,24 +340,31 @@ fn turns(m: f64) -> bool {
 /// whose moment about `k` is not positive stays as it was, as the scalar `continue` does).
 /// Called with constant `k`, so the indexing folds away.
 #[inline(always)]
-fn turn4<L: L4>(q: &mut [L; 4], l: &mut [L; 3], m: &[L; 3], k: usize, t: f64) {
-    let mk = m[k];
-    let turn = mk.to_array().map(turns);
+fn turn4<L: L4>(q: &mut [L; 4], l: &mut [L; 3], m: &[L; 3], turn: [bool; 4], k: usize, t: f64) {
     if turn == [false; 4] {
         return;
     }
+    let mk = m[k];
     let (s, c) = half_turn4(L::splat(0.5) * (L::splat(t) * l[k] / mk));
     // The other two axes in cyclic order.
     let (i, j) = ((k + 1) % 3, (k + 2) % 3);
     let (qk, qi, qj, qw) = (q[k], q[i], q[j], q[3]);
-    q[k] = L::select(turn, qw * s + qk * c, qk);
-    q[i] = L::select(turn, qi * c + qj * s, qi);
-    q[j] = L::select(turn, qj * c - qi * s, qj);
-    q[3] = L::select(turn, qw * c - qk * s, qw);
     let (cos, sin) = (c * c - s * s, L::splat(2.0) * s * c);
     let (li, lj) = (l[i], l[j]);
-    l[i] = L::select(turn, cos * li + sin * lj, li);
-    l[j] = L::select(turn, cos * lj - sin * li, lj);
+    let turned_q = [qw * s + qk * c, qi * c + qj * s, qj * c - qi * s, qw * c - qk * s];
+    let turned_l = [cos * li + sin * lj, cos * lj - sin * li];
+    if turn == [true; 4] {
+        // Every lane turns (the usual case): the selects would take the turned values.
+        [q[k], q[i], q[j], q[3]] = turned_q;
+        [l[i], l[j]] = turned_l;
+        return;
+    }
+    q[k] = L::select(turn, turned_q[0], qk);
+    q[i] = L::select(turn, turned_q[1], qi);
+    q[j] = L::select(turn, turned_q[2], qj);
+    q[3] = L::select(turn, turned_q[3], qw);
+    l[i] = L::select(turn, turned_l[0], li);
+    l[j] = L::select(turn, turned_l[1], lj);
 }
 
 /// `free_rotation` lane by lane: the same five turns, the same order of operations.
@@ -352,11 +374,13 @@ fn free_rotation4<L: L4>(q: Q4<L>, w: V4<L>, m: V4<L>, h: f64) -> (Q4<L>, V4<L>)
     let mut l = [m.x * l0.x, m.y * l0.y, m.z * l0.z];
     let mut q = [q.x, q.y, q.z, q.w];
     let ms = [m.x, m.y, m.z];
-    turn4(&mut q, &mut l, &ms, 0, 0.5 * h);
-    turn4(&mut q, &mut l, &ms, 1, 0.5 * h);
-    turn4(&mut q, &mut l, &ms, 2, h);
-    turn4(&mut q, &mut l, &ms, 1, 0.5 * h);
-    turn4(&mut q, &mut l, &ms, 0, 0.5 * h);
+    // Which lanes turn about each axis (by its moment alone), worked out once per axis.
+    let turn = ms.map(|mk| mk.to_array().map(turns));
+    turn4(&mut q, &mut l, &ms, turn[0], 0, 0.5 * h);
+    turn4(&mut q, &mut l, &ms, turn[1], 1, 0.5 * h);
+    turn4(&mut q, &mut l, &ms, turn[2], 2, h);
+    turn4(&mut q, &mut l, &ms, turn[1], 1, 0.5 * h);
+    turn4(&mut q, &mut l, &ms, turn[0], 0, 0.5 * h);
     let q = Q4 {
         x: q[0],
         y: q[1],
@@ -423,7 +447,7 @@ fn four<L: L4>(
         let dq = dq[lane].as_quat();
         s.set_rotation(dq);
         let r = Mat3::from_quat(dq * sim.q0);
-        s.set_inv_i(r * sim.inv_inertia * r.transpose());
+        s.set_inv_i(crate::math::turned_inertia(r, sim.inv_inertia));
     }
 }
 

@@ -756,7 +756,7 @@ fn integrate_general_position(u: &mut Velocity, s: &mut BodyState, sim: &BodySim
     if sim.gyroscopic {
         // Anisotropic inertia turns with the body: keep the world inverse current.
         let r = Mat3::from_quat(dq * sim.q0);
-        s.set_inv_i(r * sim.inv_inertia * r.transpose());
+        s.set_inv_i(crate::math::turned_inertia(r, sim.inv_inertia));
     }
 }
 
