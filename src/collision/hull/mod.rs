@@ -362,10 +362,38 @@ impl ConvexHull {
     /// products (`x·dx + y·dy + z·dz`, no FMA). The last block's padding lanes copy the
     /// last vertex, so they tie with it and lose to its lower index.
     ///
-    /// The lanes are `F4` registers, the indices too (as floats, exact below 2²⁴): the same
-    /// products and comparisons, one select per block for the indices.
+    /// Two passes over the lanes (`F4` registers): the largest product (`max` keeps the
+    /// lane's value over a NaN product), then the first vertex whose product, computed the
+    /// same way, reaches it (a product at least the largest equals it; NaN never does): the
+    /// lowest index of the largest value, without tracking indices per block. When the
+    /// largest is `f32::MIN` (every product NaN, or that value itself) the lanes track
+    /// their indices as one at a time ties them (`support_index_tracked`).
     #[inline]
     pub fn support_index(&self, d: Vec3) -> usize {
+        let (dx, dy, dz) = (F4::splat(d.x), F4::splat(d.y), F4::splat(d.z));
+        let dot = |b: &VertexLanes| dx * F4::load(&b.x) + dy * F4::load(&b.y) + dz * F4::load(&b.z);
+        let mut m = F4::splat(f32::MIN);
+        for b in &self.lanes {
+            m = dot(b).max(m);
+        }
+        let top = m.max(m.swap_halves());
+        let top = top.max(top.swap_pairs());
+        if top.first() > f32::MIN {
+            for (k, b) in self.lanes.iter().enumerate() {
+                let hit = dot(b).ge(top).bits();
+                if hit != 0 {
+                    return 4 * k + hit.trailing_zeros() as usize;
+                }
+            }
+        }
+        self.support_index_tracked(d)
+    }
+
+    /// `support_index` with each lane keeping its first largest value and its index (as a
+    /// float, exact below 2²⁴; one select per block), the lanes then merged by value with
+    /// ties to the lower index.
+    #[inline(never)]
+    fn support_index_tracked(&self, d: Vec3) -> usize {
         let (dx, dy, dz) = (F4::splat(d.x), F4::splat(d.y), F4::splat(d.z));
         let (mut m, mut at) = (F4::splat(f32::MIN), F4::load(&[0.0, 1.0, 2.0, 3.0]));
         let mut base = at;
@@ -535,12 +563,21 @@ mod tests {
 
     /// The four-lane `support_index` picks the vertex one at a time does: random clouds
     /// of 4 to 40 points (every padding of the last block) along random directions, the
-    /// axes and diagonals (ties on a cube and on hulls of grid points), zero and NaN.
+    /// axes and diagonals (ties on a cube and on hulls of grid points), zero, NaN and
+    /// infinite directions.
     #[test]
     fn support_index_matches_one_at_a_time() {
         let mut r = crate::math::test_rnd::Rnd(0x1234_5678_9abc_def1);
         let mut rnd = move || r.f() - 0.5;
-        let mut dirs: Vec<Vec3> = vec![Vec3::ZERO, Vec3::splat(f32::NAN), Vec3::new(f32::NAN, 1.0, 0.0)];
+        let mut dirs: Vec<Vec3> = vec![
+            Vec3::ZERO,
+            Vec3::splat(f32::NAN),
+            Vec3::new(f32::NAN, 1.0, 0.0),
+            // Infinite products, and NaN ones (∞·0, ∞ − ∞) among them.
+            Vec3::new(f32::INFINITY, 0.0, 0.0),
+            Vec3::new(f32::INFINITY, f32::NEG_INFINITY, 1.0),
+            Vec3::new(f32::MAX, f32::MAX, f32::MAX),
+        ];
         for x in -1..=1 {
             for y in -1..=1 {
                 for z in -1..=1 {
