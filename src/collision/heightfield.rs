@@ -313,34 +313,53 @@ impl Heightfield {
     /// heightfield frame), unit normal and active-edge bits.
     #[inline]
     pub fn triangle(&self, row: u32, column: u32, k: u32, s: Vec3) -> ([Vec3; 3], Vec3, u8) {
-        let a = self.vertex(row, column, s);
-        let b = self.vertex(row, column + 1, s);
-        let c = self.vertex(row + 1, column, s);
-        let d = self.vertex(row + 1, column + 1, s);
+        let (v, n) = self.triangle_plane(row, column, k, s);
+        (v, n, self.triangle_flags(row, column, k, s, &v, n))
+    }
+
+    /// The vertices and unit normal of `triangle` (the flags, `triangle_flags`, cost more:
+    /// a caller may leave them out for a triangle it rejects on its plane).
+    #[inline]
+    pub fn triangle_plane(&self, row: u32, column: u32, k: u32, s: Vec3) -> ([Vec3; 3], Vec3) {
+        let v = if k == 0 {
+            // (a, c, d)
+            [
+                self.vertex(row, column, s),
+                self.vertex(row + 1, column, s),
+                self.vertex(row + 1, column + 1, s),
+            ]
+        } else {
+            // (a, d, b)
+            [
+                self.vertex(row, column, s),
+                self.vertex(row + 1, column + 1, s),
+                self.vertex(row, column + 1, s),
+            ]
+        };
+        (v, (v[1] - v[0]).cross(v[2] - v[0]).normalize())
+    }
+
+    /// The active-edge bits of `triangle`, given its vertices `v` and normal `n` from
+    /// `triangle_plane`.
+    #[inline]
+    pub fn triangle_flags(&self, row: u32, column: u32, k: u32, s: Vec3, v: &[Vec3; 3], n: Vec3) -> u8 {
         let (r, col) = (row as i64, column as i64);
         // For each edge: the neighbouring cell and the sample opposite the edge in it.
-        let (v, across): ([Vec3; 3], [Across; 3]) = if k == 0 {
+        let across: [Across; 3] = if k == 0 {
             // (a, c, d): a→c borders cell (r, c−1), c→d cell (r+1, c), d→a this cell's (a, d, b).
-            (
-                [a, c, d],
-                [
-                    (r, col - 1, r, col - 1),
-                    (r + 1, col, r + 2, col + 1),
-                    (r, col, r, col + 1),
-                ],
-            )
+            [
+                (r, col - 1, r, col - 1),
+                (r + 1, col, r + 2, col + 1),
+                (r, col, r, col + 1),
+            ]
         } else {
             // (a, d, b): a→d this cell's (a, c, d), d→b cell (r, c+1), b→a cell (r−1, c).
-            (
-                [a, d, b],
-                [
-                    (r, col, r + 1, col),
-                    (r, col + 1, r + 1, col + 2),
-                    (r - 1, col, r - 1, col),
-                ],
-            )
+            [
+                (r, col, r + 1, col),
+                (r, col + 1, r + 1, col + 2),
+                (r - 1, col, r - 1, col),
+            ]
         };
-        let n = (v[1] - v[0]).cross(v[2] - v[0]).normalize();
         let mut flags = ALL_EDGES;
         for (e, &(nr, nc, or, oc)) in across.iter().enumerate() {
             if !self.solid(nr, nc) {
@@ -351,7 +370,7 @@ impl Heightfield {
                 flags &= !(1 << e);
             }
         }
-        (v, n, flags)
+        flags
     }
 }
 

@@ -15,7 +15,9 @@
 //! A box resting on a flat floor of many triangles therefore gets one four-point manifold,
 //! like on a plane; in a V-shaped crease it gets one per side.
 
-use super::triangle::{capsule_triangle, polytope_triangle, sphere_triangle, LocalBox, TriContact, Triangle};
+use super::triangle::{
+    capsule_triangle, polytope_plane_rejects, polytope_triangle, sphere_triangle, LocalBox, TriContact, Triangle,
+};
 use super::{Manifold, ManifoldPoint, MAX_MANIFOLD_POINTS};
 use crate::collision::aabb::Aabb;
 use crate::collision::geometry_store::GeometryStore;
@@ -296,6 +298,18 @@ impl Convex<'_> {
             Convex::Hull(h) => polytope_triangle(h, h.radius(), t, speculative, out),
         }
     }
+
+    /// Whether `collide` returns false for a triangle with corner `v0` and normal `n` on its
+    /// first test, which reads neither the edge flags nor `out` (boxes and hulls:
+    /// `polytope_plane_rejects`; spheres and capsules are always tested in full).
+    #[inline]
+    fn rejects_by_plane(&self, v0: Vec3, n: Vec3, speculative: f32) -> bool {
+        match self {
+            Convex::Box(b) => polytope_plane_rejects(b, 0.0, v0, n, speculative),
+            Convex::Hull(h) => polytope_plane_rejects(h, h.radius(), v0, n, speculative),
+            Convex::Sphere(..) | Convex::Capsule(..) => false,
+        }
+    }
 }
 
 /// Shape A (convex, at `xf_a`) against mesh or heightfield B (at `xf_b`): the manifolds,
@@ -382,11 +396,17 @@ pub fn collide_triangles(
                 |[a, b, c]: [Vec3; 3]| [to_target * a + offset, to_target * b + offset, to_target * c + offset];
             hf.query(&local_box(&query, &place), |row, column| {
                 for k in 0..2 {
-                    let (v, n, flags) = hf.triangle(row, column, k, place.scale);
+                    let (v, n) = hf.triangle_plane(row, column, k, place.scale);
+                    let (tv, tn) = (placed(v), to_target * n);
+                    // A triangle the shape's first test rejects needs no edge flags (the
+                    // test does not read them, and it would return nothing).
+                    if convex.rejects_by_plane(tv[0], tn, speculative) {
+                        continue;
+                    }
                     let tri = Triangle {
-                        v: placed(v),
-                        n: to_target * n,
-                        flags,
+                        v: tv,
+                        n: tn,
+                        flags: hf.triangle_flags(row, column, k, place.scale, &v, n),
                         index: 2 * (row * columns + column) + k,
                     };
                     if convex.collide(&tri, speculative, &mut contact) {

@@ -458,6 +458,23 @@ fn axis_allowed(a: Vec3, t: &Triangle) -> bool {
     feature.active(t.flags)
 }
 
+/// The first test of `polytope_triangle`: the core's interval `(lo, hi)` along the
+/// triangle's normal lies behind the triangle's plane (at `d0`) or beyond `speculative`
+/// in front of it.
+#[inline(always)]
+fn plane_rejects(lo: f32, hi: f32, d0: f32, radius: f32, speculative: f32) -> bool {
+    hi + radius < d0 || lo - d0 - radius > speculative
+}
+
+/// Whether `polytope_triangle` returns false on its first test for a triangle with corner
+/// `v0` and unit normal `n` — before it reads the edge flags or writes `out`, so a caller
+/// can leave out the flags of such a triangle (and the call).
+#[inline(always)]
+pub fn polytope_plane_rejects<P: Polytope>(p: &P, radius: f32, v0: Vec3, n: Vec3, speculative: f32) -> bool {
+    let (lo, hi) = p.interval(n);
+    plane_rejects(lo, hi, n.dot(v0), radius, speculative)
+}
+
 /// A convex polyhedron `p` (rounded by `radius`) against a triangle, both in `p`'s frame:
 /// separating axes (the triangle's normal, `p`'s faces, edge pairs), then the reference
 /// face clipped by the incident one, or one point between two edges.
@@ -471,13 +488,10 @@ pub fn polytope_triangle<P: Polytope>(
     let n = t.n;
     let d0 = n.dot(t.v[0]);
     let (lo, hi) = p.interval(n);
-    if hi + radius < d0 {
-        return false; // behind the triangle
-    }
-    let sep_tri = lo - d0 - radius;
-    if sep_tri > speculative {
+    if plane_rejects(lo, hi, d0, radius, speculative) {
         return false;
     }
+    let sep_tri = lo - d0 - radius;
     // Best allowed face of p.
     let (mut sep_face, mut face) = (f32::MIN, usize::MAX);
     for f in 0..p.face_count() {
@@ -839,6 +853,66 @@ mod tests {
             }
         }
         assert!(hits > 3000 && edges > 50, "{hits} contacts, {edges} edge contacts");
+    }
+
+    /// `polytope_plane_rejects` (the test `mesh.rs` runs before working out a heightfield
+    /// triangle's edge flags) rejects only triangles `polytope_triangle` returns false for,
+    /// whatever their flags, and leaves it nothing to write: random boxes and hulls (some
+    /// rounded) against random triangles above, through and below them.
+    #[test]
+    fn plane_rejection_is_the_first_test() {
+        use super::super::hull_view::HullView;
+        use crate::collision::hull::builder::{build, HullSettings};
+        let mut rnd = crate::math::test_rnd::Rnd(0x9b05_688c_2b3e_6c1f);
+        let (mut rejected, mut kept) = (0, 0);
+        for trial in 0..5000 {
+            let pts: Vec<Vec3> = (0..6 + trial % 13)
+                .map(|_| rnd.point(Vec3::new(0.5, 0.4, 0.45)))
+                .collect();
+            let hull = build(&pts, &HullSettings::default()).unwrap();
+            let half = Vec3::new(0.1 + rnd.f(), 0.1 + rnd.f(), 0.1 + rnd.f()) * 0.5;
+            let c = Vec3::new(rnd.f() - 0.5, 1.2 * (rnd.f() - 0.5), rnd.f() - 0.5);
+            let v = [0, 1, 2].map(|_| c + 1.5 * Vec3::new(rnd.f() - 0.5, 0.3 * (rnd.f() - 0.5), rnd.f() - 0.5));
+            let nrm = (v[1] - v[0]).cross(v[2] - v[0]);
+            if nrm.length() < 1e-4 {
+                continue;
+            }
+            let radius = if trial % 3 == 0 { 0.02 } else { 0.0 };
+            let speculative = [0.0, 0.02, 0.1][trial % 3];
+            for flags in [0, 0b111] {
+                let t = Triangle {
+                    v,
+                    n: nrm.normalize(),
+                    flags,
+                    index: trial as u32,
+                };
+                let mut out = TriContact::EMPTY;
+                let (rejects, hit) = if trial % 2 == 0 {
+                    let view = HullView::new(&hull, 0.5 + rnd.f());
+                    (
+                        polytope_plane_rejects(&view, radius, t.v[0], t.n, speculative),
+                        polytope_triangle(&view, radius, &t, speculative, &mut out),
+                    )
+                } else {
+                    let bx = LocalBox(half);
+                    (
+                        polytope_plane_rejects(&bx, radius, t.v[0], t.n, speculative),
+                        polytope_triangle(&bx, radius, &t, speculative, &mut out),
+                    )
+                };
+                if rejects {
+                    assert!(!hit, "trial {trial}: rejected triangle touches");
+                    assert_eq!(format!("{out:?}"), format!("{:?}", TriContact::EMPTY), "trial {trial}");
+                    rejected += 1;
+                } else {
+                    kept += 1;
+                }
+            }
+        }
+        assert!(
+            rejected > 2000 && kept > 2000,
+            "{rejected} rejected, {kept} tested in full"
+        );
     }
 
     fn flat(flags: u8) -> Triangle {
