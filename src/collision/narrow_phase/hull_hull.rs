@@ -975,6 +975,21 @@ mod tests {
         )
     }
 
+    /// Two random hulls of 8 to 20 points; every third trial A's cloud gets near-duplicates
+    /// of a third of its points (short edges whose faces' normals fit them loosely).
+    fn hull_pair(rnd: &mut Rnd, trial: usize) -> (crate::ConvexHull, crate::ConvexHull) {
+        let mut cloud = rnd.cloud(8, 20.0, 0.2, 0.3);
+        if trial % 3 == 0 {
+            for i in 0..cloud.len() / 3 {
+                let p = cloud[i] + rnd.point(Vec3::splat(2.0e-3));
+                cloud.push(p);
+            }
+        }
+        let ha = build(&cloud, &HullSettings::default()).unwrap();
+        let hb = build(&rnd.cloud(8, 20.0, 0.2, 0.3), &HullSettings::default()).unwrap();
+        (ha, hb)
+    }
+
     /// A of the random pair tests: a box every fifth trial, else hull `ha`, at `xa`.
     fn shape_a<'h>(ha: &'h crate::ConvexHull, half: Vec3, xa: &Transform, trial: usize) -> Poly<'h> {
         if trial % 5 == 0 {
@@ -1133,16 +1148,7 @@ mod tests {
         let mut rnd = Rnd(0x51c3_a0d2_77e9_4b15);
         let (mut tests, mut apart_edges, mut edge_contacts) = (0, 0, 0);
         for trial in 0..400 {
-            let mut cloud = rnd.cloud(8, 20.0, 0.2, 0.3);
-            if trial % 3 == 0 {
-                // Near-duplicates: short edges whose faces' normals fit them loosely.
-                for i in 0..cloud.len() / 3 {
-                    let p = cloud[i] + rnd.point(Vec3::splat(2.0e-3));
-                    cloud.push(p);
-                }
-            }
-            let ha = build(&cloud, &HullSettings::default()).unwrap();
-            let hb = build(&rnd.cloud(8, 20.0, 0.2, 0.3), &HullSettings::default()).unwrap();
+            let (ha, hb) = hull_pair(&mut rnd, trial);
             let xa = Transform::new(Vec3::ZERO, rnd.quat());
             let half = Vec3::new(0.1 + 0.4 * rnd.f(), 0.1 + 0.4 * rnd.f(), 0.1 + 0.4 * rnd.f());
             let dir = Vec3::new(rnd.f() - 0.5, rnd.f() - 0.5, rnd.f() - 0.5).normalize();
@@ -1243,15 +1249,7 @@ mod tests {
         let mut rnd = Rnd(0x6a09_e667_f3bc_c908);
         let (mut compared, mut touching, mut cached) = (0, 0, 0);
         for trial in 0..300 {
-            let mut cloud = rnd.cloud(8, 20.0, 0.2, 0.3);
-            if trial % 3 == 0 {
-                for i in 0..cloud.len() / 3 {
-                    let p = cloud[i] + rnd.point(Vec3::splat(2.0e-3));
-                    cloud.push(p);
-                }
-            }
-            let ha = build(&cloud, &HullSettings::default()).unwrap();
-            let hb = build(&rnd.cloud(8, 20.0, 0.2, 0.3), &HullSettings::default()).unwrap();
+            let (ha, hb) = hull_pair(&mut rnd, trial);
             let xa = Transform::new(Vec3::ZERO, rnd.quat());
             let half = Vec3::new(0.1 + 0.4 * rnd.f(), 0.1 + 0.4 * rnd.f(), 0.1 + 0.4 * rnd.f());
             let a = shape_a(&ha, half, &xa, trial);
