@@ -20,7 +20,9 @@
 //! (with `HEARTH_QUERY_REBUILD=1`, after rebuilding the tree); `HEARTH_QUERY_SNAPSHOT=<file>` keeps the settled pile in a
 //! snapshot file (written when missing), so a run under
 //! `valgrind --tool=callgrind` does not settle the pile under emulation. Run once with the
-//! kind `none` to only count the setup, and subtract.
+//! kind `none` to only count the setup, and subtract. The kind `digest` prints a hash of
+//! every answer (each ray's hit shape, body, point, normal and fraction bits; each overlap's
+//! sorted shape ids), to check that a change to the queries keeps them bit for bit.
 
 #[path = "../tests/scenes/mod.rs"]
 #[allow(dead_code)]
@@ -157,6 +159,75 @@ fn benches(c: &mut Criterion) {
     }
 }
 
+/// FNV-1a over 32-bit words.
+struct Fnv(u64);
+
+impl Fnv {
+    fn word(&mut self, x: u32) {
+        for b in x.to_le_bytes() {
+            self.0 = (self.0 ^ b as u64).wrapping_mul(0x100_0000_01b3);
+        }
+    }
+    fn vec(&mut self, v: Vec3) {
+        for c in v.to_array() {
+            self.word(c.to_bits());
+        }
+    }
+}
+
+/// Prints a hash of every ray hit (bits) and every overlap's sorted id list, per kind.
+fn digest(w: &World, q: &Inputs) {
+    let filter = QueryFilter::DEFAULT;
+    let mut h = Fnv(0xcbf2_9ce4_8422_2325);
+    for (o, d) in &q.rays {
+        match w.cast_ray_closest(*o, *d, &filter).unwrap() {
+            Some(hit) => {
+                h.word(hit.shape.index);
+                h.word(hit.shape.generation);
+                h.word(hit.body.index);
+                h.vec(hit.point);
+                h.vec(hit.normal);
+                h.word(hit.fraction.to_bits());
+            }
+            None => h.word(u32::MAX),
+        }
+    }
+    println!("rays digest {:016x}", h.0);
+    let mut ids = Vec::new();
+    let mut h = Fnv(0xcbf2_9ce4_8422_2325);
+    for (g, xf) in &q.spheres {
+        ids.clear();
+        w.overlap_shape(g, xf, &filter, |s| {
+            ids.push((s.index, s.generation));
+            true
+        })
+        .unwrap();
+        ids.sort_unstable();
+        h.word(ids.len() as u32);
+        ids.iter().for_each(|&(i, g)| {
+            h.word(i);
+            h.word(g)
+        });
+    }
+    println!("spheres digest {:016x}", h.0);
+    let mut h = Fnv(0xcbf2_9ce4_8422_2325);
+    for bb in &q.boxes {
+        ids.clear();
+        w.overlap_aabb(bb, &filter, |s| {
+            ids.push((s.index, s.generation));
+            true
+        })
+        .unwrap();
+        ids.sort_unstable();
+        h.word(ids.len() as u32);
+        ids.iter().for_each(|&(i, g)| {
+            h.word(i);
+            h.word(g)
+        });
+    }
+    println!("aabbs digest {:016x}", h.0);
+}
+
 criterion_group!(queries, benches);
 
 fn main() {
@@ -171,6 +242,10 @@ fn main() {
             "spheres" => sphere_overlaps(&w, &q),
             "aabbs" => aabb_overlaps(&w, &q),
             "none" => 0,
+            "digest" => {
+                digest(&w, &q);
+                0
+            }
             "stats" => {
                 let f = QueryFilter::DEFAULT;
                 let tested: u64 = q
