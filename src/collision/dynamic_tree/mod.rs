@@ -84,6 +84,7 @@ struct FixedStack<T, const N: usize> {
 /// Node stack of the box queries and walks.
 type Stack = FixedStack<u32, STACK_CAPACITY>;
 /// Ray traversal stack of (node, entry parameter).
+#[cfg(test)]
 type RayStack = FixedStack<(u32, f32), RAY_STACK_CAPACITY>;
 
 impl<T: Copy + Default, const N: usize> FixedStack<T, N> {
@@ -106,11 +107,16 @@ impl<T: Copy + Default, const N: usize> FixedStack<T, N> {
         }
     }
 
+    /// The spill holds entries only while the array is full (pushes spill only then, and
+    /// pops drain the spill first), so the spill is looked at only then.
     #[inline]
     fn pop(&mut self) -> Option<T> {
-        if let Some(v) = self.spill.pop() {
-            Some(v)
-        } else if self.len > 0 {
+        if self.len == N {
+            if let Some(v) = self.spill.pop() {
+                return Some(v);
+            }
+        }
+        if self.len > 0 {
             self.len -= 1;
             Some(self.items[self.len])
         } else {
@@ -174,6 +180,23 @@ impl RaySlabs {
         }
     }
 
+    /// [`RaySlabs::entry`] for a ray whose reciprocals are all finite (`finite`), without
+    /// the branch: the same value, found with comparisons that need no NaN handling
+    /// (nothing here is NaN: finite reciprocals, finite boxes, `max_t` never NaN).
+    #[inline(always)]
+    fn entry_finite(&self, max_t: f32, b: &Aabb) -> Option<f32> {
+        debug_assert!(self.finite);
+        let ta = (Vec3A::from(b.min) - self.origin) * self.inv;
+        let tb = (Vec3A::from(b.max) - self.origin) * self.inv;
+        let t0 = ta.min(tb).max(Vec3A::ZERO).max_element();
+        let t1 = ta.max(tb).min_element();
+        if t0 <= t1 && t0 <= max_t {
+            Some(t0)
+        } else {
+            None
+        }
+    }
+
     /// The same answer as [`ray_aabb_entry`]: the entry parameter of the segment `[0,
     /// max_t]` into `b` (0 when the origin is inside), or `None`.
     #[inline]
@@ -195,6 +218,11 @@ impl RaySlabs {
 
 /// Capacity of the on-stack ray traversal stack (entries of node and entry parameter).
 const RAY_STACK_CAPACITY: usize = 128;
+
+/// Capacity of the traversal stacks of `query` and `ray_cast` in a tree lower than it
+/// (every tree of fewer than about a hundred thousand proxies): they never spill there, and
+/// a small stack is cheaper to set up per call.
+const SHALLOW_STACK: usize = 32;
 
 #[inline]
 fn reciprocal(dir: Vec3) -> Vec3 {
@@ -366,25 +394,51 @@ impl DynamicTree {
     /// Calls `f(proxy, user_data)` for every proxy whose box overlaps `aabb`, until `f`
     /// returns false. Depth first, the second child's subtree before the first's; children
     /// are tested before they are pushed, so only overlapping nodes reach the stack.
-    pub fn query<F: FnMut(u32, u32) -> bool>(&self, aabb: &Aabb, mut f: F) {
+    pub fn query<F: FnMut(u32, u32) -> bool>(&self, aabb: &Aabb, f: F) {
         if self.root == NULL_NODE || !self.nodes[self.root as usize].aabb.overlaps(aabb) {
             return;
         }
-        let mut stack = Stack::new();
-        stack.push(self.root);
-        while let Some(i) = stack.pop() {
-            let n = &self.nodes[i as usize];
+        // The walk holds at most one node per level below the root on its stack (the first
+        // children not yet walked), so a tree that low never spills: a smaller stack, less
+        // to clear per call.
+        if self.height() < SHALLOW_STACK as u32 {
+            self.query_with::<F, SHALLOW_STACK>(aabb, f)
+        } else {
+            self.query_with::<F, STACK_CAPACITY>(aabb, f)
+        }
+    }
+
+    /// `query` with a stack of `N` entries. The node walked next is kept out of the stack:
+    /// of two overlapping children the second is walked at once and the first pushed, which
+    /// is the order pushing both and popping the second would give.
+    #[inline]
+    fn query_with<F: FnMut(u32, u32) -> bool, const N: usize>(&self, aabb: &Aabb, mut f: F) {
+        let nodes = &self.nodes[..];
+        let mut stack = FixedStack::<u32, N>::new();
+        let mut i = self.root;
+        loop {
+            let n = &nodes[i as usize];
             if n.is_leaf() {
                 if !f(i, n.user_data) {
                     return;
                 }
             } else {
-                if self.nodes[n.child1 as usize].aabb.overlaps(aabb) {
-                    stack.push(n.child1);
+                let first = nodes[n.child1 as usize].aabb.overlaps(aabb);
+                if nodes[n.child2 as usize].aabb.overlaps(aabb) {
+                    if first {
+                        stack.push(n.child1);
+                    }
+                    i = n.child2;
+                    continue;
                 }
-                if self.nodes[n.child2 as usize].aabb.overlaps(aabb) {
-                    stack.push(n.child2);
+                if first {
+                    i = n.child1;
+                    continue;
                 }
+            }
+            match stack.pop() {
+                Some(next) => i = next,
+                None => return,
             }
         }
     }
@@ -399,54 +453,85 @@ impl DynamicTree {
     /// pushed with their entry parameters, the nearer one on top; a node popped with an
     /// entry past the (clipped) `max_t` is dropped unvisited. A caller clipping the ray at
     /// each hit (a closest-hit query) so meets near proxies first and prunes the rest.
-    pub fn ray_cast<F: FnMut(u32, u32, f32) -> f32>(&self, origin: Vec3, dir: Vec3, max_t: f32, mut f: F) -> u32 {
+    pub fn ray_cast<F: FnMut(u32, u32, f32) -> f32>(&self, origin: Vec3, dir: Vec3, max_t: f32, f: F) -> u32 {
         if self.root == NULL_NODE || max_t.is_nan() || max_t < 0.0 {
             return 0;
         }
         let ray = RaySlabs::new(origin, dir);
+        // As in `query`, at most one stacked node per level below the root.
+        let shallow = self.height() < SHALLOW_STACK as u32;
+        match (ray.finite, shallow) {
+            (true, true) => self.ray_cast_with::<_, _, SHALLOW_STACK>(max_t, |t, b| ray.entry_finite(t, b), f),
+            (true, false) => self.ray_cast_with::<_, _, RAY_STACK_CAPACITY>(max_t, |t, b| ray.entry_finite(t, b), f),
+            (false, _) => self.ray_cast_with::<_, _, RAY_STACK_CAPACITY>(max_t, |t, b| ray.entry(t, b), f),
+        }
+    }
+
+    /// `ray_cast` with the slab test `entry` and a stack of `N` entries. The nearer child
+    /// hit is walked at once instead of being pushed and popped straight back (the same
+    /// order), so only farther children wait on the stack.
+    #[inline]
+    fn ray_cast_with<E, F, const N: usize>(&self, max_t: f32, entry: E, mut f: F) -> u32
+    where
+        E: Fn(f32, &Aabb) -> Option<f32>,
+        F: FnMut(u32, u32, f32) -> f32,
+    {
+        let nodes = &self.nodes[..];
         let mut max_t = max_t;
         let mut tested = 1u32;
-        let Some(t_root) = ray.entry(max_t, &self.nodes[self.root as usize].aabb) else {
+        let Some(t_root) = entry(max_t, &nodes[self.root as usize].aabb) else {
             return tested;
         };
-        let mut stack = RayStack::new();
-        stack.push((self.root, t_root));
-        while let Some((i, entry)) = stack.pop() {
-            if entry > max_t {
-                continue;
-            }
-            let n = &self.nodes[i as usize];
-            if n.is_leaf() {
-                let value = f(i, n.user_data, max_t);
-                if value == 0.0 {
-                    return tested;
-                }
-                if value > 0.0 && value <= max_t {
-                    max_t = value;
-                }
-            } else {
-                let (a, b) = (n.child1, n.child2);
-                tested += 2;
-                let ea = ray.entry(max_t, &self.nodes[a as usize].aabb);
-                let eb = ray.entry(max_t, &self.nodes[b as usize].aabb);
-                match (ea, eb) {
-                    (Some(ta), Some(tb)) => {
-                        // The nearer entry is popped first (ties: the first child).
-                        if ta <= tb {
-                            stack.push((b, tb));
-                            stack.push((a, ta));
-                        } else {
-                            stack.push((a, ta));
-                            stack.push((b, tb));
-                        }
+        let mut stack = FixedStack::<(u32, f32), N>::new();
+        let mut next = (self.root, t_root);
+        loop {
+            let (i, at) = next;
+            // A node reached straight from its parent entered before the current `max_t`
+            // (nothing clipped it in between); a stacked one may have been passed since.
+            if at <= max_t {
+                let n = &nodes[i as usize];
+                if n.is_leaf() {
+                    let value = f(i, n.user_data, max_t);
+                    if value == 0.0 {
+                        return tested;
                     }
-                    (Some(ta), None) => stack.push((a, ta)),
-                    (None, Some(tb)) => stack.push((b, tb)),
-                    (None, None) => {}
+                    if value > 0.0 && value <= max_t {
+                        max_t = value;
+                    }
+                } else {
+                    let (a, b) = (n.child1, n.child2);
+                    tested += 2;
+                    let ea = entry(max_t, &nodes[a as usize].aabb);
+                    let eb = entry(max_t, &nodes[b as usize].aabb);
+                    match (ea, eb) {
+                        (Some(ta), Some(tb)) => {
+                            // The nearer entry is walked first (ties: the first child).
+                            if ta <= tb {
+                                stack.push((b, tb));
+                                next = (a, ta);
+                            } else {
+                                stack.push((a, ta));
+                                next = (b, tb);
+                            }
+                            continue;
+                        }
+                        (Some(ta), None) => {
+                            next = (a, ta);
+                            continue;
+                        }
+                        (None, Some(tb)) => {
+                            next = (b, tb);
+                            continue;
+                        }
+                        (None, None) => {}
+                    }
                 }
+            }
+            match stack.pop() {
+                Some(s) => next = s,
+                None => return tested,
             }
         }
-        tested
     }
 
     /// Sum of the perimeters (half surface areas) of the internal nodes other than the

@@ -852,3 +852,157 @@ fn rebuild_jobs_give_the_tree_of_a_serial_build_on_any_threads() {
         }
     }
 }
+
+/// The ray walk as it was before the nearer child was walked straight away and finite rays
+/// got their own slab test: both children pushed (nearer on top) and popped back, every
+/// slab test through `RaySlabs::entry`. The reference `ray_cast` must match call for call.
+fn ray_cast_reference<F: FnMut(u32, u32, f32) -> f32>(
+    tree: &DynamicTree,
+    origin: Vec3,
+    dir: Vec3,
+    max_t: f32,
+    mut f: F,
+) -> u32 {
+    if tree.root == NULL_NODE || max_t.is_nan() || max_t < 0.0 {
+        return 0;
+    }
+    let ray = RaySlabs::new(origin, dir);
+    let mut max_t = max_t;
+    let mut tested = 1u32;
+    let Some(t_root) = ray.entry(max_t, &tree.nodes[tree.root as usize].aabb) else {
+        return tested;
+    };
+    let mut stack = vec![(tree.root, t_root)];
+    while let Some((i, entry)) = stack.pop() {
+        if entry > max_t {
+            continue;
+        }
+        let n = &tree.nodes[i as usize];
+        if n.is_leaf() {
+            let value = f(i, n.user_data, max_t);
+            if value == 0.0 {
+                return tested;
+            }
+            if value > 0.0 && value <= max_t {
+                max_t = value;
+            }
+        } else {
+            let (a, b) = (n.child1, n.child2);
+            tested += 2;
+            let ea = ray.entry(max_t, &tree.nodes[a as usize].aabb);
+            let eb = ray.entry(max_t, &tree.nodes[b as usize].aabb);
+            match (ea, eb) {
+                (Some(ta), Some(tb)) => {
+                    if ta <= tb {
+                        stack.push((b, tb));
+                        stack.push((a, ta));
+                    } else {
+                        stack.push((a, ta));
+                        stack.push((b, tb));
+                    }
+                }
+                (Some(ta), None) => stack.push((a, ta)),
+                (None, Some(tb)) => stack.push((b, tb)),
+                (None, None) => {}
+            }
+        }
+    }
+    tested
+}
+
+/// A ray walk of the tree given its callback.
+type Walk<'a> = dyn Fn(&mut dyn FnMut(u32, u32, f32) -> f32) -> u32 + 'a;
+
+/// Seeded random trees (incremental and rebuilt) and 10,000 rays with random answers from
+/// the callback (clip at the box entry, ignore, go on unclipped, stop): `ray_cast` makes
+/// exactly the reference walk's calls (proxy, user data, clipped `max_t` bits, in order)
+/// and returns the same count of boxes tested, for finite rays and rays with zero or
+/// subnormal direction components, with the shallow stack, the deep one and a stack of
+/// two entries that spills. `query` with a stack of two entries reports what `query` does.
+#[test]
+fn ray_cast_makes_the_reference_walks_calls() {
+    let mut rng = Rng::new(0x5eed_ca57);
+    let mut rays = 0;
+    let mut spilled = false;
+    for round in 0..20 {
+        let mut tree = DynamicTree::new();
+        let mut ids = Vec::new();
+        let count = 1 + rng.below(1500);
+        for i in 0..count {
+            ids.push(tree.create_proxy(random_box(&mut rng), i as u32));
+            if i % 5 == 0 {
+                let k = rng.below(ids.len());
+                tree.move_proxy(ids[k], random_box(&mut rng));
+            }
+        }
+        if round % 3 == 2 {
+            tree.rebuild();
+        }
+        tree.validate();
+        spilled |= tree.height() >= 3;
+        for _ in 0..500 {
+            let (o, mut d, len) = random_ray(&mut rng);
+            match rng.below(8) {
+                0 => d.z = 1.0e-41,
+                1 => d.y = 0.0,
+                _ => {}
+            }
+            let d = d * (len / d.length().max(1.0e-30));
+            let max_t = [1.0, 0.5, 0.0, rng.range(0.0, 2.0)][rng.below(4)];
+            let mode = rng.below(4);
+            let inv = reciprocal(d);
+            // The callback's answer, from the proxy alone so that both walks get the same.
+            let answer = |p: u32, cur: f32| -> f32 {
+                let e = ray_aabb_entry(o, d, inv, cur, &tree.fat_aabb(p)).unwrap_or(-1.0);
+                match (mode, p % 7) {
+                    (_, 0) => -1.0,
+                    (0, _) => cur,
+                    (1, 1) if e > 0.5 * cur => 0.0,
+                    _ if e > 0.0 => e,
+                    _ => -1.0,
+                }
+            };
+            let mut want = Vec::new();
+            let want_n = ray_cast_reference(&tree, o, d, max_t, |p, u, cur| {
+                want.push((p, u, cur.to_bits()));
+                answer(p, cur)
+            });
+            let ray = RaySlabs::new(o, d);
+            let walks: [&Walk; 3] = [
+                &|g| tree.ray_cast(o, d, max_t, g),
+                &|g| {
+                    if ray.finite {
+                        tree.ray_cast_with::<_, _, 2>(max_t, |t, b| ray.entry_finite(t, b), g)
+                    } else {
+                        tree.ray_cast_with::<_, _, 2>(max_t, |t, b| ray.entry(t, b), g)
+                    }
+                },
+                &|g| tree.ray_cast_with::<_, _, RAY_STACK_CAPACITY>(max_t, |t, b| ray.entry(t, b), g),
+            ];
+            for (k, walk) in walks.iter().enumerate() {
+                let mut got = Vec::new();
+                let got_n = walk(&mut |p, u, cur| {
+                    got.push((p, u, cur.to_bits()));
+                    answer(p, cur)
+                });
+                assert_eq!((got_n, &got), (want_n, &want), "round {round}, walk {k}");
+            }
+            rays += 1;
+        }
+        for _ in 0..50 {
+            let q = query_box(&mut rng);
+            let (mut a, mut b) = (Vec::new(), Vec::new());
+            tree.query(&q, |p, _| {
+                a.push(p);
+                true
+            });
+            tree.query_with::<_, 2>(&q, |p, _| {
+                b.push(p);
+                true
+            });
+            assert_eq!(a, b, "round {round}");
+        }
+    }
+    assert_eq!(rays, 10_000);
+    assert!(spilled, "some tree deeper than the two-entry stack");
+}
