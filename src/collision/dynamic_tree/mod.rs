@@ -219,9 +219,9 @@ impl RaySlabs {
 /// Capacity of the on-stack ray traversal stack (entries of node and entry parameter).
 const RAY_STACK_CAPACITY: usize = 128;
 
-/// Capacity of the traversal stacks of `query` and `ray_cast` in a tree lower than it
-/// (every tree of fewer than about a hundred thousand proxies): they never spill there, and
-/// a small stack is cheaper to set up per call.
+/// Capacity of the traversal stacks of `query` and `ray_cast` in a tree lower than it (the
+/// settled 4,000-body pile's tree is 15 to 17 levels high): they never spill there, and a
+/// small stack is cheaper to set up per call.
 const SHALLOW_STACK: usize = 32;
 
 #[inline]

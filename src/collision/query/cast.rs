@@ -362,14 +362,16 @@ fn segment_distance_squared(p: Vec3, a: Vec3, b: Vec3) -> f32 {
 /// against the sum of the radii, no GJK. `None` for the other pairs (GJK decides those).
 #[inline]
 pub fn overlaps_simple(a: &Rounded, geometry: &Geometry, xf: &Transform) -> Option<bool> {
-    match (a.core, *geometry) {
-        (Core::Point(p), Geometry::Sphere { center, radius }) => {
+    // By reference: the query core (a box's eight corners) and the geometry are not copied
+    // per shape tested.
+    match (&a.core, geometry) {
+        (&Core::Point(p), &Geometry::Sphere { center, radius }) => {
             let r = a.radius + radius;
             Some((p - xf.apply(center)).length_squared() <= r * r)
         }
         (
-            Core::Point(p),
-            Geometry::Box {
+            &Core::Point(p),
+            &Geometry::Box {
                 center,
                 rotation,
                 half_extents: h,
@@ -379,11 +381,11 @@ pub fn overlaps_simple(a: &Rounded, geometry: &Geometry, xf: &Transform) -> Opti
             let out = l - l.clamp(-h, h);
             Some(out.length_squared() <= a.radius * a.radius)
         }
-        (Core::Point(p), Geometry::Capsule { a: ca, b: cb, radius }) => {
+        (&Core::Point(p), &Geometry::Capsule { a: ca, b: cb, radius }) => {
             let r = a.radius + radius;
             Some(segment_distance_squared(p, xf.apply(ca), xf.apply(cb)) <= r * r)
         }
-        (Core::Segment(s0, s1), Geometry::Sphere { center, radius }) => {
+        (&Core::Segment(s0, s1), &Geometry::Sphere { center, radius }) => {
             let r = a.radius + radius;
             Some(segment_distance_squared(xf.apply(center), s0, s1) <= r * r)
         }
