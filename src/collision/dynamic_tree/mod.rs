@@ -84,7 +84,6 @@ struct FixedStack<T, const N: usize> {
 /// Node stack of the box queries and walks.
 type Stack = FixedStack<u32, STACK_CAPACITY>;
 /// Ray traversal stack of (node, entry parameter).
-#[cfg(test)]
 type RayStack = FixedStack<(u32, f32), RAY_STACK_CAPACITY>;
 
 impl<T: Copy + Default, const N: usize> FixedStack<T, N> {
@@ -122,6 +121,53 @@ impl<T: Copy + Default, const N: usize> FixedStack<T, N> {
         } else {
             None
         }
+    }
+}
+
+/// The stack of a tree walk.
+trait WalkStack<T> {
+    fn push(&mut self, v: T);
+    fn pop(&mut self) -> Option<T>;
+}
+
+impl<T: Copy + Default, const N: usize> WalkStack<T> for FixedStack<T, N> {
+    #[inline]
+    fn push(&mut self, v: T) {
+        FixedStack::push(self, v)
+    }
+    #[inline]
+    fn pop(&mut self) -> Option<T> {
+        FixedStack::pop(self)
+    }
+}
+
+/// A fixed array without a spill, for the walks of a tree lower than `N` (whose stack never
+/// holds `N` entries: at most one per level below the root); one past that would panic.
+struct BoundedStack<T, const N: usize> {
+    items: [T; N],
+    len: usize,
+}
+
+impl<T: Copy + Default, const N: usize> BoundedStack<T, N> {
+    #[inline]
+    fn new() -> Self {
+        BoundedStack {
+            items: [T::default(); N],
+            len: 0,
+        }
+    }
+}
+
+impl<T: Copy, const N: usize> WalkStack<T> for BoundedStack<T, N> {
+    #[inline]
+    fn push(&mut self, v: T) {
+        self.items[self.len] = v;
+        self.len += 1;
+    }
+    #[inline]
+    fn pop(&mut self) -> Option<T> {
+        self.len = self.len.checked_sub(1)?;
+        Some(self.items[self.len])
     }
 }
 
@@ -402,9 +448,9 @@ impl DynamicTree {
         // children not yet walked), so a tree that low never spills: a smaller stack, less
         // to clear per call.
         if self.height() < SHALLOW_STACK as u32 {
-            self.query_with::<F, SHALLOW_STACK>(aabb, f)
+            self.query_with(aabb, f, BoundedStack::<u32, SHALLOW_STACK>::new())
         } else {
-            self.query_with::<F, STACK_CAPACITY>(aabb, f)
+            self.query_with(aabb, f, Stack::new())
         }
     }
 
@@ -412,9 +458,8 @@ impl DynamicTree {
     /// of two overlapping children the second is walked at once and the first pushed, which
     /// is the order pushing both and popping the second would give.
     #[inline]
-    fn query_with<F: FnMut(u32, u32) -> bool, const N: usize>(&self, aabb: &Aabb, mut f: F) {
+    fn query_with<F: FnMut(u32, u32) -> bool, S: WalkStack<u32>>(&self, aabb: &Aabb, mut f: F, mut stack: S) {
         let nodes = &self.nodes[..];
-        let mut stack = FixedStack::<u32, N>::new();
         let mut i = self.root;
         loop {
             let n = &nodes[i as usize];
@@ -461,9 +506,14 @@ impl DynamicTree {
         // As in `query`, at most one stacked node per level below the root.
         let shallow = self.height() < SHALLOW_STACK as u32;
         match (ray.finite, shallow) {
-            (true, true) => self.ray_cast_with::<_, _, SHALLOW_STACK>(max_t, |t, b| ray.entry_finite(t, b), f),
-            (true, false) => self.ray_cast_with::<_, _, RAY_STACK_CAPACITY>(max_t, |t, b| ray.entry_finite(t, b), f),
-            (false, _) => self.ray_cast_with::<_, _, RAY_STACK_CAPACITY>(max_t, |t, b| ray.entry(t, b), f),
+            (true, true) => self.ray_cast_with(
+                max_t,
+                |t, b| ray.entry_finite(t, b),
+                f,
+                BoundedStack::<_, SHALLOW_STACK>::new(),
+            ),
+            (true, false) => self.ray_cast_with(max_t, |t, b| ray.entry_finite(t, b), f, RayStack::new()),
+            (false, _) => self.ray_cast_with(max_t, |t, b| ray.entry(t, b), f, RayStack::new()),
         }
     }
 
@@ -471,10 +521,11 @@ impl DynamicTree {
     /// hit is walked at once instead of being pushed and popped straight back (the same
     /// order), so only farther children wait on the stack.
     #[inline]
-    fn ray_cast_with<E, F, const N: usize>(&self, max_t: f32, entry: E, mut f: F) -> u32
+    fn ray_cast_with<E, F, S>(&self, max_t: f32, entry: E, mut f: F, mut stack: S) -> u32
     where
         E: Fn(f32, &Aabb) -> Option<f32>,
         F: FnMut(u32, u32, f32) -> f32,
+        S: WalkStack<(u32, f32)>,
     {
         let nodes = &self.nodes[..];
         let mut max_t = max_t;
@@ -482,7 +533,6 @@ impl DynamicTree {
         let Some(t_root) = entry(max_t, &nodes[self.root as usize].aabb) else {
             return tested;
         };
-        let mut stack = FixedStack::<(u32, f32), N>::new();
         let mut next = (self.root, t_root);
         loop {
             let (i, at) = next;

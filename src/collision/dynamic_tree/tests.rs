@@ -917,7 +917,8 @@ type Walk<'a> = dyn Fn(&mut dyn FnMut(u32, u32, f32) -> f32) -> u32 + 'a;
 /// the callback (clip at the box entry, ignore, go on unclipped, stop): `ray_cast` makes
 /// exactly the reference walk's calls (proxy, user data, clipped `max_t` bits, in order)
 /// and returns the same count of boxes tested, for finite rays and rays with zero or
-/// subnormal direction components, with the shallow stack, the deep one and a stack of
+/// subnormal direction components, with the shallow (spill-free) stack, the deep one, a
+/// spill-free one of 64 entries and a stack of
 /// two entries that spills. `query` with a stack of two entries reports what `query` does.
 #[test]
 fn ray_cast_makes_the_reference_walks_calls() {
@@ -968,16 +969,24 @@ fn ray_cast_makes_the_reference_walks_calls() {
                 answer(p, cur)
             });
             let ray = RaySlabs::new(o, d);
-            let walks: [&Walk; 3] = [
+            let walks: [&Walk; 4] = [
                 &|g| tree.ray_cast(o, d, max_t, g),
                 &|g| {
                     if ray.finite {
-                        tree.ray_cast_with::<_, _, 2>(max_t, |t, b| ray.entry_finite(t, b), g)
+                        tree.ray_cast_with(max_t, |t, b| ray.entry_finite(t, b), g, FixedStack::<_, 2>::new())
                     } else {
-                        tree.ray_cast_with::<_, _, 2>(max_t, |t, b| ray.entry(t, b), g)
+                        tree.ray_cast_with(max_t, |t, b| ray.entry(t, b), g, FixedStack::<_, 2>::new())
                     }
                 },
-                &|g| tree.ray_cast_with::<_, _, RAY_STACK_CAPACITY>(max_t, |t, b| ray.entry(t, b), g),
+                &|g| tree.ray_cast_with(max_t, |t, b| ray.entry(t, b), g, RayStack::new()),
+                &|g| {
+                    let stack = BoundedStack::<_, 64>::new();
+                    if ray.finite {
+                        tree.ray_cast_with(max_t, |t, b| ray.entry_finite(t, b), g, stack)
+                    } else {
+                        tree.ray_cast_with(max_t, |t, b| ray.entry(t, b), g, stack)
+                    }
+                },
             ];
             for (k, walk) in walks.iter().enumerate() {
                 let mut got = Vec::new();
@@ -996,10 +1005,14 @@ fn ray_cast_makes_the_reference_walks_calls() {
                 a.push(p);
                 true
             });
-            tree.query_with::<_, 2>(&q, |p, _| {
-                b.push(p);
-                true
-            });
+            tree.query_with(
+                &q,
+                |p, _| {
+                    b.push(p);
+                    true
+                },
+                FixedStack::<_, 2>::new(),
+            );
             assert_eq!(a, b, "round {round}");
         }
     }
