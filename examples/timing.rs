@@ -2,7 +2,10 @@
 //! `benches/` are the record. `cargo run --release --example timing [filter]`; the settings
 //! can be varied with SUBSTEPS=n, ITERATIONS=n and LANES=4 (no AVX2), the run with STEPS=n (default 600) and
 //! SLEEP=0/1 (only the scenes with sleep off/on; for profilers such as callgrind), the threads
-//! with WORKERS=n (default 1).
+//! with WORKERS=n (default 1). WINDOW=n also prints the ms/step of every n steps (a pile's
+//! fall, landing and settling cost differently). The issue-13 scenes (`hull_pile`,
+//! `terrain_mesh`, `terrain_heightfield`) are built as their benches build them; their
+//! benches time the first 300 steps (STEPS=300).
 
 #[path = "../tests/scenes/mod.rs"]
 #[allow(dead_code)]
@@ -26,6 +29,15 @@ const SCENES: &[(&str, bool, Build)] = &[
         scenes::set_events(w, true)
     }),
     ("spheres_grid", false, |w| drop(scenes::spheres_grid(w, 100))),
+    ("hull_pile", true, |w| drop(scenes::hull_pile(w, 1000, 1))),
+    ("terrain_mesh", true, |w| {
+        scenes::terrain_mesh(w, 256, false, 1);
+        scenes::terrain_drop(w, 1000, 8.0, 1);
+    }),
+    ("terrain_heightfield", true, |w| {
+        scenes::terrain_heightfield(w, 256, false, 1);
+        scenes::terrain_drop(w, 1000, 8.0, 1);
+    }),
 ];
 
 fn env(key: &str, default: u32) -> u32 {
@@ -47,6 +59,7 @@ fn main() {
         ..defaults
     };
     let steps = env("STEPS", 600);
+    let window = env("WINDOW", 0);
     let sleep_filter = std::env::var("SLEEP").ok().map(|v| v == "1");
     // An exact scene name picks that scene alone; anything else is a substring filter.
     let exact = SCENES.iter().any(|s| s.0 == filter);
@@ -66,8 +79,17 @@ fn main() {
         .unwrap();
         build(&mut w);
         let t = Instant::now();
-        for _ in 0..steps {
+        let mut windows = Vec::new();
+        let mut since = Instant::now();
+        for i in 0..steps {
             w.step(1.0 / 60.0).unwrap();
+            if window > 0 && (i + 1) % window == 0 {
+                windows.push(format!(
+                    "{:.3}",
+                    since.elapsed().as_secs_f64() * 1000.0 / f64::from(window)
+                ));
+                since = Instant::now();
+            }
         }
         let ms = t.elapsed().as_secs_f64() * 1000.0 / f64::from(steps);
         println!(
@@ -75,5 +97,8 @@ fn main() {
             w.awake_body_count(),
             w.contact_count()
         );
+        if !windows.is_empty() {
+            println!("{name:<14} ms/step per {window} steps: {}", windows.join(" "));
+        }
     }
 }
