@@ -16,11 +16,12 @@
 //! worker count) changes nothing either.
 //!
 //! Two drivers. With Hearth's own pool the workers run the whole list inside one task each,
-//! claim blocks with an atomic counter per stage, count completed blocks with another, and
-//! whoever completes a stage's last block opens the gate to the next (`parallel::Barrier`
-//! used as a gate; a waiting worker spins briefly, then yields, then parks), as Box2D v3
-//! does: no thread is woken per stage, and a worker that is not running (a loaded machine)
-//! holds the others up only while inside a block. Only the pool promises that its workers
+//! each claiming its own share of a stage's blocks first (`parallel::Claims`), count the
+//! blocks they completed in a step-wide counter, and whoever completes a stage's last block
+//! opens the gate to the next (`parallel::Barrier` used as a gate; a waiting worker spins
+//! briefly, then yields, then parks), as Box2D v3 does: no thread is woken per stage, and a
+//! worker that is not running (a loaded machine) holds the others up only while inside a
+//! block. Only the pool promises that its workers
 //! may wait for one another (`TaskRunner::concurrent`), never more than the cores. A host's
 //! job system may run tasks one after another, so with it each stage is one task (one
 //! enqueue and finish per stage, blocks as the items).
@@ -43,7 +44,7 @@ use crate::dynamics::solver::{
     Paths, Velocity,
 };
 use crate::generators::springs::{self, BodySprings};
-use crate::parallel::{Barrier, SharedMut, TaskRunner};
+use crate::parallel::{Barrier, Claims, Line, SharedMut, TaskRunner};
 
 /// What every block reads, fixed for the step.
 pub(crate) struct Sweep<'a> {
@@ -116,25 +117,35 @@ struct Stage {
     block: u32,
     /// Blocks in all (including the extra scalar-path block of the integration stages).
     blocks: u32,
+    /// Index of the stage's first block in `Stages::claims`.
+    first: u32,
 }
 
-/// The stage list of a step and the claim and completion counters of its blocks, reused
-/// step to step.
+/// The stage list of a step, a claim per block and the count of completed blocks, reused
+/// step to step. Workers on different cores touch these at every stage, so each lives on a
+/// cache line of its own (`parallel::Claims`), and a worker adds to `done` once per stage,
+/// all the blocks it completed there, rather than once per block.
 #[derive(Default)]
 pub struct Stages {
     list: Vec<Stage>,
-    next: Vec<AtomicU32>,
-    done: Vec<AtomicU32>,
+    /// Per block of every stage.
+    claims: Claims,
+    /// This step's claim epoch (one more each step).
+    epoch: u64,
+    /// Blocks completed this step, of every stage: stage `s` is done when this reaches
+    /// `list[s].first + list[s].blocks` (the stages run one after another).
+    done: Line<AtomicU32>,
 }
 
 /// Items per block: about four blocks per worker, no fewer than `min` items, a multiple of
 /// `align`.
 fn block_size(len: u32, workers: u32, min: u32, align: u32) -> u32 {
-    len.div_ceil(4 * workers).max(min).div_ceil(align) * align
+    len.div_ceil(BLOCKS_PER_WORKER * workers).max(min).div_ceil(align) * align
 }
 
 /// Bodies fewer than this per block are not worth a claim.
 const MIN_BODIES: u32 = 32;
+const BLOCKS_PER_WORKER: u32 = 4;
 /// Batches fewer than this per block likewise.
 const MIN_BATCHES: u32 = 2;
 
@@ -143,12 +154,14 @@ impl Stages {
         let (start, end) = (items.start as u32, items.end as u32);
         let blocks = (end - start).div_ceil(block.max(1)) + extra as u32;
         if blocks > 0 {
+            let first = self.blocks();
             self.list.push(Stage {
                 op,
                 start,
                 end,
                 block: block.max(1),
                 blocks,
+                first,
             });
         }
     }
@@ -167,13 +180,20 @@ impl Stages {
         }
         let mut chain = [Serial::Lock; CHAIN];
         chain[0] = s;
+        let first = self.blocks();
         self.list.push(Stage {
             op: Op::Serial { chain, len: 1 },
             start: 0,
             end: 1,
             block: 1,
             blocks: 1,
+            first,
         });
+    }
+
+    /// Blocks of the stages listed so far.
+    fn blocks(&self) -> u32 {
+        self.list.last().map_or(0, |s| s.first + s.blocks)
     }
 
     /// Writes out the sub-step loop of `solver::solve` for `workers` workers.
@@ -266,13 +286,9 @@ impl Stages {
                 self.push_serial(Serial::Lock);
             }
         }
-        if self.next.len() < self.list.len() {
-            self.next.resize_with(self.list.len(), || AtomicU32::new(0));
-            self.done.resize_with(self.list.len(), || AtomicU32::new(0));
-        }
-        for n in self.next[..self.list.len()].iter().chain(&self.done[..self.list.len()]) {
-            n.store(0, Ordering::Relaxed);
-        }
+        self.claims.reserve(self.blocks() as usize);
+        self.epoch += 1;
+        self.done.0.store(0, Ordering::Relaxed);
     }
 }
 
@@ -290,8 +306,8 @@ pub(crate) fn substeps(runner: &dyn TaskRunner, stages: &mut Stages, sweep: &Swe
     if concurrent > 1 {
         let gate = Barrier::new();
         runner.run(concurrent, 1, &|start, end, _| {
-            for _ in start..end {
-                let r = catch_unwind(AssertUnwindSafe(|| worker(stages, sweep, w, &gate)));
+            for me in start..end {
+                let r = catch_unwind(AssertUnwindSafe(|| worker(stages, sweep, w, &gate, me, concurrent)));
                 if let Err(e) = r {
                     gate.poison();
                     resume_unwind(e);
@@ -316,31 +332,36 @@ pub(crate) fn substeps(runner: &dyn TaskRunner, stages: &mut Stages, sweep: &Swe
 /// stage index), and a worker waits only while another one is still inside a block of the
 /// current stage. A worker that starts late, or was descheduled, finds the stages done
 /// meanwhile and skips them, so it holds nobody up.
-fn worker(stages: &Stages, sweep: &Sweep, w: &Written, gate: &Barrier) {
+///
+/// Worker `me` of `workers` takes its own share of every stage's blocks first
+/// (`Claims::in_turn`): the same share of the same items in every stage (a colour's
+/// batches, which `Batches::build` orders by the bodies' shares, and the bodies), so each
+/// worker keeps solving the same constraints and bodies, whose data stays in its core's
+/// cache through the sub-steps.
+fn worker(stages: &Stages, sweep: &Sweep, w: &Written, gate: &Barrier, me: u32, workers: u32) {
     let count = stages.list.len() as u32;
     loop {
         let s = gate.generation();
         if s >= count {
             return;
         }
-        let (stage, next, done) = (
-            &stages.list[s as usize],
-            &stages.next[s as usize],
-            &stages.done[s as usize],
-        );
-        loop {
-            let b = next.fetch_add(1, Ordering::Relaxed);
-            if b >= stage.blocks {
-                break;
-            }
+        let stage = &stages.list[s as usize];
+        let mut completed = 0;
+        for b in stages
+            .claims
+            .in_turn(stage.first, stage.blocks, stages.epoch, me, workers)
+        {
             // SAFETY: each block is claimed once; blocks of a stage touch distinct items, and
             // no block of stage s + 1 is claimed before every block of s completed.
             unsafe { execute(stage, b, sweep, w) };
-            // AcqRel: the completions form one release sequence, so whoever completes the
-            // last block sees every block's writes and publishes them by opening the gate.
-            if done.fetch_add(1, Ordering::AcqRel) + 1 == stage.blocks {
-                gate.open(s + 1);
-            }
+            completed += 1;
+        }
+        // AcqRel: the completions form one release sequence, so whoever completes the last
+        // block of the stage sees every block's writes and publishes them by opening the gate.
+        if completed > 0
+            && stages.done.0.fetch_add(completed, Ordering::AcqRel) + completed == stage.first + stage.blocks
+        {
+            gate.open(s + 1);
         }
         gate.wait_past(s);
     }

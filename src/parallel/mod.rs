@@ -13,10 +13,12 @@
 //! callbacks (`capi/tasks.rs`).
 
 mod barrier;
+mod claims;
 mod pool;
 mod slots;
 
 pub(crate) use barrier::Barrier;
+pub(crate) use claims::{Claims, Line};
 pub use pool::ThreadPool;
 pub(crate) use slots::{Disjoint, SharedMut};
 
