@@ -769,6 +769,9 @@ pub struct Paths {
     pub(crate) moving: Vec<u32>,
     /// `Path::General`: the scalar path.
     pub(crate) general: Vec<u32>,
+    /// Kinematic (in `moving` too). Every solver slot but the static dummy's is in `plain`,
+    /// `general` or here.
+    pub(crate) kinematic: Vec<u32>,
 }
 
 impl Paths {
@@ -776,11 +779,15 @@ impl Paths {
         self.plain.clear();
         self.moving.clear();
         self.general.clear();
+        self.kinematic.clear();
         for (k, d) in drives.iter().enumerate() {
             let k = k as u32;
             match d.path {
                 Path::Fixed => {}
-                Path::Kinematic => self.moving.push(k),
+                Path::Kinematic => {
+                    self.moving.push(k);
+                    self.kinematic.push(k);
+                }
                 Path::Plain => {
                     self.plain.push(k);
                     self.moving.push(k);
@@ -960,9 +967,17 @@ pub fn solve(world: &mut World, dt: f32) {
         staged(runner, &mut scratch.stages, &sweep, &written);
     }
     // Otherwise (and then only) the sub-steps run here.
+    // The guard after a sub-step's relax sweep is made by the next sub-step's velocity
+    // integration, body by body before it integrates, when nothing comes between them.
+    let fused = guard_fuses(springs, locked);
     for sub in 0..if staged { 0 } else { substeps } {
         // Springs between bodies kick first, from the poses at the start of the sub-step.
         crate::generators::springs::apply(springs, vel, states, h);
+        if fused && sub > 0 {
+            guard_list(vel, limits, &paths.plain);
+            guard_list(vel, limits, &paths.general);
+            guard_list(vel, limits, &paths.kinematic);
+        }
         integrate_wide::velocities(eight, vel, drives, &paths.plain, limits);
         integrate_general_velocities(vel, drives, states, sims, &paths.general, h, limits);
         // Joints warm start first, then each contact batch is refreshed and warm started.
@@ -978,14 +993,19 @@ pub fn solve(world: &mut World, dt: f32) {
             contact_wide::solve(vel, batches, inv_h, (sub + k) % 2 == 0, Some(&soft));
             lock_velocities(vel, states, locked);
         }
-        guard_velocities(vel, limits);
+        // The guard before the position update, body by body (every slot is in `moving` or
+        // `general`).
+        guard_list(vel, limits, &paths.moving);
         integrate_wide::positions(eight, vel, states, &paths.moving, h, limits);
+        guard_list(vel, limits, &paths.general);
         integrate_general_positions(vel, states, sims, &paths.general, h, limits);
         crate::dynamics::joints::solver::solve(joints, vel, states, h, false);
         crate::dynamics::joints::solver::guard(joints, vel, limits);
         lock_velocities(vel, states, locked);
         contact_wide::solve(vel, batches, inv_h, sub % 2 == 1, None);
-        guard_velocities(vel, limits);
+        if !fused || sub + 1 == substeps {
+            guard_velocities(vel, limits);
+        }
         lock_velocities(vel, states, locked);
     }
     if scratch.bounces {
@@ -1025,14 +1045,37 @@ fn guard_velocities(vel: &mut [Velocity], limits: (f32, f32)) {
     guard_range(vel, limits, all);
 }
 
+/// Whether the guard after a sub-step's relax sweep may wait for the next sub-step's velocity
+/// integration (`guard_list` there, body by body): nothing comes between them, no body springs
+/// kicking velocities and no locked axes zeroing them.
+pub(crate) fn guard_fuses(springs: &crate::generators::springs::BodySprings, locked: &[u32]) -> bool {
+    springs.list.is_empty() && locked.is_empty()
+}
+
+/// `guard_velocities` over the listed solver slots.
+#[inline]
+pub(crate) fn guard_list(vel: &mut [Velocity], limits: (f32, f32), slots: &[u32]) {
+    let (v2, w2) = ((100.0 * limits.0).powi(2), (100.0 * limits.1).powi(2));
+    for &k in slots {
+        guard_one(&mut vel[k as usize], v2, w2, limits);
+    }
+}
+
+/// Caps a velocity whose speeds are beyond 100 times the limits (squared: `v2`, `w2`) or not
+/// finite at the limits.
+#[inline(always)]
+fn guard_one(u: &mut Velocity, v2: f32, w2: f32, limits: (f32, f32)) {
+    let sane = |x: f32, max: f32| x.is_finite() && x <= max;
+    if !sane(u.v.length_squared(), v2) || !sane(u.w.length_squared(), w2) {
+        *u = Velocity::new(clamp_length(u.v, limits.0), clamp_length(u.w, limits.1));
+    }
+}
+
 /// `guard_velocities` over the solver slots of `range` (the static dummy, slot 0, excluded).
 pub(crate) fn guard_range(vel: &mut [Velocity], limits: (f32, f32), range: std::ops::Range<usize>) {
     let (v2, w2) = ((100.0 * limits.0).powi(2), (100.0 * limits.1).powi(2));
     for u in vel[range.start.max(1)..range.end].iter_mut() {
-        let sane = |x: f32, max: f32| x.is_finite() && x <= max;
-        if !sane(u.v.length_squared(), v2) || !sane(u.w.length_squared(), w2) {
-            *u = Velocity::new(clamp_length(u.v, limits.0), clamp_length(u.w, limits.1));
-        }
+        guard_one(u, v2, w2, limits);
     }
 }
 

@@ -40,8 +40,8 @@ use crate::dynamics::contact_wide::{self, Batches, SoftSweep};
 use crate::dynamics::integrate_wide;
 use crate::dynamics::joints::solver::{self as joints, JointSet};
 use crate::dynamics::solver::{
-    guard_range, integrate_general_positions, integrate_general_velocities, lock_velocities, BodySim, BodyState, Drive,
-    Paths, Velocity,
+    guard_fuses, guard_list, guard_range, integrate_general_positions, integrate_general_velocities, lock_velocities,
+    BodySim, BodyState, Drive, Paths, Velocity,
 };
 use crate::generators::springs::{self, BodySprings};
 use crate::parallel::{Barrier, Claims, Line, SharedMut, TaskRunner};
@@ -98,9 +98,12 @@ const CHAIN: usize = 8;
 enum Op {
     /// One block running `chain[..len]` in order.
     Serial { chain: [Serial; CHAIN], len: u8 },
-    /// Items: indices into `paths.plain`; one more block for `paths.general`.
-    Velocities,
-    /// Items: indices into `paths.moving`; one more block for `paths.general`.
+    /// Items: indices into `paths.plain`; one more block for `paths.general`. With `guard`,
+    /// each block first guards its bodies' velocities (the extra block also the kinematic
+    /// bodies'): the guard after the last sub-step's relax sweep.
+    Velocities { guard: bool },
+    /// Items: indices into `paths.moving`; one more block for `paths.general`. Each block
+    /// first guards its bodies' velocities (every solver slot is in one of the two lists).
     Positions,
     /// Items: solver slots.
     Guard,
@@ -216,6 +219,9 @@ impl Stages {
         );
         let paths = sweep.paths;
         let general = !paths.general.is_empty();
+        // As the serial loop: the guard after a relax sweep is made by the next velocity
+        // stage when nothing comes between them.
+        let fused = guard_fuses(springs, sweep.locked);
         let lanes = batches.lanes() as u32;
         let body_block = |len: usize| block_size(len as u32, workers, MIN_BODIES, lanes);
         // One stage per colour, the constraints that fit no colour (the last range) serially.
@@ -235,11 +241,12 @@ impl Stages {
             if has_springs {
                 self.push_serial(Serial::Springs);
             }
+            let guard = fused && sub > 0;
             self.push(
-                Op::Velocities,
+                Op::Velocities { guard },
                 0..paths.plain.len(),
                 body_block(paths.plain.len()),
-                general,
+                general || (guard && !paths.kinematic.is_empty()),
             );
             if has_joints {
                 self.push_serial(Serial::JointWarmStart);
@@ -261,7 +268,6 @@ impl Stages {
                     self.push_serial(Serial::Lock);
                 }
             }
-            self.push(Op::Guard, 1..slots, body_block(slots), false);
             self.push(
                 Op::Positions,
                 0..paths.moving.len(),
@@ -281,7 +287,9 @@ impl Stages {
                     bias: false,
                 },
             );
-            self.push(Op::Guard, 1..slots, body_block(slots), false);
+            if !fused || sub + 1 == sweep.substeps {
+                self.push(Op::Guard, 1..slots, body_block(slots), false);
+            }
             if has_locks {
                 self.push_serial(Serial::Lock);
             }
@@ -396,14 +404,27 @@ unsafe fn execute(stage: &Stage, b: u32, sweep: &Sweep, w: &Written) {
                 }
             }
         }
-        Op::Velocities if items.is_empty() => {
+        Op::Velocities { guard } if items.is_empty() => {
+            if guard {
+                guard_list(vel, limits, &paths.general);
+                guard_list(vel, limits, &paths.kinematic);
+            }
             integrate_general_velocities(vel, sweep.drives, states, sweep.sims, &paths.general, h, limits)
         }
-        Op::Velocities => integrate_wide::velocities(eight, vel, sweep.drives, &paths.plain[items], limits),
+        Op::Velocities { guard } => {
+            if guard {
+                guard_list(vel, limits, &paths.plain[items.clone()]);
+            }
+            integrate_wide::velocities(eight, vel, sweep.drives, &paths.plain[items], limits)
+        }
         Op::Positions if items.is_empty() => {
+            guard_list(vel, limits, &paths.general);
             integrate_general_positions(vel, states, sweep.sims, &paths.general, h, limits)
         }
-        Op::Positions => integrate_wide::positions(eight, vel, states, &paths.moving[items], h, limits),
+        Op::Positions => {
+            guard_list(vel, limits, &paths.moving[items.clone()]);
+            integrate_wide::positions(eight, vel, states, &paths.moving[items], h, limits)
+        }
         Op::Guard => guard_range(vel, limits, items),
         Op::Batches(pass) => sweep_batches(pass, items, sweep, vel, states, w.batches.get()),
     }
