@@ -98,12 +98,12 @@ const CHAIN: usize = 8;
 enum Op {
     /// One block running `chain[..len]` in order.
     Serial { chain: [Serial; CHAIN], len: u8 },
-    /// Items: indices into `paths.plain`; one more block for `paths.general`. With `guard`,
-    /// each block first guards its bodies' velocities (the extra block also the kinematic
-    /// bodies'): the guard after the last sub-step's relax sweep.
+    /// Items: indices into `paths.plain`, then the general blocks (`Stage::general`). With
+    /// `guard`, each block first guards its bodies' velocities (the first general block also
+    /// the kinematic bodies'): the guard after the last sub-step's relax sweep.
     Velocities { guard: bool },
-    /// Items: indices into `paths.moving`; one more block for `paths.general`. Each block
-    /// first guards its bodies' velocities (every solver slot is in one of the two lists).
+    /// Items: indices into `paths.moving`, then the general blocks. Each block first guards
+    /// its bodies' velocities (every solver slot is in one of the two lists).
     Positions,
     /// Items: solver slots.
     Guard,
@@ -118,8 +118,11 @@ struct Stage {
     start: u32,
     end: u32,
     block: u32,
-    /// Blocks in all (including the extra scalar-path block of the integration stages).
+    /// Blocks in all (including the scalar-path blocks of the integration stages).
     blocks: u32,
+    /// The integration stages' scalar-path bodies (`paths.general`) per block, in the
+    /// blocks after those of `start..end` (0: none, a stage of one list).
+    general: u32,
     /// Index of the stage's first block in `Stages::claims`.
     first: u32,
 }
@@ -153,9 +156,11 @@ const BLOCKS_PER_WORKER: u32 = 4;
 const MIN_BATCHES: u32 = 2;
 
 impl Stages {
-    fn push(&mut self, op: Op, items: Range<usize>, block: u32, extra: bool) {
+    /// A stage over `items` in blocks of `block`, then `general.0` blocks of `general.1`
+    /// scalar-path bodies each.
+    fn push(&mut self, op: Op, items: Range<usize>, block: u32, general: (u32, u32)) {
         let (start, end) = (items.start as u32, items.end as u32);
-        let blocks = (end - start).div_ceil(block.max(1)) + extra as u32;
+        let blocks = (end - start).div_ceil(block.max(1)) + general.0;
         if blocks > 0 {
             let first = self.blocks();
             self.list.push(Stage {
@@ -164,6 +169,7 @@ impl Stages {
                 end,
                 block: block.max(1),
                 blocks,
+                general: general.1,
                 first,
             });
         }
@@ -190,6 +196,7 @@ impl Stages {
             end: 1,
             block: 1,
             blocks: 1,
+            general: 0,
             first,
         });
     }
@@ -218,7 +225,10 @@ impl Stages {
             !sweep.locked.is_empty(),
         );
         let paths = sweep.paths;
-        let general = !paths.general.is_empty();
+        // The scalar-path bodies (gyroscopic turns, RK4) cost far more than the lane ones:
+        // in blocks of their own, as many as the lane bodies get.
+        let general_block = block_size(paths.general.len() as u32, workers, 4, 4);
+        let general_blocks = (paths.general.len() as u32).div_ceil(general_block);
         // As the serial loop: the guard after a relax sweep is made by the next velocity
         // stage when nothing comes between them.
         let fused = guard_fuses(springs, sweep.locked);
@@ -233,7 +243,7 @@ impl Stages {
                     }
                 } else {
                     let block = block_size(range.len() as u32, workers, MIN_BATCHES, 1);
-                    me.push(Op::Batches(pass), range, block, false);
+                    me.push(Op::Batches(pass), range, block, (0, 0));
                 }
             }
         };
@@ -242,11 +252,13 @@ impl Stages {
                 self.push_serial(Serial::Springs);
             }
             let guard = fused && sub > 0;
+            // One block at least when kinematic bodies are to be guarded.
+            let kinematic = (guard && !paths.kinematic.is_empty()) as u32;
             self.push(
                 Op::Velocities { guard },
                 0..paths.plain.len(),
                 body_block(paths.plain.len()),
-                general || (guard && !paths.kinematic.is_empty()),
+                (general_blocks.max(kinematic), general_block),
             );
             if has_joints {
                 self.push_serial(Serial::JointWarmStart);
@@ -272,7 +284,7 @@ impl Stages {
                 Op::Positions,
                 0..paths.moving.len(),
                 body_block(paths.moving.len()),
-                general,
+                (general_blocks, general_block),
             );
             if has_joints {
                 self.push_serial(Serial::JointSolve { bias: false });
@@ -288,7 +300,7 @@ impl Stages {
                 },
             );
             if !fused || sub + 1 == sweep.substeps {
-                self.push(Op::Guard, 1..slots, body_block(slots), false);
+                self.push(Op::Guard, 1..slots, body_block(slots), (0, 0));
             }
             if has_locks {
                 self.push_serial(Serial::Lock);
@@ -381,8 +393,11 @@ fn worker(stages: &Stages, sweep: &Sweep, w: &Written, gate: &Barrier, me: u32, 
 /// No other block of a different stage runs at the same time, and `b` runs once.
 unsafe fn execute(stage: &Stage, b: u32, sweep: &Sweep, w: &Written) {
     let (h, limits, eight, paths) = (sweep.h, sweep.limits, sweep.eight, sweep.paths);
-    let start = (stage.start + b * stage.block) as usize;
-    let items = start.min(stage.end as usize)..(start + stage.block as usize).min(stage.end as usize);
+    let span = |start: u32, block: u32, end: u32| start.min(end) as usize..(start + block).min(end) as usize;
+    let own = (stage.end - stage.start).div_ceil(stage.block);
+    let items = span(stage.start + b * stage.block, stage.block, stage.end);
+    // A scalar-path block of an integration stage: its share of `paths.general`.
+    let general = (b >= own).then(|| span((b - own) * stage.general, stage.general, paths.general.len() as u32));
     let (vel, states) = (w.vel.get(), w.states.get());
     match stage.op {
         Op::Serial { chain, len } => {
@@ -404,12 +419,15 @@ unsafe fn execute(stage: &Stage, b: u32, sweep: &Sweep, w: &Written) {
                 }
             }
         }
-        Op::Velocities { guard } if items.is_empty() => {
+        Op::Velocities { guard } if b >= own => {
+            let bodies = &paths.general[general.unwrap_or(0..0)];
             if guard {
-                guard_list(vel, limits, &paths.general);
-                guard_list(vel, limits, &paths.kinematic);
+                guard_list(vel, limits, bodies);
+                if b == own {
+                    guard_list(vel, limits, &paths.kinematic);
+                }
             }
-            integrate_general_velocities(vel, sweep.drives, states, sweep.sims, &paths.general, h, limits)
+            integrate_general_velocities(vel, sweep.drives, states, sweep.sims, bodies, h, limits)
         }
         Op::Velocities { guard } => {
             if guard {
@@ -417,9 +435,10 @@ unsafe fn execute(stage: &Stage, b: u32, sweep: &Sweep, w: &Written) {
             }
             integrate_wide::velocities(eight, vel, sweep.drives, &paths.plain[items], limits)
         }
-        Op::Positions if items.is_empty() => {
-            guard_list(vel, limits, &paths.general);
-            integrate_general_positions(vel, states, sweep.sims, &paths.general, h, limits)
+        Op::Positions if b >= own => {
+            let bodies = &paths.general[general.unwrap_or(0..0)];
+            guard_list(vel, limits, bodies);
+            integrate_general_positions(vel, states, sweep.sims, bodies, h, limits)
         }
         Op::Positions => {
             guard_list(vel, limits, &paths.moving[items.clone()]);
