@@ -434,6 +434,10 @@ impl Homes {
 /// their order within both (a counting sort: linear, stable, no allocation once `scratch`
 /// has grown).
 fn order(members: &mut [u32], scratch: &mut Vec<u32>, refs: &[ContactRef], homes: Homes) {
+    if members.len() < 2 {
+        // Most of the 24 colours are empty: no counts to clear.
+        return;
+    }
     const KEYS: usize = ContactRef::ORDER_KEYS;
     let key = |i: u32| {
         let r = &refs[i as usize];
