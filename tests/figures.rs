@@ -106,7 +106,16 @@ const FIGURES: &[(&str, &str, Backing)] = &[
     (
         R,
         "1 mm",
-        Measured(&["robustness::a_slider_set_up_45_degrees_off_stays_on_its_axis"]),
+        Measured(&[
+            "robustness::a_slider_set_up_45_degrees_off_stays_on_its_axis",
+            "joint_loops::slider_crank_puts_its_piston_where_the_crank_angle_says",
+        ]),
+    ),
+    // README, joints: random closed loops' energy bound.
+    (
+        R,
+        "15 %",
+        Measured(&["joint_loops::seeded_random_rings_of_every_joint_kind_hold_and_gain_no_energy"]),
     ),
     (R, "10 km", Range),
     (R, "100000 m", Range),
@@ -141,6 +150,7 @@ const FIGURES: &[(&str, &str, Backing)] = &[
         Measured(&[
             "soft::pressurised_icosphere_bounces_settles_and_keeps_its_volume",
             "soft::a_64x64_cloth_pinned_at_two_corners_hangs_without_stretching",
+            "joint_loops::parallelogram_linkage_swings_with_its_analytic_period_and_keeps_its_bar_level",
         ]),
     ),
     (

@@ -31,38 +31,13 @@ mod scenes;
 use hearth::joints::{BallParams, HingeParams, SliderParams};
 use hearth::math::{Quat, Transform, Vec3};
 use hearth::{BodyHandle, JointKind, World};
-use scenes::{chain_link, energy, join, kick_chain, ChainJoint as Joint};
+use scenes::{chain_link, energy, join, joint_error, kick_chain, ChainJoint as Joint};
 
 const DT: f32 = 1.0 / 60.0;
 
 /// A dynamic box that collides with nothing (its own group).
 fn link(w: &mut World, xf: Transform, h: Vec3, density: f32) -> BodyHandle {
     chain_link(w, xf, 0, h, density, false)
-}
-
-/// A joint's error (m): for the others the anchors' distance, or for a hinge its axes'
-/// misalignment (rad) times a metre if larger. For a slider, its rotation error (rad) times a
-/// metre, or the distance of B's anchor from A's axis over the anchors' distance along it
-/// (at least a metre) if larger: far along the rail, a rotation error turns A's axis at B's
-/// anchor by the whole distance (5e-5 rad, f32-level for a spinning pair, is 2 cm at 400 m),
-/// so there the error is measured as an angle, as the rotation's.
-fn joint_error(w: &World, j: &Joint) -> f32 {
-    let fa = w.transform(j.child).unwrap().mul(&j.on_child);
-    let fb = match j.parent {
-        Some(p) => w.transform(p).unwrap().mul(&j.on_parent),
-        None => j.on_parent,
-    };
-    let d = fb.p - fa.p;
-    let (za, zb) = (fa.q * Vec3::Z, fb.q * Vec3::Z);
-    match w.joint(j.handle).unwrap().def.kind {
-        JointKind::Slider(_) => {
-            let across = (d - za * za.dot(d)).length() / za.dot(d).abs().max(1.0);
-            let rel = fa.q.conjugate() * fb.q;
-            across.max(2.0 * Vec3::new(rel.x, rel.y, rel.z).length())
-        }
-        JointKind::Hinge(_) => d.length().max(za.cross(zb).length()),
-        _ => d.length(),
-    }
 }
 
 /// A slider's translation (m): the parent's anchor from the child's along the child's axis

@@ -688,6 +688,33 @@ pub struct ChainJoint {
     pub on_parent: Transform,
 }
 
+/// A joint's error (m): for the others the anchors' distance (a rigid distance joint: its
+/// difference from the length), or for a hinge its axes'
+/// misalignment (rad) times a metre if larger. For a slider, its rotation error (rad) times a
+/// metre, or the distance of B's anchor from A's axis over the anchors' distance along it
+/// (at least a metre) if larger: far along the rail, a rotation error turns A's axis at B's
+/// anchor by the whole distance (5e-5 rad, f32-level for a spinning pair, is 2 cm at 400 m),
+/// so there the error is measured as an angle, as the rotation's.
+pub fn joint_error(w: &World, j: &ChainJoint) -> f32 {
+    let fa = w.transform(j.child).unwrap().mul(&j.on_child);
+    let fb = match j.parent {
+        Some(p) => w.transform(p).unwrap().mul(&j.on_parent),
+        None => j.on_parent,
+    };
+    let d = fb.p - fa.p;
+    let (za, zb) = (fa.q * Vec3::Z, fb.q * Vec3::Z);
+    match w.joint(j.handle).unwrap().def.kind {
+        hearth::JointKind::Slider(_) => {
+            let across = (d - za * za.dot(d)).length() / za.dot(d).abs().max(1.0);
+            let rel = fa.q.conjugate() * fb.q;
+            across.max(2.0 * Vec3::new(rel.x, rel.y, rel.z).length())
+        }
+        hearth::JointKind::Hinge(_) => d.length().max(za.cross(zb).length()),
+        hearth::JointKind::Distance(p) if !p.enable_spring => (d.length() - p.length).abs(),
+        _ => d.length(),
+    }
+}
+
 /// Joins `child` to `parent` (or the world) with a joint of `kind` whose frame is `frame`
 /// (world space) on both.
 pub fn join(
