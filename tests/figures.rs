@@ -117,6 +117,27 @@ const FIGURES: &[(&str, &str, Backing)] = &[
         "15 %",
         Measured(&["joint_loops::seeded_random_rings_of_every_joint_kind_hold_and_gain_no_energy"]),
     ),
+    (
+        R,
+        "3.5 %",
+        Measured(&["joint_loops::seeded_random_open_chains_with_limits_and_springs_gain_no_energy"]),
+    ),
+    (
+        R,
+        "4.98 m",
+        Measured(&["joint_loops::seeded_random_open_chains_with_limits_and_springs_gain_no_energy"]),
+    ),
+    // ARCHITECTURE, joints left to Gauss-Seidel: the worst energy rises.
+    (
+        A,
+        "0.6 %",
+        Measured(&["joint_loops::seeded_random_open_chains_with_limits_and_springs_gain_no_energy"]),
+    ),
+    (
+        A,
+        "32.6 %",
+        Measured(&["joint_loops::seeded_random_rings_with_limits_and_springs_gain_no_energy"]),
+    ),
     (R, "10 km", Range),
     (R, "100000 m", Range),
     (R, "8 mm", Fact),

@@ -4,8 +4,11 @@
 //! stays in the iterative path). A parallelogram linkage swings with the period of its
 //! analytic reduced inertia and keeps its bar level; a slider-crank driven by a hinge motor
 //! puts its piston where the crank's angle says; seeded random rings of every joint kind
-//! (sliders with and without limits, bodies with mass ratios to 1:10, random frames) stay
-//! finite, bounded and together, and gain no energy.
+//! (sliders with and without limits, bodies with mass ratios to 1:10, random frames), with
+//! and without limits and springs, and the same chains left open, stay finite and bounded
+//! and gain no energy (the open chains with limits found that the forest's exact solve,
+//! against limits and springs solved one joint at a time, fed energy in: such components
+//! are left to Gauss–Seidel now, `Forest::build`).
 
 #[path = "scenes/mod.rs"]
 #[allow(dead_code)]
@@ -212,10 +215,32 @@ fn slider_crank_puts_its_piston_where_the_crank_angle_says() {
 }
 
 /// A random joint for a ring: hinge, ball, fixed, slider (limited to ±0.25 m or ±5 m, or
-/// not limited), or a rigid distance joint of `length` between the two anchors.
-fn ring_kind(rng: &mut scenes::Rng, which: u32, length: f32) -> JointKind {
+/// not limited), or a rigid distance joint of `length` between the two anchors. With
+/// `limits`, a hinge has angle limits around its start or a spring toward it, a ball a
+/// swing cone and twist limits, and a distance joint is a spring between a shortest and a
+/// longest length instead.
+fn ring_kind(rng: &mut scenes::Rng, which: u32, length: f32, limits: bool) -> JointKind {
     match which {
+        0 if limits => {
+            let spring = rng.next_u32() % 2 == 0;
+            JointKind::Hinge(HingeParams {
+                enable_limit: !spring,
+                lower: -rng.range(0.0, 1.5),
+                upper: rng.range(0.0, 1.5),
+                enable_spring: spring,
+                spring_hertz: rng.range(0.5, 5.0),
+                spring_damping_ratio: rng.range(0.0, 1.0),
+                ..HingeParams::default()
+            })
+        }
         0 => hinge(),
+        1 if limits => JointKind::Ball(BallParams {
+            enable_swing_limit: true,
+            swing_limit: rng.range(0.2, 1.5),
+            enable_twist_limit: true,
+            lower_twist: -rng.range(0.0, 1.0),
+            upper_twist: rng.range(0.0, 1.0),
+        }),
         1 => JointKind::Ball(BallParams::default()),
         2 => JointKind::Fixed,
         3 => {
@@ -231,6 +256,15 @@ fn ring_kind(rng: &mut scenes::Rng, which: u32, length: f32) -> JointKind {
                 ..SliderParams::default()
             })
         }
+        _ if limits && length > 0.0 => JointKind::Distance(DistanceParams {
+            length,
+            enable_limit: true,
+            min_length: 0.5 * length,
+            max_length: 2.0 * length,
+            enable_spring: true,
+            spring_hertz: rng.range(0.5, 5.0),
+            spring_damping_ratio: rng.range(0.0, 1.0),
+        }),
         _ => JointKind::Distance(DistanceParams {
             length,
             enable_spring: false,
@@ -256,7 +290,7 @@ struct RingRun {
 /// ball or a fixed joint, and with `bridge` a second link too (a second loop, through the
 /// ground). Joint frames at the midpoints, turned at random; a distance joint's child
 /// anchor 0.1 m beside the frame. A random kick, then 10 s.
-fn ring(seed: u64, bridge: bool, steps: usize) -> RingRun {
+fn ring(seed: u64, bridge: bool, limits: bool, open: bool, steps: usize) -> RingRun {
     let mut rng = scenes::Rng(0x100b_0000 + seed * 7919);
     let mut w = scenes::world(false);
     let n = 2 + (rng.next_u32() % 4) as usize;
@@ -291,13 +325,18 @@ fn ring(seed: u64, bridge: bool, steps: usize) -> RingRun {
         let (child, parent) = (bodies[(k + 1) % n], bodies[k]);
         let frame = Transform::new(spot(k as f32 + 0.5), rng.quat());
         let which = rng.next_u32() % 5;
-        let kind = ring_kind(&mut rng, which, 0.1);
+        let kind = ring_kind(&mut rng, which, 0.1, limits);
+        if k == n - 1 && open {
+            // An open chain: the ring without its closing joint (drawn all the same, so the
+            // other joints are the ring's).
+            continue;
+        }
         joints.push(joint_at(&mut w, kind, child, Some(parent), frame, &mut run));
     }
     for (k, &b) in bodies.iter().enumerate().take(run.anchors) {
         let at = w.body(b).unwrap().center + 0.3 * (spot(k as f32) - centre).normalize();
         let which = rng.next_u32() % 3;
-        let kind = ring_kind(&mut rng, which, 0.0);
+        let kind = ring_kind(&mut rng, which, 0.0, limits);
         joints.push(joint_at(
             &mut w,
             kind,
@@ -368,41 +407,90 @@ fn joint_at(
 /// rigid), which the solver must hold without feeding energy in. Every step of every ring:
 /// * the state is finite;
 /// * the energy (kinetic plus gravity's potential) never rises more than 15 % of the ring's
-///   weight times a metre plus its kinetic energy at the start (measured worst 11.4 %; 3 of
+///   weight times a metre plus its kinetic energy at the start (measured worst 13.0 %; 2 of
 ///   300 above 3.5 %). Before loops with a slider left the forest, 40 of the 300 rose above
 ///   3.5 % and 13 above half the scale, the worst to 7.9 times it, at 19.7 m/s: a rigid
 ///   slider tree and the soft loop-closing joint fought, their forces growing to ten times
 ///   the ring's weight;
-/// * no body passes 15 m/s (measured worst 13.7 m/s), except in a ring with a slider without
+/// * no body passes 20 m/s (measured worst 14.4 m/s), except in a ring with a slider without
 ///   limits, which may fall along it for the whole 10 s: 108 m/s (measured 74 m/s);
-/// * the joint error (`scenes::joint_error`) stays under 0.4 m (measured worst 0.32 m, a
+/// * the joint error (`scenes::joint_error`) stays under 0.4 m (measured worst 0.30 m, a
 ///   transient of a hard swing that closes again) or, in a ring falling along a slider
-///   without limits, 1.2 m (measured 0.96 m at 74 m/s), and under 6 cm in at least 270 of the
-///   300 rings (measured 278). Gauss–Seidel on loops converges slowly where the loop is
+///   without limits, 1.2 m (measured 0.94 m at 74 m/s), and under 6 cm in at least 270 of the
+///   300 rings (measured 279). Gauss–Seidel on loops converges slowly where the loop is
 ///   over-constrained; the forest, which solves chains exactly, cannot take a loop.
 #[test]
 fn seeded_random_rings_of_every_joint_kind_hold_and_gain_no_energy() {
-    let mut runs = Vec::new();
-    for seed in 0..300u64 {
-        let run = ring(seed, seed % 2 == 1, 600);
-        let what = format!("ring seed {seed} ({} links, {} anchors)", run.links, run.anchors);
-        let (max_gap, fastest) = if run.free_slider {
-            (1.2, 9.81 * 10.0 + 10.0)
+    let runs: Vec<RingRun> = (0..300u64)
+        .map(|seed| ring(seed, seed % 2 == 1, false, false, 600))
+        .collect();
+    check_runs(&runs, "ring", 0.15, (0.4, 1.2), 20.0, 270);
+}
+
+/// The rings of the test above with limits and springs (`ring_kind` with `limits`): hinges
+/// with angle limits around their start or a spring toward it, balls with a swing cone and
+/// twist limits, springs between a shortest and a longest length instead of rigid rods; 300
+/// rings, 10 s each. Such components are solved by Gauss–Seidel alone (`Forest::build`).
+/// Every step of every ring: the state is finite; the energy never rises more than 40 % of
+/// the scale (measured worst 32.6 %, 1 of 300 above 3.5 %: two fixed joints between the same
+/// two links, the pair hinged to the world and swung into the hinge's limit); no body
+/// passes 20 m/s (measured 11.0) or, falling along a slider without limits, 108 m/s
+/// (measured 56.8); the joint error stays under 0.6 m (measured 0.46) or, along a slider
+/// without limits, 1.2 m (measured 0.96), and under 6 cm in at least 240 of the 300 (measured
+/// 253). Before, with the forest: 22 of 300 rose by more than 15 % of the scale, one to
+/// 4,259 times it at the 400 m/s speed limit.
+#[test]
+fn seeded_random_rings_with_limits_and_springs_gain_no_energy() {
+    let runs: Vec<RingRun> = (0..300u64)
+        .map(|seed| ring(seed, seed % 2 == 1, true, false, 600))
+        .collect();
+    check_runs(&runs, "limited ring", 0.4, (0.6, 1.2), 20.0, 240);
+}
+
+/// The same chains open: each ring without its closing joint, so a chain of 2–5 links hung
+/// from the world by one or two joints, with limits and springs; 300 chains, 10 s each.
+/// Every step of every chain: the state is finite; the energy never rises more than 3.5 %
+/// of the scale (measured worst 0.61 %; with the forest, before it left such chains to
+/// Gauss–Seidel, 12 of 300 rose by more than the whole scale, the worst 497 times it); no
+/// body passes 20 m/s (measured 16.4) or, along a slider without limits, 108 m/s (measured
+/// 101.7). The joint error is under 6 cm in at least 190 of the 300 (measured 205), and
+/// under 6 m in all: Gauss–Seidel leaves large errors where a light link carries a heavy
+/// load through one-sided rows (measured worst 4.98 m: a slider limited to ±5 m between two
+/// 3.4 kg links, 27 kg hanging below through a spring's longest length, drawn apart over
+/// the 10 s as the chain loses its energy). Solving limits and springs with the tree's
+/// response, as the forest does for a slider's, is what would hold them.
+#[test]
+fn seeded_random_open_chains_with_limits_and_springs_gain_no_energy() {
+    let runs: Vec<RingRun> = (0..300u64)
+        .map(|seed| ring(seed, seed % 2 == 1, true, true, 600))
+        .collect();
+    check_runs(&runs, "limited chain", 0.035, (6.0, 6.0), 20.0, 190);
+}
+
+/// Asserts every run's energy rise (of the scale), joint error (`max_gap`: without and with
+/// a slider without limits) and speed (`fastest`, or free fall along a rail for 10 s with a
+/// slider without limits), and that at least `tight` runs kept their joints within 6 cm;
+/// prints the worst of each.
+fn check_runs(runs: &[RingRun], what: &str, max_rise: f64, max_gap: (f32, f32), fastest: f32, tight: usize) {
+    for (seed, run) in runs.iter().enumerate() {
+        let what = format!("{what} seed {seed} ({} links, {} anchors)", run.links, run.anchors);
+        let (gap, speed) = if run.free_slider {
+            (max_gap.1, 9.81 * 10.0 + 10.0)
         } else {
-            (0.4, 15.0)
+            (max_gap.0, fastest)
         };
-        assert!(run.gap < max_gap, "{what}: joint error {} m", run.gap);
-        assert!(run.rise < 0.15, "{what}: energy rose {} of the scale", run.rise);
-        assert!(run.speed < fastest, "{what}: {} m/s", run.speed);
-        runs.push(run);
+        assert!(run.gap < gap, "{what}: joint error {} m", run.gap);
+        assert!(run.rise < max_rise, "{what}: energy rose {} of the scale", run.rise);
+        assert!(run.speed < speed, "{what}: {} m/s", run.speed);
     }
-    let tight = runs.iter().filter(|r| r.gap < 0.06).count();
+    let within = runs.iter().filter(|r| r.gap < 0.06).count();
     let most = |f: &dyn Fn(&RingRun) -> f64| runs.iter().map(f).fold(0.0, f64::max);
     println!(
-        "rings: worst joint error {:.4} m ({} of {} under 6 cm), energy rise {:.4} of the scale \
-         ({} above 3.5 %), speed {:.2} m/s ({:.2} without free sliders); {} with a free slider",
+        "{what}s: worst joint error {:.4} m ({:.4} without free sliders; {within} of {} under 6 cm), \
+         energy rise {:.4} of the scale ({} above 3.5 %), speed {:.2} m/s ({:.2} without free sliders); \
+         {} with a free slider",
         most(&|r| r.gap as f64),
-        tight,
+        most(&|r| if r.free_slider { 0.0 } else { r.gap as f64 }),
         runs.len(),
         most(&|r| r.rise),
         runs.iter().filter(|r| r.rise > 0.035).count(),
@@ -411,8 +499,8 @@ fn seeded_random_rings_of_every_joint_kind_hold_and_gain_no_energy() {
         runs.iter().filter(|r| r.free_slider).count(),
     );
     assert!(
-        tight >= 270,
-        "only {tight} of {} rings kept their joints within 6 cm",
+        within >= tight,
+        "only {within} of {} runs kept their joints within 6 cm",
         runs.len()
     );
 }

@@ -689,7 +689,7 @@ pub struct ChainJoint {
 }
 
 /// A joint's error (m): for the others the anchors' distance (a rigid distance joint: its
-/// difference from the length), or for a hinge its axes'
+/// difference from the length; a spring: how far it is outside its limits), or for a hinge its axes'
 /// misalignment (rad) times a metre if larger. For a slider, its rotation error (rad) times a
 /// metre, or the distance of B's anchor from A's axis over the anchors' distance along it
 /// (at least a metre) if larger: far along the rail, a rotation error turns A's axis at B's
@@ -711,6 +711,10 @@ pub fn joint_error(w: &World, j: &ChainJoint) -> f32 {
         }
         hearth::JointKind::Hinge(_) => d.length().max(za.cross(zb).length()),
         hearth::JointKind::Distance(p) if !p.enable_spring => (d.length() - p.length).abs(),
+        hearth::JointKind::Distance(p) if p.enable_limit => {
+            (d.length() - p.max_length).max(p.min_length - d.length()).max(0.0)
+        }
+        hearth::JointKind::Distance(_) => 0.0,
         _ => d.length(),
     }
 }

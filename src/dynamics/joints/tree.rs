@@ -13,8 +13,9 @@
 //! *ground* node. Joints with equality rows are taken in order and kept when they join two
 //! different components (union–find), so each component is a tree hanging from at most one
 //! ground joint. A joint that would close a loop (a second anchor of a bridge, the second
-//! string of a cradle ball, the grid's cross links), every joint of a component that closes
-//! a loop and has a slider (`Forest::find_loops`), a joint touching a body without full
+//! string of a cradle ball, the grid's cross links), every joint of a component with a
+//! limit, motor or spring other than a slider's, or that closes a loop and has a slider
+//! (`Forest::find_components`), a joint touching a body without full
 //! inertia, and every limit, motor and spring row stay in the iterative path (`solver.rs`),
 //! solved before the tree in each sweep; contacts follow. The exception: a tree slider's
 //! limits and motor are solved here, after the equality rows, with the whole tree's response
@@ -119,17 +120,20 @@ pub struct Forest {
     axial: Vec<Axial>,
     /// The factorisation is out of date (new step).
     stale: bool,
-    /// Per body: the union–find of the joint graph without the ground (`find_loops`), and
-    /// per component root its `LOOP_*` flags.
-    loop_uf: Vec<u32>,
-    loop_flags: Vec<u8>,
+    /// Per body: the union–find of the joint graph without the ground (`find_components`),
+    /// and per component root its `COMPONENT_*` flags.
+    component_uf: Vec<u32>,
+    component_flags: Vec<u8>,
 }
 
-/// `Forest::loop_flags`: the component has a joint to the ground, closes a loop, has a
-/// slider.
-const LOOP_GROUNDED: u8 = 1;
-const LOOP_CLOSED: u8 = 2;
-const LOOP_SLIDER: u8 = 4;
+/// `Forest::component_flags`: the component has a joint to the ground; it closes a loop (a
+/// cycle of its own, or a second joint to the ground); it has a slider; it has a joint with
+/// rows solved one joint at a time other than a slider's (a hinge's or ball's limits, a
+/// motor, a spring).
+const COMPONENT_GROUNDED: u8 = 1;
+const COMPONENT_LOOP: u8 = 2;
+const COMPONENT_SLIDER: u8 = 4;
+const COMPONENT_SCALAR: u8 = 8;
 
 fn find(uf: &mut [u32], mut x: u32) -> u32 {
     while uf[x as usize] != x {
@@ -161,67 +165,68 @@ fn packed(r: usize, c: usize) -> usize {
 }
 
 impl Forest {
-    /// Finds the components of the joint graph that close a loop, and those with a slider:
-    /// the graph of every non-ground body (whatever its mass, inertia or locks: a loop
-    /// through a body the forest cannot take is still a loop) and every joint with equality
-    /// rows, where a component closes a loop when it has a cycle of its own or two joints to
-    /// the ground (a bridge).
-    fn find_loops(&mut self, constraints: &[JointConstraint], states: &[BodyState]) {
+    /// Finds the components of the joint graph and what each holds (`COMPONENT_*`): the
+    /// graph of every non-ground body (whatever its mass, inertia or locks: a loop through a
+    /// body the forest cannot take is still a loop) and every joint, springs included.
+    fn find_components(&mut self, constraints: &[JointConstraint], states: &[BodyState]) {
         let n = states.len();
-        self.loop_uf.clear();
-        self.loop_uf.extend(0..n as u32);
-        self.loop_flags.clear();
-        self.loop_flags.resize(n, 0);
+        self.component_uf.clear();
+        self.component_uf.extend(0..n as u32);
+        self.component_flags.clear();
+        self.component_flags.resize(n, 0);
         let ground = |i: u32| classify(&states[i as usize], i).0;
         for c in constraints {
-            if !has_equality_rows(c) {
-                continue;
-            }
-            let slider = if matches!(c.kind, super::JointKind::Slider(_)) {
-                LOOP_SLIDER
-            } else {
-                0
+            let kind = match c.kind {
+                super::JointKind::Slider(_) => COMPONENT_SLIDER,
+                k if super::solver::has_scalar_rows(&k) => COMPONENT_SCALAR,
+                _ => 0,
             };
             match (ground(c.ia), ground(c.ib)) {
                 (true, true) => {}
                 (false, false) => {
-                    let (ra, rb) = (find(&mut self.loop_uf, c.ia), find(&mut self.loop_uf, c.ib));
+                    let uf = &mut self.component_uf;
+                    let (ra, rb) = (find(uf, c.ia), find(uf, c.ib));
+                    let flags = &mut self.component_flags;
                     if ra == rb {
-                        self.loop_flags[ra as usize] |= LOOP_CLOSED | slider;
+                        flags[ra as usize] |= COMPONENT_LOOP | kind;
                         continue;
                     }
-                    let (fa, fb) = (self.loop_flags[ra as usize], self.loop_flags[rb as usize]);
+                    let (fa, fb) = (flags[ra as usize], flags[rb as usize]);
                     let (lo, hi) = (ra.min(rb), ra.max(rb));
-                    self.loop_uf[hi as usize] = lo;
-                    let both_grounded = fa & fb & LOOP_GROUNDED != 0;
-                    self.loop_flags[lo as usize] = fa | fb | slider | if both_grounded { LOOP_CLOSED } else { 0 };
+                    uf[hi as usize] = lo;
+                    let bridge = if fa & fb & COMPONENT_GROUNDED != 0 {
+                        COMPONENT_LOOP
+                    } else {
+                        0
+                    };
+                    flags[lo as usize] = fa | fb | kind | bridge;
                 }
                 (ga, _) => {
                     let body = if ga { c.ib } else { c.ia };
-                    let r = find(&mut self.loop_uf, body) as usize;
-                    let f = &mut self.loop_flags[r];
-                    *f |= slider
-                        | if *f & LOOP_GROUNDED != 0 {
-                            LOOP_CLOSED
-                        } else {
-                            LOOP_GROUNDED
-                        };
+                    let r = find(&mut self.component_uf, body) as usize;
+                    let f = &mut self.component_flags[r];
+                    let bridge = if *f & COMPONENT_GROUNDED != 0 {
+                        COMPONENT_LOOP
+                    } else {
+                        0
+                    };
+                    *f |= kind | bridge | COMPONENT_GROUNDED;
                 }
             }
         }
     }
 
-    /// Whether the joint's component closes a loop and has a slider (`find_loops`): such a
-    /// component stays out of the forest (see `build`).
-    fn in_slider_loop(&mut self, c: &JointConstraint, states: &[BodyState]) -> bool {
+    /// Whether the joint's component is solved by Gauss–Seidel alone (see `build`): it has
+    /// a joint with rows solved one joint at a time other than a slider's, or it closes a
+    /// loop and has a slider.
+    fn iterated(&mut self, c: &JointConstraint, states: &[BodyState]) -> bool {
         let body = if classify(&states[c.ia as usize], c.ia).0 {
             c.ib
         } else {
             c.ia
         };
-        let r = find(&mut self.loop_uf, body) as usize;
-        const NEED: u8 = LOOP_CLOSED | LOOP_SLIDER;
-        self.loop_flags[r] & NEED == NEED
+        let f = self.component_flags[find(&mut self.component_uf, body) as usize];
+        f & COMPONENT_SCALAR != 0 || f & (COMPONENT_LOOP | COMPONENT_SLIDER) == COMPONENT_LOOP | COMPONENT_SLIDER
     }
 
     /// Number of joints in the forest this step.
@@ -236,7 +241,7 @@ impl Forest {
     /// Chooses the tree joints (sets `JointConstraint::tree`) and orders the tree bodies.
     pub fn build(&mut self, constraints: &mut [JointConstraint], states: &[BodyState]) {
         let n = states.len();
-        self.find_loops(constraints, states);
+        self.find_components(constraints, states);
         self.nodes.clear();
         self.stale = true;
         self.uf.clear();
@@ -252,16 +257,20 @@ impl Forest {
         };
         for c in constraints.iter_mut() {
             c.tree = false;
-            // A loop with a slider is solved by Gauss–Seidel alone: a tree with a slider
-            // responds rigidly (see below), and against the soft loop-closing joint its rows
-            // and the loop's fought, their impulses growing without bound along the loop's
-            // redundant directions (seeded random rings, `tests/joint_loops.rs`: joint forces
-            // ten times the weights, energy up by more than half the scale in 13 of 300 rings, by
-            // 7.9 times in the worst).
-            // Loops without a slider keep the forest (its soft trees settle with the loop's
-            // rows: a 20×20 ball-joint grid hangs with 3.5 mm of gap, 8.5 mm without it).
-            c.looped = self.in_slider_loop(c, states);
-            if !has_equality_rows(c) || c.looped {
+            // Components with limits, motors or springs (other than a tree slider's, which
+            // the forest solves with its tree's response), and loops with a slider, are
+            // solved by Gauss–Seidel alone (`tests/joint_loops.rs`). Against those rows,
+            // solved one joint at a time before the forest, the forest's exact solve fed
+            // energy in: seeded random open chains with limits and springs gained more than
+            // their energy scale in 12 of 300 (497 times it in the worst), rings with a
+            // slider in 13 of 300 (a rigid slider tree and the soft loop-closing joint fought,
+            // their forces growing to ten times the weights). By Gauss–Seidel: at most 0.6 %
+            // in the chains. Loops without a slider keep the forest (its soft trees settle
+            // with the loop's rows: a 20×20 ball-joint grid hangs with 3.5 mm of gap, 8.5 mm
+            // without it), and so do chains with plain joints, whose load the forest carries
+            // exactly (a 20-link chain with a 100× end mass).
+            c.iterated = self.iterated(c, states);
+            if !has_equality_rows(c) || c.iterated {
                 continue;
             }
             let (Some(ka), Some(kb)) = (key(c.ia), key(c.ib)) else {
