@@ -16,7 +16,7 @@ mod scenes;
 use hearth::joints::{BallParams, DistanceParams, HingeParams, SliderParams};
 use hearth::math::{Quat, Transform, Vec3};
 use hearth::{BodyHandle, JointKind, World, WorldSettings};
-use scenes::{chain_link, energy, join, joint_error, kick_chain, ChainJoint as Joint};
+use scenes::{chain_link, energy, join, join_at, joint_error, kick_chain, ChainJoint as Joint};
 
 const DT: f32 = 1.0 / 60.0;
 
@@ -243,19 +243,7 @@ fn ring_kind(rng: &mut scenes::Rng, which: u32, length: f32, limits: bool) -> Jo
         }),
         1 => JointKind::Ball(BallParams::default()),
         2 => JointKind::Fixed,
-        3 => {
-            let (reach, limited) = match rng.next_u32() % 3 {
-                0 => (0.25, true),
-                1 => (5.0, true),
-                _ => (5.0, false),
-            };
-            JointKind::Slider(SliderParams {
-                enable_limit: limited,
-                lower: -reach,
-                upper: reach,
-                ..SliderParams::default()
-            })
-        }
+        3 => scenes::random_slider(rng),
         _ if limits && length > 0.0 => JointKind::Distance(DistanceParams {
             length,
             enable_limit: true,
@@ -381,23 +369,7 @@ fn joint_at(
         JointKind::Distance(p) => Transform::new(frame.p + frame.q * Vec3::new(p.length, 0.0, 0.0), frame.q),
         _ => frame,
     };
-    let mut def = hearth::JointDef::new(kind);
-    def.body_a = child;
-    def.frame_a = w.transform(child).unwrap().inv_mul(&on_child);
-    def.frame_b = match parent {
-        Some(b) => {
-            def.body_b = b;
-            w.transform(b).unwrap().inv_mul(&frame)
-        }
-        None => frame,
-    };
-    Joint {
-        handle: w.create_joint(&def).unwrap(),
-        child,
-        parent,
-        on_child: def.frame_a,
-        on_parent: def.frame_b,
-    }
+    join_at(w, kind, child, parent, frame, on_child)
 }
 
 /// Seeded random rings over the valid inputs (see `ring`): 150 rings hung by one joint and

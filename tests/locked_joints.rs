@@ -298,24 +298,12 @@ fn spring_between_locked_bodies_oscillates_at_the_reduced_mass_frequency() {
 /// A random joint of each kind (`which` 0–4): hinge, ball, fixed, slider (limited to ±0.25 m
 /// or ±5 m, or not limited, at random), rigid distance joint (a rod 0.1 m long).
 fn random_kind(rng: &mut scenes::Rng, which: u32) -> JointKind {
-    use hearth::joints::{BallParams, DistanceParams, SliderParams};
+    use hearth::joints::{BallParams, DistanceParams};
     match which {
         0 => JointKind::Hinge(HingeParams::default()),
         1 => JointKind::Ball(BallParams::default()),
         2 => JointKind::Fixed,
-        3 => {
-            let (reach, limited) = match rng.next_u32() % 3 {
-                0 => (0.25, true),
-                1 => (5.0, true),
-                _ => (5.0, false),
-            };
-            JointKind::Slider(SliderParams {
-                enable_limit: limited,
-                lower: -reach,
-                upper: reach,
-                ..SliderParams::default()
-            })
-        }
+        3 => scenes::random_slider(rng),
         _ => JointKind::Distance(DistanceParams {
             length: 0.1,
             enable_spring: false,

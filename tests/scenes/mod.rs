@@ -728,9 +728,22 @@ pub fn join(
     parent: Option<BodyHandle>,
     frame: Transform,
 ) -> ChainJoint {
+    join_at(w, kind, child, parent, frame, frame)
+}
+
+/// Joins `child` to `parent` (or the world) with a joint of `kind` whose frame is `on_child`
+/// on the child and `frame` on the parent (both in world space).
+pub fn join_at(
+    w: &mut World,
+    kind: hearth::JointKind,
+    child: BodyHandle,
+    parent: Option<BodyHandle>,
+    frame: Transform,
+    on_child: Transform,
+) -> ChainJoint {
     let mut def = hearth::JointDef::new(kind);
     def.body_a = child;
-    def.frame_a = w.transform(child).unwrap().inv_mul(&frame);
+    def.frame_a = w.transform(child).unwrap().inv_mul(&on_child);
     def.frame_b = match parent {
         Some(p) => {
             def.body_b = p;
@@ -745,4 +758,19 @@ pub fn join(
         on_child: def.frame_a,
         on_parent: def.frame_b,
     }
+}
+
+/// A slider limited to ±0.25 m or ±5 m, or not limited, at random (a third each).
+pub fn random_slider(rng: &mut Rng) -> hearth::JointKind {
+    let (reach, limited) = match rng.next_u32() % 3 {
+        0 => (0.25, true),
+        1 => (5.0, true),
+        _ => (5.0, false),
+    };
+    hearth::JointKind::Slider(hearth::joints::SliderParams {
+        enable_limit: limited,
+        lower: -reach,
+        upper: reach,
+        ..Default::default()
+    })
 }
