@@ -122,11 +122,6 @@ const FIGURES: &[(&str, &str, Backing)] = &[
         "3.5 %",
         Measured(&["joint_loops::seeded_random_open_chains_with_limits_and_springs_gain_no_energy"]),
     ),
-    (
-        R,
-        "4.98 m",
-        Measured(&["joint_loops::seeded_random_open_chains_with_limits_and_springs_gain_no_energy"]),
-    ),
     // ARCHITECTURE, joints left to Gauss-Seidel: the worst energy rises.
     (
         A,
