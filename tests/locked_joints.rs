@@ -9,8 +9,8 @@ mod scenes;
 use hearth::dynamics::body::{LOCK_ANGULAR_X, LOCK_ANGULAR_Y, LOCK_LINEAR_Z};
 use hearth::joints::HingeParams;
 use hearth::math::{Quat, Transform, Vec3};
-use hearth::{BodyDef, BodyHandle, BodyType, Geometry, JointDef, JointKind, ShapeDef, World};
-use scenes::{assert_locked, chain_link as link, energy, join, kick_chain, ChainJoint as Joint};
+use hearth::{BodyDef, BodyHandle, BodyType, Geometry, JointKind, ShapeDef, World};
+use scenes::{assert_locked, chain_link as link, energy, join, join_at, kick_chain, ChainJoint as Joint};
 
 const DT: f32 = 1.0 / 60.0;
 /// The 2.5D lock: the XY plane, turning only about Z.
@@ -363,23 +363,7 @@ fn random_chain(locks: u8, first: u32, seed: u64, steps: usize) -> RandomRun {
             JointKind::Distance(_) => Transform::new(frame.p + 0.1 * dir, frame.q),
             _ => frame,
         };
-        let mut def = JointDef::new(kind);
-        def.body_a = b;
-        def.frame_a = w.transform(b).unwrap().inv_mul(&on_child);
-        def.frame_b = match parent {
-            Some(p) => {
-                def.body_b = p;
-                w.transform(p).unwrap().inv_mul(&frame)
-            }
-            None => frame,
-        };
-        joints.push(Joint {
-            handle: w.create_joint(&def).unwrap(),
-            child: b,
-            parent,
-            on_child: def.frame_a,
-            on_parent: def.frame_b,
-        });
+        joints.push(join_at(&mut w, kind, b, parent, frame, on_child));
         bodies.push(b);
         anchor = p + 0.4 * dir;
     }

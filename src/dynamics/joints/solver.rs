@@ -7,7 +7,8 @@
 //! of its `BodyState`) every time a joint is solved, so joints stay stiff while bodies turn.
 //! Each sweep solves, joint by joint, the limits, motors and springs (coupled with the joint's
 //! equality rows, `rows.rs`) and the equality rows of joints outside the forest as one block
-//! each (joints on bodies with locked axes [`LOCKED_ITERATIONS`] times); then the equality
+//! each (joints on bodies with locked axes [`LOCKED_ITERATIONS`] times, those of components
+//! the forest leaves to Gauss–Seidel [`ITERATED_SWEEPS`] times); then the equality
 //! rows of the spanning forest exactly, and the limits and motor of the forest's sliders with
 //! their tree's response (`tree.rs`).
 //!
