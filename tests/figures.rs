@@ -100,7 +100,10 @@ const FIGURES: &[(&str, &str, Backing)] = &[
     (
         R,
         "2 cm",
-        Measured(&["ranges::every_subsystem_runs_at_the_shortest_and_the_longest_step"]),
+        Measured(&[
+            "ranges::every_subsystem_runs_at_the_shortest_and_the_longest_step",
+            "joint_loops::seeded_random_limited_hinge_and_ball_chains_hold_their_joints",
+        ]),
     ),
     (R, "10000 m", Range),
     (
@@ -109,6 +112,7 @@ const FIGURES: &[(&str, &str, Backing)] = &[
         Measured(&[
             "robustness::a_slider_set_up_45_degrees_off_stays_on_its_axis",
             "joint_loops::slider_crank_puts_its_piston_where_the_crank_angle_says",
+            "joint_loops::seeded_random_limited_hinge_and_ball_chains_hold_their_joints",
         ]),
     ),
     // README, joints: random closed loops' energy bound.
@@ -123,10 +127,32 @@ const FIGURES: &[(&str, &str, Backing)] = &[
         Measured(&["joint_loops::seeded_random_open_chains_with_limits_and_springs_gain_no_energy"]),
     ),
     // ARCHITECTURE, joints left to Gauss-Seidel: the worst energy rises.
+    // ARCHITECTURE and README, open chains with limits in the forest: worst joint errors and
+    // energy, and by Gauss-Seidel before.
     (
         A,
-        "0.6 %",
-        Measured(&["joint_loops::seeded_random_open_chains_with_limits_and_springs_gain_no_energy"]),
+        "0.17 %",
+        Measured(&["joint_loops::seeded_random_limited_hinge_and_ball_chains_hold_their_joints"]),
+    ),
+    (
+        A,
+        "1.1 cm",
+        Measured(&["joint_loops::seeded_random_limited_hinge_and_ball_chains_hold_their_joints"]),
+    ),
+    (
+        A,
+        "5 mm",
+        Measured(&["joint_loops::seeded_random_limited_hinge_and_ball_chains_hold_their_joints"]),
+    ),
+    (
+        A,
+        "0.85 m",
+        Measured(&["joint_loops::seeded_random_limited_hinge_and_ball_chains_hold_their_joints"]),
+    ),
+    (
+        R,
+        "0.85 m",
+        Measured(&["joint_loops::seeded_random_limited_hinge_and_ball_chains_hold_their_joints"]),
     ),
     (
         A,

@@ -565,9 +565,12 @@ fn ragdoll_falls_and_settles() {
         most_energy <= start_energy + 0.01 * start_energy.abs(),
         "energy grew: {start_energy} -> {most_energy} J"
     );
-    // Free fall from the highest part (2.9 m up) gives 7.5 m/s; with the spin the fastest
-    // part measured 8.72 m/s. More than 9.5 m/s would take energy from nowhere.
-    assert!(max_speed < 9.5, "top speed {max_speed} m/s");
+    // Free fall from the highest part (2.9 m up) gives 7.5 m/s. The fastest part is a 1.7 kg
+    // forearm whipped as its upper arm lands (0.5 s in): 9.85 m/s measured, and at 12, 24 and
+    // 48 sub-steps 7.9, 9.1 and 8.5 m/s, while the whole ragdoll's energy stays below its
+    // start (asserted above). More than 11 m/s (a third more kinetic energy than measured)
+    // would be a joint feeding energy into a limb.
+    assert!(max_speed < 11.0, "top speed {max_speed} m/s");
     // Measured 25.4 mm (the head and limbs hitting the ground at 8 m/s).
     assert!(worst_gap < 0.03, "joint gap {worst_gap}");
     assert!(lowest > 0.0 && highest < 1.5, "heights {lowest}..{highest}");

@@ -11,7 +11,7 @@ use crate::math::Vec3;
 
 /// The swing row's direction (the rotation that closes the cone angle) and the swing angle;
 /// `None` when the axes are aligned (no swing).
-fn cone_row(f: &Frames) -> Option<(Vec3, f32)> {
+pub(super) fn cone_row(f: &Frames) -> Option<(Vec3, f32)> {
     let (za, zb) = f.axes();
     let n = za.cross(zb);
     let s = n.length();

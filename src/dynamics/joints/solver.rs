@@ -693,11 +693,12 @@ fn is_locked(c: &JointConstraint, states: &[BodyState]) -> bool {
 /// a forest joint other than a slider (the forest solves those); returns whether either body
 /// has locked axes.
 fn solve_one(c: &mut JointConstraint, vel: &mut [Velocity], states: &[BodyState], ctx: &Ctx) -> bool {
-    let scalars = has_scalar_rows(&c.kind);
-    // A tree slider's limits and motor are solved by the forest with its tree's response.
-    if c.tree && (!scalars || matches!(c.kind, JointKind::Slider(_))) {
+    // A tree joint's rows, equality and scalar, are solved by the forest (scalar rows with
+    // its tree's response, `Forest::solve_axial`).
+    if c.tree {
         return false;
     }
+    let scalars = has_scalar_rows(&c.kind);
     let (mut b, f) = load(c, vel, states);
     let locked = b.locked;
     if !scalars && !b.locked && matches!(c.kind, JointKind::Ball(_)) {

@@ -13,12 +13,13 @@
 //! *ground* node. Joints with equality rows are taken in order and kept when they join two
 //! different components (union–find), so each component is a tree hanging from at most one
 //! ground joint. A joint that would close a loop (a second anchor of a bridge, the second
-//! string of a cradle ball, the grid's cross links), every joint of a component with a
-//! limit, motor or spring other than a slider's, or that closes a loop and has a slider
-//! (`Forest::find_components`), a joint touching a body without full
-//! inertia, and every limit, motor and spring row stay in the iterative path (`solver.rs`),
-//! solved before the tree in each sweep; contacts follow. The exception: a tree slider's
-//! limits and motor are solved here, after the equality rows, with the whole tree's response
+//! string of a cradle ball, the grid's cross links), every joint of a component that has a
+//! distance spring, that has a slider or a hinge or ball with limits, a motor or a spring and
+//! also a loop, or that has both a slider and such a hinge or ball
+//! (`Forest::find_components`), a joint touching a body without full inertia, and the rows
+//! of those joints stay in the iterative path (`solver.rs`), solved before the tree in each
+//! sweep; contacts follow. A tree joint's limits, motor and spring are solved here, after
+//! the equality rows, with the whole tree's response
 //! (`Forest::solve_axial`). Each tree body is a node whose
 //! parent joint joins it to its parent body or to the ground; nodes are kept in depth-first
 //! pre-order, so walking the list backwards visits children before parents.
@@ -42,6 +43,7 @@
 
 use super::rows::{Eq, Row, Slot};
 use super::solver::{load, write, Ctx, Frames, JointConstraint};
+use super::Impulses;
 use crate::dynamics::solver::{BodyState, Velocity};
 use crate::math::Vec3;
 
@@ -65,24 +67,38 @@ struct Node {
     /// Number of rows of the parent joint and their first index in the per-row arrays.
     k: u32,
     off: u32,
-    /// The node's tree has a slider: its rows respond rigidly (with the position bias) in the
-    /// biased sweep too (`Forest::solve`).
+    /// The node's tree has a slider or a joint with limits, a motor or a spring: its rows
+    /// respond rigidly (with the position bias) in the biased sweep too (`Forest::solve`).
     rigid: bool,
 }
 
-/// A tree slider's row along its axis (its limits and motor), solved with the tree's response
+/// Which of a tree joint's scalar rows an [`Axial`] is: a slider's along its axis (motor,
+/// limits), a hinge's about its axis (spring, motor, limits), a ball's twist limits or its
+/// swing cone.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Along {
+    SliderAxis,
+    HingeAxis,
+    BallTwist,
+    BallCone,
+}
+
+/// A tree joint's scalar row (limits, motor, spring), solved with the tree's response
 /// (`Forest::solve_axial`).
 #[derive(Clone, Copy, Debug)]
 struct Axial {
-    /// The slider's node, and the node range of its tree.
+    /// The joint's node, and the node range of its tree.
     node: u32,
     start: u32,
     end: u32,
-    /// The row's Jacobian on the node's body and on the other body, and the translation along
-    /// the axis (refreshed by `factor`).
+    along: Along,
+    /// The row's Jacobian on the node's body and on the other body, and the row's position
+    /// (translation, angle) (refreshed by `factor`); `live` is false where the row is not
+    /// defined (twist past `MAX_TWIST_SWING`, no swing).
     jc: V6,
     jp: V6,
-    translation: f32,
+    pos: f32,
+    live: bool,
 }
 
 /// The spanning forest and its factorisation (buffers reused across steps). Per-row data is
@@ -127,13 +143,14 @@ pub struct Forest {
 }
 
 /// `Forest::component_flags`: the component has a joint to the ground; it closes a loop (a
-/// cycle of its own, or a second joint to the ground); it has a slider; it has a joint with
-/// rows solved one joint at a time other than a slider's (a hinge's or ball's limits, a
-/// motor, a spring).
+/// cycle of its own, or a second joint to the ground); it has a slider; it has a hinge or
+/// ball with limits, a motor or a spring (rows the forest solves with its tree's response);
+/// it has a distance spring (rows solved one joint at a time: it is no tree joint).
 const COMPONENT_GROUNDED: u8 = 1;
 const COMPONENT_LOOP: u8 = 2;
 const COMPONENT_SLIDER: u8 = 4;
 const COMPONENT_SCALAR: u8 = 8;
+const COMPONENT_LIMITED: u8 = 16;
 
 fn find(uf: &mut [u32], mut x: u32) -> u32 {
     while uf[x as usize] != x {
@@ -178,7 +195,8 @@ impl Forest {
         for c in constraints {
             let kind = match c.kind {
                 super::JointKind::Slider(_) => COMPONENT_SLIDER,
-                k if super::solver::has_scalar_rows(&k) => COMPONENT_SCALAR,
+                super::JointKind::Distance(p) if p.enable_spring => COMPONENT_SCALAR,
+                k if super::solver::has_scalar_rows(&k) => COMPONENT_LIMITED,
                 _ => 0,
             };
             match (ground(c.ia), ground(c.ib)) {
@@ -217,8 +235,8 @@ impl Forest {
     }
 
     /// Whether the joint's component is solved by Gauss–Seidel alone (see `build`): it has
-    /// a joint with rows solved one joint at a time other than a slider's, or it closes a
-    /// loop and has a slider.
+    /// a distance spring, or it closes a loop and has a slider or a hinge or ball with limits,
+    /// a motor or a spring.
     fn iterated(&mut self, c: &JointConstraint, states: &[BodyState]) -> bool {
         let body = if classify(&states[c.ia as usize], c.ia).0 {
             c.ib
@@ -226,7 +244,10 @@ impl Forest {
             c.ia
         };
         let f = self.component_flags[find(&mut self.component_uf, body) as usize];
-        f & COMPONENT_SCALAR != 0 || f & (COMPONENT_LOOP | COMPONENT_SLIDER) == COMPONENT_LOOP | COMPONENT_SLIDER
+        let loop_or_slider = f & (COMPONENT_LOOP | COMPONENT_SLIDER) != 0;
+        f & COMPONENT_SCALAR != 0
+            || (f & COMPONENT_LIMITED != 0 && loop_or_slider)
+            || f & (COMPONENT_LOOP | COMPONENT_SLIDER) == COMPONENT_LOOP | COMPONENT_SLIDER
     }
 
     /// Number of joints in the forest this step.
@@ -257,18 +278,24 @@ impl Forest {
         };
         for c in constraints.iter_mut() {
             c.tree = false;
-            // Components with limits, motors or springs (other than a tree slider's, which
-            // the forest solves with its tree's response), and loops with a slider, are
-            // solved by Gauss–Seidel alone (`tests/joint_loops.rs`). Against those rows,
-            // solved one joint at a time before the forest, the forest's exact solve fed
+            // Components with a distance spring, loops with a slider or with limits, motors or
+            // springs, and components with both a slider and a limited hinge or ball are
+            // solved by Gauss–Seidel alone (`tests/joint_loops.rs`). Before tree joints'
+            // limits were solved with the tree's response (`solve_axial`), such rows were
+            // solved one joint at a time before the forest, and the forest's exact solve fed
             // energy in: seeded random open chains with limits and springs gained more than
             // their energy scale in 12 of 300 (497 times it in the worst), rings with a
             // slider in 13 of 300 (a rigid slider tree and the soft loop-closing joint fought,
-            // their forces growing to ten times the weights). By Gauss–Seidel: at most 0.6 %
-            // in the chains. Loops without a slider keep the forest (its soft trees settle
-            // with the loop's rows: a 20×20 ball-joint grid hangs with 3.5 mm of gap, 8.5 mm
-            // without it), and so do chains with plain joints, whose load the forest carries
-            // exactly (a 20-link chain with a 100× end mass).
+            // their forces growing to ten times the weights). Open chains of hinges and balls
+            // with limits keep the forest: by Gauss–Seidel their joints sagged (291 of 300
+            // random chains past 5 mm, the worst 0.85 m; a 0.03 kg two-body effective mass
+            // at a far anchor makes a weak soft row), in the forest 26 (the worst 1.1 cm).
+            // With a slider as well, one of 300 chains gained a third of its energy scale in
+            // the forest (a free slider's child gathering speed along its rail), so those
+            // stay with Gauss–Seidel. Loops without a slider or limits keep the forest (its
+            // soft trees settle with the loop's rows: a 20×20 ball-joint grid hangs with
+            // 3.5 mm of gap, 8.5 mm without it), and so do chains with plain joints, whose
+            // load the forest carries exactly (a 20-link chain with a 100× end mass).
             c.iterated = self.iterated(c, states);
             if !has_equality_rows(c) || c.iterated {
                 continue;
@@ -335,36 +362,58 @@ impl Forest {
                 c.slider_point = if node.child_is_a { 0.0 } else { 1.0 };
             }
         }
-        // Trees with a slider respond rigidly, and a slider's limits and motor are solved with
-        // its tree's response: see `Forest::solve`. A tree is a run of nodes from a root.
+        // Trees with a slider or with scalar rows (limits, motors, springs) respond rigidly,
+        // and those rows are solved with their tree's response: see `Forest::solve`. A tree is
+        // a run of nodes from a root.
         self.axial.clear();
         let mut start = 0;
         for end in 1..=self.nodes.len() {
             if end < self.nodes.len() && self.nodes[end].parent != NONE {
                 continue;
             }
-            let mut slider = false;
+            let mut rigid = false;
             for i in start..end {
                 let n = &self.nodes[i];
                 if n.joint == NONE {
                     continue;
                 }
-                if let super::JointKind::Slider(p) = constraints[n.joint as usize].kind {
-                    slider = true;
-                    if super::slider::has_axial_rows(&p) {
-                        self.axial.push(Axial {
-                            node: i as u32,
-                            start: start as u32,
-                            end: end as u32,
-                            jc: ZERO6,
-                            jp: ZERO6,
-                            translation: 0.0,
-                        });
+                let mut push = |along| {
+                    self.axial.push(Axial {
+                        node: i as u32,
+                        start: start as u32,
+                        end: end as u32,
+                        along,
+                        jc: ZERO6,
+                        jp: ZERO6,
+                        pos: 0.0,
+                        live: false,
+                    })
+                };
+                match constraints[n.joint as usize].kind {
+                    super::JointKind::Slider(p) => {
+                        rigid = true;
+                        if super::slider::has_axial_rows(&p) {
+                            push(Along::SliderAxis);
+                        }
                     }
+                    super::JointKind::Hinge(p) if super::hinge::has_axial_rows(&p) => {
+                        rigid = true;
+                        push(Along::HingeAxis);
+                    }
+                    super::JointKind::Ball(p) if super::ball::has_limits(&p) => {
+                        rigid = true;
+                        if super::ball::cone_angle(&p).is_some() {
+                            push(Along::BallCone);
+                        }
+                        if p.enable_twist_limit {
+                            push(Along::BallTwist);
+                        }
+                    }
+                    _ => {}
                 }
             }
             for n in &mut self.nodes[start..end] {
-                n.rigid = slider;
+                n.rigid = rigid;
             }
             start = end;
         }
@@ -467,14 +516,26 @@ impl Forest {
         self.factor_axial(constraints, states);
     }
 
-    /// The tree sliders' rows along their axes at the bodies' current positions.
+    /// The tree joints' scalar rows at the bodies' current positions.
     fn factor_axial(&mut self, constraints: &[JointConstraint], states: &[BodyState]) {
         for a in self.axial.iter_mut() {
             let node = &self.nodes[a.node as usize];
             let c = &constraints[node.joint as usize];
             let (sa, sb) = (&states[c.ia as usize], &states[c.ib as usize]);
-            let sr = Frames::new(c, sa, sb).slider();
-            let row = Row::linear(sr.axes[2], sr.lever_a, sr.lever_b);
+            let f = Frames::new(c, sa, sb);
+            let found = match a.along {
+                Along::SliderAxis => {
+                    let sr = f.slider();
+                    let row = Row::linear(sr.axes[2], sr.lever_a, sr.lever_b);
+                    Some((row, sr.axes[2].dot(sr.offset)))
+                }
+                Along::HingeAxis | Along::BallTwist => f.twist().map(|(angle, axis)| (Row::angular(axis), angle)),
+                Along::BallCone => super::ball::cone_row(&f).map(|(j, angle)| (Row::angular(j), angle)),
+            };
+            a.live = found.is_some();
+            let Some((row, pos)) = found else {
+                continue;
+            };
             let (mine, other) = if node.child_is_a {
                 ([row.la, row.aa], [row.lb, row.ab])
             } else {
@@ -482,7 +543,7 @@ impl Forest {
             };
             a.jc = [mine[0].x, mine[0].y, mine[0].z, mine[1].x, mine[1].y, mine[1].z].map(f64::from);
             a.jp = [other[0].x, other[0].y, other[0].z, other[1].x, other[1].y, other[1].z].map(f64::from);
-            a.translation = sr.axes[2].dot(sr.offset);
+            a.pos = pos;
         }
     }
 
@@ -551,7 +612,10 @@ impl Forest {
     /// With limits or a motor on the slider the same chains blew up as long as those trees
     /// kept the soft response (limits at ±500 m that were never reached: 34 of 60), so they
     /// respond rigidly too, and the slider's limits and motor are solved after the equality
-    /// rows with the tree's response (`solve_axial`).
+    /// rows with the tree's response (`solve_axial`). So do trees with a hinge's or ball's
+    /// limits, motor or spring, whose rows are solved the same way: the rows' impulses are
+    /// booked on the tree's equality rows (`z`), which a soft response would leak away each
+    /// sweep while the limit's own impulse stays.
     pub fn solve(
         &mut self,
         constraints: &mut [JointConstraint],
@@ -646,17 +710,33 @@ impl Forest {
         }
     }
 
-    /// A tree slider's motor and limits (`Axial` `k`), solved with the response of its whole
-    /// tree: a unit impulse along the row, with the impulses of the tree's equality rows that
-    /// keep their velocities, moves every body of the tree (`x`) and the row by `1 / mass`.
-    /// The row's impulse then stops or drives the slide against everything hanging on it, and
-    /// the equality rows stay solved. Solved against the two bodies alone (coupled with the
-    /// joint's own equality rows only), a limit holding a 100× end mass below two light links
-    /// saw their mass, and the rigid tree bounced the chain between the limits at 30 m/s.
+    /// A tree joint's scalar rows along one direction (`Axial` `k`: a slider's motor and
+    /// limits, a hinge's spring, motor and limits, a ball's twist limits or swing cone),
+    /// solved with the response of its whole tree: a unit impulse along the row, with the
+    /// impulses of the tree's equality rows that keep their velocities, moves every body of
+    /// the tree (`x`) and the row by `1 / mass`. The row's impulse then stops or drives the
+    /// joint against everything hanging on it, and the equality rows stay solved. Solved
+    /// against the two bodies alone (coupled with the joint's own equality rows only), a
+    /// slider limit holding a 100× end mass below two light links saw their mass, and the
+    /// rigid tree bounced the chain between the limits at 30 m/s; hinge and ball limits so
+    /// solved before the forest's exact solve fed energy into random limited chains (12 of
+    /// 300 gained more than their energy scale, `tests/joint_loops.rs`).
     fn solve_axial(&mut self, k: usize, constraints: &mut [JointConstraint], vel: &mut [Velocity], ctx: &Ctx) {
         let a = self.axial[k];
         let range = a.start as usize..a.end as usize;
         let node = self.nodes[a.node as usize];
+        if !a.live {
+            // Not defined at this pose (the hinge's or twist's axes nearly opposite, far from
+            // the joint's pose: the alignment rows turn them back first; no swing).
+            let imp = &mut constraints[node.joint as usize].imp;
+            match a.along {
+                Along::HingeAxis => (imp.axial, imp.motor, imp.lower, imp.upper) = (0.0, 0.0, 0.0, 0.0),
+                Along::BallTwist => (imp.lower, imp.upper) = (0.0, 0.0),
+                Along::BallCone => imp.cone = 0.0,
+                Along::SliderAxis => {}
+            }
+            return;
+        }
         // The response to a unit impulse along the row.
         for i in range.clone() {
             self.g[i] = ZERO6;
@@ -682,28 +762,68 @@ impl Forest {
             0.0
         };
         let c = &mut constraints[node.joint as usize];
-        let super::JointKind::Slider(p) = c.kind else {
-            return;
-        };
         let mut cdot =
             (dot6(&a.jc, &six(&vel[node.body as usize])) + dot6(&a.jp, &six(&vel[node.other as usize]))) as f32;
         let inv_mass = inv_mass as f32;
         let mut total = 0.0f32;
         let imp = &mut c.imp;
-        if p.enable_motor {
-            let old = imp.motor;
-            let max = p.max_motor_force * ctx.h;
-            imp.motor = (old - mass * (cdot - p.motor_speed)).clamp(-max, max);
-            let d = imp.motor - old;
-            cdot += inv_mass * d;
-            total += d;
-        }
-        if p.enable_limit {
-            let d = ctx.limit(mass, cdot, a.translation - p.lower, &mut imp.lower);
-            cdot += inv_mass * d;
-            total += d;
-            let d = ctx.limit(mass, -cdot, p.upper - a.translation, &mut imp.upper);
-            total -= d;
+        // Each row in turn: its impulse `d` moves the row's velocity by `d / mass`.
+        let motor = |cdot: &mut f32, total: &mut f32, acc: &mut f32, speed: f32, max: f32| {
+            let old = *acc;
+            *acc = (old - mass * (*cdot - speed)).clamp(-max, max);
+            let d = *acc - old;
+            *cdot += inv_mass * d;
+            *total += d;
+        };
+        let limits = |cdot: &mut f32, total: &mut f32, imp: &mut Impulses, lower: f32, upper: f32| {
+            let d = ctx.limit(mass, *cdot, a.pos - lower, &mut imp.lower);
+            *cdot += inv_mass * d;
+            *total += d;
+            let d = ctx.limit(mass, -*cdot, upper - a.pos, &mut imp.upper);
+            *total -= d;
+        };
+        match c.kind {
+            super::JointKind::Slider(p) => {
+                if p.enable_motor {
+                    motor(
+                        &mut cdot,
+                        &mut total,
+                        &mut imp.motor,
+                        p.motor_speed,
+                        p.max_motor_force * ctx.h,
+                    );
+                }
+                if p.enable_limit {
+                    limits(&mut cdot, &mut total, imp, p.lower, p.upper);
+                }
+            }
+            super::JointKind::Hinge(p) => {
+                if p.enable_spring && p.spring_hertz > 0.0 {
+                    let d = super::solver::soft_impulse(&c.spring, mass, cdot, a.pos, &mut imp.axial);
+                    cdot += inv_mass * d;
+                    total += d;
+                }
+                if p.enable_motor {
+                    motor(
+                        &mut cdot,
+                        &mut total,
+                        &mut imp.motor,
+                        p.motor_speed,
+                        p.max_motor_torque * ctx.h,
+                    );
+                }
+                if p.enable_limit {
+                    limits(&mut cdot, &mut total, imp, p.lower, p.upper);
+                }
+            }
+            super::JointKind::Ball(p) if a.along == Along::BallTwist => {
+                limits(&mut cdot, &mut total, imp, p.lower_twist, p.upper_twist);
+            }
+            super::JointKind::Ball(p) => {
+                let limit = super::ball::cone_angle(&p).unwrap_or(a.pos);
+                total += ctx.limit(mass, cdot, limit - a.pos, &mut imp.cone);
+            }
+            _ => {}
         }
         if total == 0.0 {
             return;
