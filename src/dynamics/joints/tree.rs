@@ -782,48 +782,39 @@ impl Forest {
             let d = ctx.limit(mass, -*cdot, upper - a.pos, &mut imp.upper);
             *total -= d;
         };
-        match c.kind {
-            super::JointKind::Slider(p) => {
-                if p.enable_motor {
-                    motor(
-                        &mut cdot,
-                        &mut total,
-                        &mut imp.motor,
-                        p.motor_speed,
-                        p.max_motor_force * ctx.h,
-                    );
-                }
-                if p.enable_limit {
-                    limits(&mut cdot, &mut total, imp, p.lower, p.upper);
-                }
-            }
-            super::JointKind::Hinge(p) => {
-                if p.enable_spring && p.spring_hertz > 0.0 {
-                    let d = super::solver::soft_impulse(&c.spring, mass, cdot, a.pos, &mut imp.axial);
-                    cdot += inv_mass * d;
-                    total += d;
-                }
-                if p.enable_motor {
-                    motor(
-                        &mut cdot,
-                        &mut total,
-                        &mut imp.motor,
-                        p.motor_speed,
-                        p.max_motor_torque * ctx.h,
-                    );
-                }
-                if p.enable_limit {
-                    limits(&mut cdot, &mut total, imp, p.lower, p.upper);
-                }
-            }
+        // In solve order: spring toward 0 (a hinge's), motor (target speed, largest force or
+        // torque), lower and upper limits; a ball's cone is one limit of its own.
+        let (spring, drive, bounds) = match c.kind {
+            super::JointKind::Slider(p) => (
+                false,
+                p.enable_motor.then_some((p.motor_speed, p.max_motor_force)),
+                p.enable_limit.then_some((p.lower, p.upper)),
+            ),
+            super::JointKind::Hinge(p) => (
+                p.enable_spring && p.spring_hertz > 0.0,
+                p.enable_motor.then_some((p.motor_speed, p.max_motor_torque)),
+                p.enable_limit.then_some((p.lower, p.upper)),
+            ),
             super::JointKind::Ball(p) if a.along == Along::BallTwist => {
-                limits(&mut cdot, &mut total, imp, p.lower_twist, p.upper_twist);
+                (false, None, Some((p.lower_twist, p.upper_twist)))
             }
             super::JointKind::Ball(p) => {
                 let limit = super::ball::cone_angle(&p).unwrap_or(a.pos);
                 total += ctx.limit(mass, cdot, limit - a.pos, &mut imp.cone);
+                (false, None, None)
             }
-            _ => {}
+            _ => (false, None, None),
+        };
+        if spring {
+            let d = super::solver::soft_impulse(&c.spring, mass, cdot, a.pos, &mut imp.axial);
+            cdot += inv_mass * d;
+            total += d;
+        }
+        if let Some((speed, max)) = drive {
+            motor(&mut cdot, &mut total, &mut imp.motor, speed, max * ctx.h);
+        }
+        if let Some((lower, upper)) = bounds {
+            limits(&mut cdot, &mut total, imp, lower, upper);
         }
         if total == 0.0 {
             return;
