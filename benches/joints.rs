@@ -3,7 +3,17 @@
 //! static, sleep off, dt = 1/60. Each iteration steps a warmed-up grid STEPS times; the
 //! reported time divided by STEPS is ms per step (also printed as steps/s throughput).
 //!
+//! `ragdolls`: 100 of the 11-body ragdolls of `tests/scenes` (`scenes::ragdoll`: ball joints
+//! with cone and twist limits, limited hinges) standing 2 m apart in a 10 × 10 grid on a
+//! plane, each part given the spin of `tests/joints.rs`'s ragdoll test so they fall in
+//! heaps, sleep on; each iteration steps a new scene through its first 120 steps (the fall
+//! and the landing).
+//!
 //! `cargo bench --bench joints`.
+
+#[path = "../tests/scenes/mod.rs"]
+#[allow(dead_code)]
+mod scenes;
 
 use criterion::{criterion_group, criterion_main, BatchSize, Criterion, Throughput};
 use hearth::joints::BallParams;
@@ -68,6 +78,23 @@ pub fn joint_grid(n: usize) -> World {
     w
 }
 
+/// Steps of the ragdoll scene per iteration.
+const RAGDOLL_STEPS: u64 = 120;
+
+/// The ragdoll scene (see the module doc).
+fn ragdolls() -> World {
+    let mut w = scenes::world(true);
+    scenes::ground_plane(&mut w);
+    for i in 0..10 {
+        for k in 0..10 {
+            for b in scenes::ragdoll(&mut w, Vec3::new(2.0 * i as f32, 2.0, 2.0 * k as f32)) {
+                w.set_angular_velocity(b, Vec3::new(0.5, 0.0, 2.0)).unwrap();
+            }
+        }
+    }
+    w
+}
+
 fn benches(c: &mut Criterion) {
     let mut group = c.benchmark_group("joints");
     group.sample_size(10);
@@ -83,6 +110,19 @@ fn benches(c: &mut Criterion) {
             },
             |mut w| {
                 for _ in 0..STEPS {
+                    w.step(DT).unwrap();
+                }
+                w
+            },
+            BatchSize::PerIteration,
+        )
+    });
+    group.throughput(Throughput::Elements(RAGDOLL_STEPS));
+    group.bench_function("ragdolls_100", |b| {
+        b.iter_batched(
+            ragdolls,
+            |mut w| {
+                for _ in 0..RAGDOLL_STEPS {
                     w.step(DT).unwrap();
                 }
                 w

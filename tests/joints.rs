@@ -392,96 +392,6 @@ fn ball_joint_cone_and_twist_limits_hold() {
     assert!(twist < 0.2 + 0.03, "twist {twist}");
 }
 
-/// Bodies of a ragdoll: capsules joined by ball joints with cone and twist limits (shoulders,
-/// hips, neck, spine) and hinges with limits (elbows, knees).
-fn ragdoll(w: &mut World, origin: Vec3) -> Vec<BodyHandle> {
-    let vertical = Quat::IDENTITY;
-    let part = |w: &mut World, c: Vec3, half: f32, r: f32| capsule(w, origin + c, vertical, half, r, 1000.0);
-    let pelvis = part(w, Vec3::new(0.0, 1.0, 0.0), 0.08, 0.12);
-    let chest = part(w, Vec3::new(0.0, 1.4, 0.0), 0.12, 0.14);
-    let head = sphere(w, origin + Vec3::new(0.0, 1.78, 0.0), 0.11, 1000.0);
-    let mut bodies = vec![pelvis, chest, head];
-    let cone = |swing: f32, twist: f32| {
-        JointKind::Ball(BallParams {
-            enable_swing_limit: true,
-            swing_limit: swing,
-            enable_twist_limit: true,
-            lower_twist: -twist,
-            upper_twist: twist,
-        })
-    };
-    let knee = |lower: f32, upper: f32| {
-        JointKind::Hinge(HingeParams {
-            enable_limit: true,
-            lower,
-            upper,
-            ..Default::default()
-        })
-    };
-    let spine = joint_at(
-        w,
-        cone(0.4, 0.3),
-        chest,
-        Some(pelvis),
-        origin + Vec3::new(0.0, 1.2, 0.0),
-        Vec3::Y,
-    );
-    w.create_joint(&spine).unwrap();
-    let neck = joint_at(
-        w,
-        cone(0.5, 0.5),
-        head,
-        Some(chest),
-        origin + Vec3::new(0.0, 1.66, 0.0),
-        Vec3::Y,
-    );
-    w.create_joint(&neck).unwrap();
-    for side in [-1.0f32, 1.0] {
-        let upper_arm = part(w, Vec3::new(side * 0.38, 1.5, 0.0), 0.1, 0.05);
-        let fore_arm = part(w, Vec3::new(side * 0.38, 1.2, 0.0), 0.1, 0.045);
-        let thigh = part(w, Vec3::new(side * 0.1, 0.65, 0.0), 0.14, 0.07);
-        let shin = part(w, Vec3::new(side * 0.1, 0.25, 0.0), 0.14, 0.06);
-        let shoulder = joint_at(
-            w,
-            cone(1.2, 0.5),
-            upper_arm,
-            Some(chest),
-            origin + Vec3::new(side * 0.38, 1.62, 0.0),
-            -Vec3::Y,
-        );
-        w.create_joint(&shoulder).unwrap();
-        let elbow = joint_at(
-            w,
-            knee(0.0, 2.2),
-            fore_arm,
-            Some(upper_arm),
-            origin + Vec3::new(side * 0.38, 1.35, 0.0),
-            Vec3::X,
-        );
-        w.create_joint(&elbow).unwrap();
-        let hip = joint_at(
-            w,
-            cone(0.8, 0.3),
-            thigh,
-            Some(pelvis),
-            origin + Vec3::new(side * 0.1, 0.85, 0.0),
-            -Vec3::Y,
-        );
-        w.create_joint(&hip).unwrap();
-        let knee_j = joint_at(
-            w,
-            knee(-2.2, 0.0),
-            shin,
-            Some(thigh),
-            origin + Vec3::new(side * 0.1, 0.45, 0.0),
-            Vec3::X,
-        );
-        w.create_joint(&knee_j).unwrap();
-        bodies.extend([upper_arm, fore_arm, thigh, shin]);
-    }
-    bodies
-}
-
 /// Kinetic energy of bodies (J).
 fn kinetic_energy(w: &World, bodies: &[BodyHandle]) -> f32 {
     bodies
@@ -500,7 +410,7 @@ fn kinetic_energy(w: &World, bodies: &[BodyHandle]) -> f32 {
 fn ragdoll_falls_and_settles() {
     let mut w = world(true);
     ground(&mut w);
-    let parts = ragdoll(&mut w, Vec3::new(0.0, 2.0, 0.0));
+    let parts = scenes::ragdoll(&mut w, Vec3::new(0.0, 2.0, 0.0));
     assert!(parts.len() >= 10);
     // Tip it over with a spin so it lands in a heap.
     for &b in &parts {
@@ -826,7 +736,7 @@ fn joints_are_deterministic() {
     let run_once = || {
         let mut w = world(true);
         ground(&mut w);
-        let parts = ragdoll(&mut w, Vec3::new(0.0, 2.0, 0.0));
+        let parts = scenes::ragdoll(&mut w, Vec3::new(0.0, 2.0, 0.0));
         for &b in &parts {
             w.set_angular_velocity(b, Vec3::new(0.5, 0.0, 2.0)).unwrap();
         }
@@ -896,7 +806,7 @@ static GLOBAL: Counting = Counting;
 fn steady_joint_steps_do_not_allocate() {
     let mut w = world(true);
     ground(&mut w);
-    let parts = ragdoll(&mut w, Vec3::new(0.0, 2.0, 0.0));
+    let parts = scenes::ragdoll(&mut w, Vec3::new(0.0, 2.0, 0.0));
     let (_links, _end, _, _) = heavy_chain(&mut w, 10, 10.0, 0.5);
     for &b in &parts {
         w.set_angular_velocity(b, Vec3::new(0.5, 0.0, 2.0)).unwrap();

@@ -6,9 +6,8 @@
 #[path = "scenes/mod.rs"]
 #[allow(dead_code)]
 mod scenes;
-use hearth::joints::{BallParams, HingeParams};
 use hearth::math::{Quat, Transform, Vec3};
-use hearth::{BodyDef, BodyHandle, BodyType, Geometry, JointDef, JointKind, ShapeDef, World};
+use hearth::{BodyDef, BodyHandle, BodyType, Geometry, ShapeDef, World};
 
 const DT: f32 = 1.0 / 60.0;
 const G: f32 = 9.81;
@@ -428,100 +427,6 @@ fn demo_scene_ends_asleep() {
     assert!(moved < 0.05, "apex moved {moved} m");
 }
 
-/// A joint between `a` and `b` at the world point `anchor`, the joint frame's z along `axis`.
-fn joint_at(w: &World, kind: JointKind, a: BodyHandle, b: BodyHandle, anchor: Vec3, axis: Vec3) -> JointDef {
-    let world_frame = Transform::new(anchor, Quat::from_rotation_arc(Vec3::Z, axis.normalize()));
-    let mut def = JointDef::new(kind);
-    def.body_a = a;
-    def.frame_a = w.transform(a).unwrap().inv_mul(&world_frame);
-    def.body_b = b;
-    def.frame_b = w.transform(b).unwrap().inv_mul(&world_frame);
-    def
-}
-
-/// An 11-body ragdoll standing at `origin` (the one of `tests/joints.rs`): vertical capsules
-/// for pelvis, chest, arms and legs, a sphere head, ball joints with cone and twist limits
-/// (spine, neck, shoulders, hips) and limited hinges (elbows, knees); default materials.
-fn ragdoll(w: &mut World, origin: Vec3) -> Vec<BodyHandle> {
-    let def = ShapeDef::default();
-    let part = |w: &mut World, c: Vec3, half: f32, r: f32| {
-        let geom = Geometry::Capsule {
-            a: Vec3::new(0.0, -half, 0.0),
-            b: Vec3::new(0.0, half, 0.0),
-            radius: r,
-        };
-        dynamic(w, Transform::new(origin + c, Quat::IDENTITY), geom, &def)
-    };
-    let pelvis = part(w, Vec3::new(0.0, 1.0, 0.0), 0.08, 0.12);
-    let chest = part(w, Vec3::new(0.0, 1.4, 0.0), 0.12, 0.14);
-    let head_at = Transform::new(origin + Vec3::new(0.0, 1.78, 0.0), Quat::IDENTITY);
-    let head = dynamic(w, head_at, sphere(0.11), &def);
-    let mut bodies = vec![pelvis, chest, head];
-    let cone = |swing: f32, twist: f32| {
-        JointKind::Ball(BallParams {
-            enable_swing_limit: true,
-            swing_limit: swing,
-            enable_twist_limit: true,
-            lower_twist: -twist,
-            upper_twist: twist,
-        })
-    };
-    let hinge = |lower: f32, upper: f32| {
-        JointKind::Hinge(HingeParams {
-            enable_limit: true,
-            lower,
-            upper,
-            ..Default::default()
-        })
-    };
-    let join = |w: &mut World, kind: JointKind, a: BodyHandle, b: BodyHandle, at: Vec3, axis: Vec3| {
-        let def = joint_at(w, kind, a, b, origin + at, axis);
-        w.create_joint(&def).unwrap();
-    };
-    join(w, cone(0.4, 0.3), chest, pelvis, Vec3::new(0.0, 1.2, 0.0), Vec3::Y);
-    join(w, cone(0.5, 0.5), head, chest, Vec3::new(0.0, 1.66, 0.0), Vec3::Y);
-    for side in [-1.0f32, 1.0] {
-        let upper_arm = part(w, Vec3::new(side * 0.38, 1.5, 0.0), 0.1, 0.05);
-        let fore_arm = part(w, Vec3::new(side * 0.38, 1.2, 0.0), 0.1, 0.045);
-        let thigh = part(w, Vec3::new(side * 0.1, 0.65, 0.0), 0.14, 0.07);
-        let shin = part(w, Vec3::new(side * 0.1, 0.25, 0.0), 0.14, 0.06);
-        join(
-            w,
-            cone(1.2, 0.5),
-            upper_arm,
-            chest,
-            Vec3::new(side * 0.38, 1.62, 0.0),
-            -Vec3::Y,
-        );
-        join(
-            w,
-            hinge(0.0, 2.2),
-            fore_arm,
-            upper_arm,
-            Vec3::new(side * 0.38, 1.35, 0.0),
-            Vec3::X,
-        );
-        join(
-            w,
-            cone(0.8, 0.3),
-            thigh,
-            pelvis,
-            Vec3::new(side * 0.1, 0.85, 0.0),
-            -Vec3::Y,
-        );
-        join(
-            w,
-            hinge(-2.2, 0.0),
-            shin,
-            thigh,
-            Vec3::new(side * 0.1, 0.45, 0.0),
-            Vec3::X,
-        );
-        bodies.extend([upper_arm, fore_arm, thigh, shin]);
-    }
-    bodies
-}
-
 /// The ragdoll of `tests/joints.rs`, tipped over with its spin, lands in a heap and sleeps —
 /// before rolling resistance and spin friction its sphere head kept rolling in place and held
 /// the island awake. Every part asleep by 8 s (measured: 5.55 s).
@@ -529,7 +434,7 @@ fn ragdoll(w: &mut World, origin: Vec3) -> Vec<BodyHandle> {
 fn ragdoll_comes_to_rest_and_sleeps() {
     let mut w = scenes::world(true);
     plane(&mut w, Vec3::Y, &ShapeDef::default());
-    let parts = ragdoll(&mut w, Vec3::new(0.0, 2.0, 0.0));
+    let parts = scenes::ragdoll(&mut w, Vec3::new(0.0, 2.0, 0.0));
     for &b in &parts {
         w.set_angular_velocity(b, Vec3::new(0.5, 0.0, 2.0)).unwrap();
     }
@@ -562,7 +467,7 @@ fn random_ragdolls_never_gain_energy() {
     for case in 0..30 {
         let mut w = scenes::world(true);
         plane(&mut w, Vec3::Y, &ShapeDef::default());
-        let parts = ragdoll(&mut w, Vec3::new(0.0, 2.0, 0.0));
+        let parts = scenes::ragdoll(&mut w, Vec3::new(0.0, 2.0, 0.0));
         let spin = Vec3::new(rng.range(-3.0, 3.0), rng.range(-3.0, 3.0), rng.range(-3.0, 3.0));
         for &b in &parts {
             w.set_angular_velocity(b, spin).unwrap();

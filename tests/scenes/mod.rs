@@ -774,3 +774,74 @@ pub fn random_slider(rng: &mut Rng) -> hearth::JointKind {
         ..Default::default()
     })
 }
+
+// ---------------------------------------------------------------- ragdolls
+
+/// An 11-body ragdoll standing at `origin`: vertical capsules for pelvis, chest, arms and
+/// legs, a sphere head, ball joints with cone and twist limits (spine, neck, shoulders, hips)
+/// and limited hinges (elbows, knees); default materials (1,000 kg/m³). Used by
+/// `tests/joints.rs`, `tests/rolling.rs` and the `joints` bench.
+pub fn ragdoll(w: &mut World, origin: Vec3) -> Vec<BodyHandle> {
+    use hearth::joints::{BallParams, HingeParams};
+    use hearth::JointKind;
+    let def = ShapeDef::default();
+    let part = |w: &mut World, c: Vec3, half: f32, r: f32| {
+        let geom = Geometry::Capsule {
+            a: Vec3::new(0.0, -half, 0.0),
+            b: Vec3::new(0.0, half, 0.0),
+            radius: r,
+        };
+        dynamic_body(w, Transform::new(origin + c, Quat::IDENTITY), &def, &geom)
+    };
+    let pelvis = part(w, Vec3::new(0.0, 1.0, 0.0), 0.08, 0.12);
+    let chest = part(w, Vec3::new(0.0, 1.4, 0.0), 0.12, 0.14);
+    let head_at = Transform::new(origin + Vec3::new(0.0, 1.78, 0.0), Quat::IDENTITY);
+    let head = dynamic_body(
+        w,
+        head_at,
+        &def,
+        &Geometry::Sphere {
+            center: Vec3::ZERO,
+            radius: 0.11,
+        },
+    );
+    let mut bodies = vec![pelvis, chest, head];
+    let cone = |swing: f32, twist: f32| {
+        JointKind::Ball(BallParams {
+            enable_swing_limit: true,
+            swing_limit: swing,
+            enable_twist_limit: true,
+            lower_twist: -twist,
+            upper_twist: twist,
+        })
+    };
+    let hinge = |lower: f32, upper: f32| {
+        JointKind::Hinge(HingeParams {
+            enable_limit: true,
+            lower,
+            upper,
+            ..Default::default()
+        })
+    };
+    // The joint frame at `at` (from `origin`) with its Z axis along `axis`.
+    let joint = |w: &mut World, kind: JointKind, child: BodyHandle, parent: BodyHandle, at: Vec3, axis: Vec3| {
+        let frame = Transform::new(origin + at, Quat::from_rotation_arc(Vec3::Z, axis.normalize()));
+        join(w, kind, child, Some(parent), frame);
+    };
+    joint(w, cone(0.4, 0.3), chest, pelvis, Vec3::new(0.0, 1.2, 0.0), Vec3::Y);
+    joint(w, cone(0.5, 0.5), head, chest, Vec3::new(0.0, 1.66, 0.0), Vec3::Y);
+    for side in [-1.0f32, 1.0] {
+        let upper_arm = part(w, Vec3::new(side * 0.38, 1.5, 0.0), 0.1, 0.05);
+        let fore_arm = part(w, Vec3::new(side * 0.38, 1.2, 0.0), 0.1, 0.045);
+        let thigh = part(w, Vec3::new(side * 0.1, 0.65, 0.0), 0.14, 0.07);
+        let shin = part(w, Vec3::new(side * 0.1, 0.25, 0.0), 0.14, 0.06);
+        let (shoulder, elbow) = (Vec3::new(side * 0.38, 1.62, 0.0), Vec3::new(side * 0.38, 1.35, 0.0));
+        joint(w, cone(1.2, 0.5), upper_arm, chest, shoulder, -Vec3::Y);
+        joint(w, hinge(0.0, 2.2), fore_arm, upper_arm, elbow, Vec3::X);
+        let (hip, knee) = (Vec3::new(side * 0.1, 0.85, 0.0), Vec3::new(side * 0.1, 0.45, 0.0));
+        joint(w, cone(0.8, 0.3), thigh, pelvis, hip, -Vec3::Y);
+        joint(w, hinge(-2.2, 0.0), shin, thigh, knee, Vec3::X);
+        bodies.extend([upper_arm, fore_arm, thigh, shin]);
+    }
+    bodies
+}
