@@ -737,6 +737,43 @@ impl Forest {
             }
             return;
         }
+        // In solve order: spring toward 0 (a hinge's), motor (target speed, largest force or
+        // torque), lower and upper limits; a ball's cone is one limit of its own.
+        let (spring, drive, bounds, cone) = match constraints[node.joint as usize].kind {
+            super::JointKind::Slider(p) => (
+                false,
+                p.enable_motor.then_some((p.motor_speed, p.max_motor_force)),
+                p.enable_limit.then_some((p.lower, p.upper)),
+                None,
+            ),
+            super::JointKind::Hinge(p) => (
+                p.enable_spring && p.spring_hertz > 0.0,
+                p.enable_motor.then_some((p.motor_speed, p.max_motor_torque)),
+                p.enable_limit.then_some((p.lower, p.upper)),
+                None,
+            ),
+            super::JointKind::Ball(p) if a.along == Along::BallTwist => {
+                (false, None, Some((p.lower_twist, p.upper_twist)), None)
+            }
+            super::JointKind::Ball(p) => (false, None, None, Some(super::ball::cone_angle(&p).unwrap_or(a.pos))),
+            _ => (false, None, None, None),
+        };
+        let mut cdot =
+            (dot6(&a.jc, &six(&vel[node.body as usize])) + dot6(&a.jp, &six(&vel[node.other as usize]))) as f32;
+        // Limits that hold no impulse and stay apart within the sub-step give none whatever
+        // the response (`Ctx::limit`): most of a ragdoll's, most of the time. Their tree's
+        // sweep is skipped.
+        let imp = &constraints[node.joint as usize].imp;
+        let resting = |v: f32, c: f32, acc: f32| acc == 0.0 && c > 0.0 && v + c * ctx.inv_h >= 0.0;
+        if !spring
+            && drive.is_none()
+            && bounds.map_or(true, |(lo, up)| {
+                resting(cdot, a.pos - lo, imp.lower) && resting(-cdot, up - a.pos, imp.upper)
+            })
+            && cone.map_or(true, |limit| resting(cdot, limit - a.pos, imp.cone))
+        {
+            return;
+        }
         // The response to a unit impulse along the row.
         for i in range.clone() {
             self.g[i] = ZERO6;
@@ -762,8 +799,6 @@ impl Forest {
             0.0
         };
         let c = &mut constraints[node.joint as usize];
-        let mut cdot =
-            (dot6(&a.jc, &six(&vel[node.body as usize])) + dot6(&a.jp, &six(&vel[node.other as usize]))) as f32;
         let inv_mass = inv_mass as f32;
         let mut total = 0.0f32;
         let imp = &mut c.imp;
@@ -782,29 +817,9 @@ impl Forest {
             let d = ctx.limit(mass, -*cdot, upper - a.pos, &mut imp.upper);
             *total -= d;
         };
-        // In solve order: spring toward 0 (a hinge's), motor (target speed, largest force or
-        // torque), lower and upper limits; a ball's cone is one limit of its own.
-        let (spring, drive, bounds) = match c.kind {
-            super::JointKind::Slider(p) => (
-                false,
-                p.enable_motor.then_some((p.motor_speed, p.max_motor_force)),
-                p.enable_limit.then_some((p.lower, p.upper)),
-            ),
-            super::JointKind::Hinge(p) => (
-                p.enable_spring && p.spring_hertz > 0.0,
-                p.enable_motor.then_some((p.motor_speed, p.max_motor_torque)),
-                p.enable_limit.then_some((p.lower, p.upper)),
-            ),
-            super::JointKind::Ball(p) if a.along == Along::BallTwist => {
-                (false, None, Some((p.lower_twist, p.upper_twist)))
-            }
-            super::JointKind::Ball(p) => {
-                let limit = super::ball::cone_angle(&p).unwrap_or(a.pos);
-                total += ctx.limit(mass, cdot, limit - a.pos, &mut imp.cone);
-                (false, None, None)
-            }
-            _ => (false, None, None),
-        };
+        if let Some(limit) = cone {
+            total += ctx.limit(mass, cdot, limit - a.pos, &mut imp.cone);
+        }
         if spring {
             let d = super::solver::soft_impulse(&c.spring, mass, cdot, a.pos, &mut imp.axial);
             cdot += inv_mass * d;
