@@ -257,7 +257,7 @@ const FIGURES: &[(&str, &str, Backing)] = &[
         Input("robustness::a_slider_set_up_45_degrees_off_stays_on_its_axis"),
     ),
     // README, the ragdoll bench (benches/joints.rs): forest and Gauss-Seidel.
-    (R, "40 ms/step", Bench),
+    (R, "12 ms/step", Bench),
     (R, "74 ms/step", Bench),
     (R, "2.5 ms/step", Bench),
     (R, "7.9 ms/step", Bench),
