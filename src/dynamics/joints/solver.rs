@@ -689,9 +689,9 @@ fn is_locked(c: &JointConstraint, states: &[BodyState]) -> bool {
     (states[c.ia as usize].locks | states[c.ib as usize].locks) != 0
 }
 
-/// Solves one joint outside the forest (its equality rows as a block) or the scalar rows of
-/// a forest joint other than a slider (the forest solves those); returns whether either body
-/// has locked axes.
+/// Solves one joint outside the forest: its limits, motor and spring, then its equality rows
+/// as a block (a forest joint's rows are all the forest's); returns whether either body has
+/// locked axes.
 fn solve_one(c: &mut JointConstraint, vel: &mut [Velocity], states: &[BodyState], ctx: &Ctx) -> bool {
     // A tree joint's rows, equality and scalar, are solved by the forest (scalar rows with
     // its tree's response, `Forest::solve_axial`).

@@ -236,7 +236,7 @@ impl Forest {
 
     /// Whether the joint's component is solved by Gauss–Seidel alone (see `build`): it has
     /// a distance spring, or it closes a loop and has a slider or a hinge or ball with limits,
-    /// a motor or a spring.
+    /// a motor or a spring, or it has both a slider and such a hinge or ball.
     fn iterated(&mut self, c: &JointConstraint, states: &[BodyState]) -> bool {
         let body = if classify(&states[c.ia as usize], c.ia).0 {
             c.ib
@@ -244,10 +244,10 @@ impl Forest {
             c.ia
         };
         let f = self.component_flags[find(&mut self.component_uf, body) as usize];
-        let loop_or_slider = f & (COMPONENT_LOOP | COMPONENT_SLIDER) != 0;
-        f & COMPONENT_SCALAR != 0
-            || (f & COMPONENT_LIMITED != 0 && loop_or_slider)
-            || f & (COMPONENT_LOOP | COMPONENT_SLIDER) == COMPONENT_LOOP | COMPONENT_SLIDER
+        let has = |flag: u8| f & flag != 0;
+        has(COMPONENT_SCALAR)
+            || (has(COMPONENT_LOOP) && has(COMPONENT_SLIDER | COMPONENT_LIMITED))
+            || (has(COMPONENT_SLIDER) && has(COMPONENT_LIMITED))
     }
 
     /// Number of joints in the forest this step.
